@@ -1,0 +1,24 @@
+# Per-ISA kernel translation units: the ISA flags go on those files only, so the
+# rest of the build (and the shipped binary's baseline) stays plain x86-64/SSE2.
+set(QUADRA_FLAGS_sse2 "-msse2")
+set(QUADRA_FLAGS_avx2 "-mavx2;-mf16c")
+# GCC 12's own avx512fintrin.h trips -W(maybe-)uninitialized (its _mm512_undefined_*
+# idiom), a known false positive; silenced for this file only.
+set(QUADRA_FLAGS_avx512
+    "-mavx512f;-mavx512bw;-mavx512dq;-mavx512vl;-mavx2;-mf16c;-Wno-maybe-uninitialized;-Wno-uninitialized")
+
+# quadra_isa_sources(<out-var> <template.cpp.in> <kernel-name>) configures one
+# copy of a kernel source per ISA and returns the generated file list.
+function(quadra_isa_sources out_var template name)
+  set(files)
+  foreach(isa scalar sse2 avx2 avx512)
+    set(QUADRA_ISA ${isa})
+    set(file ${CMAKE_CURRENT_BINARY_DIR}/${name}_${isa}.cpp)
+    configure_file(${template} ${file} @ONLY)
+    if(DEFINED QUADRA_FLAGS_${isa})
+      set_source_files_properties(${file} PROPERTIES COMPILE_OPTIONS "${QUADRA_FLAGS_${isa}}")
+    endif()
+    list(APPEND files ${file})
+  endforeach()
+  set(${out_var} ${files} PARENT_SCOPE)
+endfunction()

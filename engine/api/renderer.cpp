@@ -1,0 +1,220 @@
+// Renderer: turns a scene and camera into the frame's draw list, then runs the
+// pipeline stages in order: vertex → clip/setup → bin → tile → resolve.
+#include "api/renderer.h"
+
+#include <algorithm>
+#include <string>
+
+#include "api/camera.h"
+#include "bin/bins.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "setup/fixed_point.h"
+#include "setup/triangle_setup.h"
+#include "texture/mip_chain.h"
+#include "tile/tile_stage.h"
+#include "vertex/vertex_stage.h"
+
+namespace quadra {
+
+static_assert(kMaxViewportSize == kMaxViewport, "one limit, stated in two headers");
+
+struct Renderer::Impl {
+  Executor executor;
+  const TileKernels* kernels;
+  explicit Impl(int threads, Isa isa) : executor(threads), kernels(&tileKernels(isa)) {}
+};
+
+namespace {
+
+// Triangles per front-end task. Fixed (not derived from the thread count) so
+// chunk boundaries, and with them everything downstream, are the same for
+// any number of threads.
+constexpr std::size_t kChunkTriangles = 8192;
+
+TextureView makeTextureView(const Texture& texture, const RenderSettings& settings) {
+  TextureView view;
+  const SamplerState& sampler = texture.sampler();
+  view.wrapU = sampler.wrapU;
+  view.wrapV = sampler.wrapV;
+  std::copy(std::begin(sampler.borderColor), std::end(sampler.borderColor), view.border);
+  view.minFilter = settings.filter.value_or(sampler.minFilter);
+  // An explicit filter decides magnification too: nearest stays nearest.
+  view.magLinear = settings.filter ? *settings.filter != Filter::Nearest : sampler.magLinear;
+  view.maxAniso = settings.maxAniso;
+  if (needsMips(view.minFilter)) {
+    const MipChain& mips = texture.mips();
+    view.levelCount = std::min(mips.levelCount(), TextureView::kMaxLevels);
+    for (int i = 0; i < view.levelCount; ++i) {
+      const Image& level = mips.level(i);
+      view.levels[i] = {level.rgba.data(), level.width, level.height};
+    }
+  } else {
+    const Image& image = texture.image();
+    view.levelCount = 1;
+    view.levels[0] = {image.rgba.data(), image.width, image.height};
+  }
+  return view;
+}
+
+Draw makeDraw(const Scene& scene, const Instance& instance, const glm::mat4& view,
+              const glm::mat4& projection, const RenderSettings& settings) {
+  static const Material kDefaultMaterial;
+  const Mesh& mesh = scene.meshes.at(std::size_t(instance.mesh));
+  const Material& material =
+      mesh.material >= 0 ? scene.materials.at(std::size_t(mesh.material)) : kDefaultMaterial;
+  Draw draw;
+  DrawGeometry& g = draw.geometry;
+  ShadeState& s = draw.shade;
+  g.mesh = &mesh;
+  g.modelView = view * instance.world;
+  g.projection = projection;
+  g.cullBackFaces = !material.doubleSided;
+  g.frontIsClockwise = glm::determinant(glm::mat3(instance.world)) < 0.0f;
+  g.texcoordSet = std::clamp(material.baseColorTexCoord, 0, 1);
+
+  s.baseColor = material.baseColorFactor;
+  s.alphaMode = material.alphaMode;
+  s.alphaCutoff = material.alphaCutoff;
+  s.textured = material.baseColorTexture >= 0 && !mesh.texcoords[g.texcoordSet].empty();
+  if (s.textured)
+    s.texture = makeTextureView(*scene.textures.at(std::size_t(material.baseColorTexture)), settings);
+  s.vertexColor = !mesh.colors.empty();
+  s.lit = settings.shading == Shading::Lit;
+  if (s.alphaMode == AlphaMode::Blend) {
+    s.blend = BlendMode::Over;
+    s.depthWrite = false;
+  }
+  if (settings.debugView == DebugView::CoverageCount) {
+    s = ShadeState{};
+    s.baseColor = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    s.blend = BlendMode::Add;
+    s.depthTest = s.depthWrite = false;
+    g.texcoordSet = 0;
+  } else if (settings.debugView == DebugView::TexCoord) {
+    s.textured = s.vertexColor = s.lit = false;
+    s.alphaMode = AlphaMode::Opaque;
+    s.blend = BlendMode::Replace;
+    s.depthWrite = true;
+    s.outputTexCoord = true;
+    g.texcoordSet = 0;
+  }
+
+  // Interpolate only what the shading reads.
+  AttributeLayout& a = g.attributes;
+  if (s.textured || s.outputTexCoord) a.texcoord = a.count, a.count += 2;
+  if (s.vertexColor) a.color = a.count, a.count += 4;
+  if (s.lit) a.normal = a.count, a.count += 3;
+  s.attributes = a;
+  return draw;
+}
+
+// View-space depth of a draw's bounds centre (larger = farther), for sorting
+// blended draws back to front.
+float drawDistance(const Draw& draw) {
+  const Mesh& mesh = *draw.geometry.mesh;
+  if (mesh.positions.empty()) return 0.0f;
+  glm::vec3 lo = mesh.positions[0], hi = lo;
+  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec4 centre = draw.geometry.modelView * glm::vec4(0.5f * (lo + hi), 1.0f);
+  return -centre.z;
+}
+
+std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
+                                const RenderSettings& settings) {
+  const glm::mat4 view = viewMatrix(camera);
+  const glm::mat4 projection =
+      projectionMatrix(camera, double(settings.width) / double(settings.height));
+  std::vector<Draw> opaque, blended;
+  for (const Instance& instance : scene.instances) {
+    Draw draw = makeDraw(scene, instance, view, projection, settings);
+    if (draw.geometry.mesh->indices.empty()) continue;
+    (draw.shade.blend == BlendMode::Over ? blended : opaque).push_back(std::move(draw));
+  }
+  // Opaque first, then transparent back to front (stable: ties keep scene order).
+  std::vector<std::pair<float, std::size_t>> order;
+  for (std::size_t i = 0; i < blended.size(); ++i) order.push_back({-drawDistance(blended[i]), i});
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& entry : order) opaque.push_back(blended[entry.second]);
+  return opaque;
+}
+
+void checkSettings(const RenderSettings& s) {
+  if (s.width < 1 || s.height < 1 || s.width > kMaxViewport || s.height > kMaxViewport)
+    throw Error("render: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                " is out of range (1.." + std::to_string(kMaxViewport) + " per side)");
+  if (s.maxAniso < 1 || s.maxAniso > 64)
+    throw Error("render: max anisotropy " + std::to_string(s.maxAniso) + " is out of range (1..64)");
+}
+
+}  // namespace
+
+Renderer::Renderer(const RendererConfig& config) {
+  const Isa isa = config.isa.value_or(detectBestIsa());
+  if (!isaSupported(isa))
+    throw Error(std::string("--isa ") + isaName(isa) + ": this CPU does not support it (best: " +
+                isaName(detectBestIsa()) + ")");
+  impl_ = std::make_unique<Impl>(config.threads, isa);
+}
+
+Renderer::~Renderer() = default;
+
+Isa Renderer::isa() const { return impl_->kernels->isa; }
+int Renderer::threadCount() const { return impl_->executor.threadCount(); }
+
+FrameStats Renderer::render(const Scene& scene, const Camera& camera,
+                            const RenderSettings& settings, Frame& out) {
+  checkSettings(settings);
+  const Executor& executor = impl_->executor;
+  const std::vector<Draw> draws = buildDrawList(scene, camera, settings);
+
+  // Vertex stage.
+  std::vector<TransformedVertices> vertices(draws.size());
+  for (std::size_t d = 0; d < draws.size(); ++d)
+    transformVertices(draws[d].geometry, executor, vertices[d]);
+
+  // Clip, setup and bin, in fixed-size chunks of each draw's triangles.
+  struct ChunkRange {
+    std::uint32_t draw;
+    std::size_t first, last;
+  };
+  std::vector<ChunkRange> ranges;
+  for (std::uint32_t d = 0; d < draws.size(); ++d) {
+    const std::size_t triangles = draws[d].geometry.mesh->indices.size() / 3;
+    for (std::size_t first = 0; first < triangles; first += kChunkTriangles)
+      ranges.push_back({d, first, std::min(first + kChunkTriangles, triangles)});
+  }
+  const Viewport viewport{settings.width, settings.height};
+  const TileGrid grid = TileGrid::forViewport(settings.width, settings.height);
+  std::vector<FrontEndChunk> chunks(ranges.size());
+  executor.parallelFor(ranges.size(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      const ChunkRange& r = ranges[c];
+      setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
+                     chunks[c].setup);
+      binTriangles(chunks[c].setup.triangles, grid, chunks[c].bins);
+    }
+  });
+
+  // Tile stage and resolve.
+  out.width = settings.width;
+  out.height = settings.height;
+  out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
+  out.depth.resize(std::size_t(out.width) * std::size_t(out.height));
+  renderTiles(grid, draws, chunks, *impl_->kernels, settings.clearColor, executor, out);
+
+  SetupCounters total;
+  for (const FrontEndChunk& chunk : chunks) total.add(chunk.setup.counters);
+  FrameStats stats;
+  stats.trianglesIn = total.in;
+  stats.trianglesDrawn = total.drawn;
+  stats.culledBackFace = total.backFace;
+  stats.culledOutside = total.outside;
+  stats.droppedDegenerate = total.degenerate;
+  stats.droppedInvalid = total.invalid;
+  stats.clipped = total.clipped;
+  return stats;
+}
+
+}  // namespace quadra

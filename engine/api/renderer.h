@@ -1,0 +1,90 @@
+// quadra's embedding API: a Renderer (threads + kernel path, no global state)
+// turns a Scene seen through a Camera into a Frame.
+//
+//   quadra::Scene scene = quadra::loadGltf("model.glb");
+//   quadra::Renderer renderer({.threads = 0});           // all cores, best ISA
+//   quadra::Frame frame;
+//   renderer.render(scene, scene.cameras.at(0), {.width = 1280, .height = 720}, frame);
+//   quadra::writeFrame(frame, "out.exr");
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "resolve/frame.h"
+#include "scene/scene.h"
+#include "simd/isa.h"
+#include "texture/sampler_state.h"
+
+namespace quadra {
+
+struct RendererConfig {
+  int threads = 0;          // <= 0: all cores
+  std::optional<Isa> isa;   // unset: the best the CPU has; set: must be supported
+};
+
+enum class Shading : std::uint8_t {
+  Unlit,  // baseColorFactor x baseColorTexture (sRGB-decoded) x COLOR_0
+  Lit,    // unlit colour x Lambert term of a head light (needs NORMAL)
+};
+
+// What a test or report can ask the tile stage to output instead of colour.
+enum class DebugView : std::uint8_t {
+  None,
+  CoverageCount,  // R = number of triangles covering the pixel; no depth test
+  TexCoord,       // R, G = perspective-correct TEXCOORD_0 at the pixel centre; A = 1
+};
+
+struct RenderSettings {
+  int width = 1920;
+  int height = 1080;
+  std::optional<Filter> filter;  // unset: each texture's glTF sampler decides
+  int maxAniso = 16;
+  Shading shading = Shading::Unlit;
+  glm::vec4 clearColor{0.0f};    // premultiplied linear
+  DebugView debugView = DebugView::None;
+};
+
+// Counts of what the front end did with the frame's triangles.
+struct FrameStats {
+  std::size_t trianglesIn = 0;        // submitted (instances x triangles)
+  std::size_t trianglesDrawn = 0;     // set up and binned (after clipping splits)
+  std::size_t culledBackFace = 0;
+  std::size_t culledOutside = 0;      // entirely outside a clip plane / the viewport
+  std::size_t droppedDegenerate = 0;  // zero area after snapping
+  std::size_t droppedInvalid = 0;     // NaN or Inf in a position
+  std::size_t clipped = 0;            // needed clipping against near/far/guard band
+};
+
+class Renderer {
+ public:
+  explicit Renderer(const RendererConfig& config = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  Isa isa() const;
+  int threadCount() const;
+
+  // Renders one frame; throws Error for settings it cannot honour (size out of
+  // range). out is resized as needed; its previous contents are irrelevant.
+  FrameStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                    Frame& out);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The largest width or height render accepts: window coordinates then stay
+// inside the 16.8 fixed-point guard band (see engine/setup/fixed_point.h).
+constexpr int kMaxViewportSize = 8192;
+
+// A camera framing the whole scene from the front (+Z side, slightly above),
+// for scenes that have none.
+Camera defaultCamera(const Scene& scene);
+
+}  // namespace quadra

@@ -1,0 +1,30 @@
+// Bin stage: a chunk of set-up triangles → per-tile lists of triangle indices,
+// in submission order. Each front-end chunk bins its own triangles (no locks);
+// the tile stage walks the chunks in order, which is the merge.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "setup/triangle_record.h"
+
+namespace quadra {
+
+struct TileGrid {
+  int width = 0, height = 0;       // viewport in pixels
+  int tilesX = 0, tilesY = 0;
+  int tileCount() const { return tilesX * tilesY; }
+  static TileGrid forViewport(int width, int height);
+};
+
+// Compressed per-tile lists: the triangles of tile t are
+// triangleIndex[tileStart[t] .. tileStart[t+1]), ascending.
+struct TileBins {
+  std::vector<std::uint32_t> tileStart;
+  std::vector<std::uint32_t> triangleIndex;
+};
+
+void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid,
+                  TileBins& out);
+
+}  // namespace quadra

@@ -1,0 +1,34 @@
+// Executor on a private tbb::task_arena sized to the requested thread count.
+#include "core/parallel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace quadra {
+
+struct Executor::Arena {
+  explicit Arena(int threads) : arena(threads) {}
+  tbb::task_arena arena;
+};
+
+Executor::Executor(int threads)
+    : threads_(threads > 0 ? threads : tbb::this_task_arena::max_concurrency()),
+      arena_(std::make_unique<Arena>(threads_)) {}
+
+Executor::~Executor() = default;
+
+void Executor::parallelFor(std::size_t count, std::size_t grain,
+                           const std::function<void(std::size_t, std::size_t)>& body) const {
+  if (count == 0) return;
+  if (threads_ == 1 || count <= grain) {
+    body(0, count);
+    return;
+  }
+  arena_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
+                      [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+  });
+}
+
+}  // namespace quadra

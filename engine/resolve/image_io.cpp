@@ -1,0 +1,421 @@
+// Image files in and out. Writers go through a temporary beside the target and
+// rename on success, so a failed write never leaves a partial file under the
+// requested name. libpng's errors are confined to setjmp-guarded functions
+// that hold no C++ objects, and OpenEXR's exceptions become quadra::Error.
+#include "resolve/image_io.h"
+
+#include <png.h>
+#include <unistd.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <new>
+#include <system_error>
+#include <thread>
+
+#include "core/error.h"
+
+namespace quadra {
+
+namespace {
+
+// 2^28 texels is a 16384^2 texture, 4 GiB as float RGBA: beyond that a file is
+// more likely hostile than a texture, and refusing beats dying in the allocator.
+constexpr std::int64_t kMaxPixels = std::int64_t(1) << 28;
+
+std::string errnoText(int err, const char* fallback) {
+  return err != 0 ? std::error_code(err, std::generic_category()).message() : fallback;
+}
+
+// Library messages may span lines; quadra's errors are one line.
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
+}
+
+std::string lowerExtension(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+  std::string ext = path.substr(dot);
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// A temporary file beside the target; removed unless commit() renamed it into
+// place. The name carries the process and thread so concurrent writers of the
+// same path do not share a temporary.
+class TempFile {
+ public:
+  explicit TempFile(const std::string& target)
+      : target_(target),
+        path_(target + ".tmp-" + std::to_string(::getpid()) + "-" +
+              std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()))) {}
+  ~TempFile() {
+    if (!committed_) std::remove(path_.c_str());
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+
+  const std::string& path() const { return path_; }
+
+  void commit() {
+    errno = 0;
+    if (std::rename(path_.c_str(), target_.c_str()) != 0) {
+      throw makeError(target_, "cannot replace file (" + errnoText(errno, "rename failed") + ")");
+    }
+    committed_ = true;
+  }
+
+ private:
+  std::string target_;
+  std::string path_;
+  bool committed_ = false;
+};
+
+void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
+  if (frame.width <= 0 || frame.height <= 0) throw makeError(path, "cannot write an empty image");
+  const std::size_t pixels = std::size_t(frame.width) * std::size_t(frame.height);
+  if (frame.rgba.size() != pixels * 4) {
+    throw makeError(path, "frame colour buffer does not match its size");
+  }
+  if (needsDepth && frame.depth.size() != pixels) {
+    throw makeError(path, "frame depth buffer does not match its size");
+  }
+}
+
+// ---- EXR --------------------------------------------------------------------
+
+void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string& name) {
+  Imf::Header header(frame.width, frame.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const char* channel : {"R", "G", "B", "A", "Z"}) {
+    header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
+  }
+  const Imath::V2i origin(0, 0);
+  const std::size_t rgbaRow = std::size_t(frame.width) * 4 * sizeof(float);
+  Imf::FrameBuffer buffer;
+  const char* const rgbaNames[4] = {"R", "G", "B", "A"};
+  for (int c = 0; c < 4; ++c) {
+    buffer.insert(rgbaNames[c],
+                  Imf::Slice::Make(Imf::FLOAT, frame.rgba.data() + c, origin, frame.width,
+                                   frame.height, 4 * sizeof(float), rgbaRow));
+  }
+  buffer.insert("Z",
+                Imf::Slice::Make(Imf::FLOAT, frame.depth.data(), origin, frame.width, frame.height,
+                                 sizeof(float), std::size_t(frame.width) * sizeof(float)));
+  Imf::StdOFStream exrStream(stream, name.c_str());
+  // The OutputFile's destructor writes the scanline offset table; it swallows
+  // errors there, which the caller detects from the stream's state afterwards.
+  Imf::OutputFile file(exrStream, header);
+  file.setFrameBuffer(buffer);
+  file.writePixels(frame.height);
+}
+
+}  // namespace
+
+void writeExr(const Frame& frame, const std::string& path) {
+  checkFrame(frame, path, true);
+  TempFile temp(path);
+  std::ofstream stream;
+  errno = 0;
+  stream.open(temp.path(), std::ios::binary | std::ios::out | std::ios::trunc);
+  if (!stream) {
+    throw makeError(path, "cannot create file (" + errnoText(errno, "open failed") + ")");
+  }
+  try {
+    writeExrStream(frame, stream, path);  // OpenEXR messages then name the real target
+  } catch (const std::exception& e) {
+    throw makeError(path, "cannot write EXR (" + oneLine(e.what()) + ")");
+  }
+  stream.close();
+  if (stream.fail()) throw makeError(path, "cannot write EXR (write failed)");
+  temp.commit();
+}
+
+// ---- PNG out ----------------------------------------------------------------
+
+namespace {
+
+std::uint8_t encodeUnorm8(float unit) {
+  return std::uint8_t(unit * 255.0f + 0.5f);
+}
+
+// Premultiplied linear RGBA float -> straight sRGB 8-bit RGBA.
+std::vector<std::uint8_t> encodeSrgb8(const Frame& frame) {
+  std::vector<std::uint8_t> bytes(frame.rgba.size());
+  for (std::size_t i = 0; i < frame.rgba.size(); i += 4) {
+    const float* p = &frame.rgba[i];
+    const float alpha = p[3];
+    for (int c = 0; c < 3; ++c) {
+      const float straight = alpha > 0.0f ? p[c] / alpha : p[c];
+      bytes[i + std::size_t(c)] = encodeUnorm8(linearToSrgb(straight));
+    }
+    const float clamped = alpha > 0.0f ? std::min(alpha, 1.0f) : 0.0f;  // NaN -> 0
+    bytes[i + 3] = encodeUnorm8(clamped);
+  }
+  return bytes;
+}
+
+}  // namespace
+
+void writePng(const Frame& frame, const std::string& path) {
+  checkFrame(frame, path, false);
+  const std::vector<std::uint8_t> bytes = encodeSrgb8(frame);
+  TempFile temp(path);
+  errno = 0;
+  std::FILE* file = std::fopen(temp.path().c_str(), "wb");
+  if (file == nullptr) {
+    throw makeError(path, "cannot create file (" + errnoText(errno, "open failed") + ")");
+  }
+  png_image image;
+  std::memset(&image, 0, sizeof(image));
+  image.version = PNG_IMAGE_VERSION;
+  image.width = png_uint_32(frame.width);
+  image.height = png_uint_32(frame.height);
+  image.format = PNG_FORMAT_RGBA;
+  const int ok = png_image_write_to_stdio(&image, file, 0, bytes.data(), 0, nullptr);
+  const std::string message = ok ? "" : image.message;
+  png_image_free(&image);
+  const bool closed = std::fclose(file) == 0;
+  const int closeError = errno;
+  if (!ok) throw makeError(path, "cannot write PNG (" + message + ")");
+  if (!closed) {
+    throw makeError(path, "cannot write PNG (" + errnoText(closeError, "close failed") + ")");
+  }
+  temp.commit();
+}
+
+void writeFrame(const Frame& frame, const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext == ".exr") return writeExr(frame, path);
+  if (ext == ".png") return writePng(frame, path);
+  throw makeError(path, "unsupported output format (use .exr or .png)");
+}
+
+// ---- PNG in -----------------------------------------------------------------
+
+namespace {
+
+// Everything libpng may longjmp across: plain data only, so no destructor is
+// ever skipped.
+struct PngDecoder {
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  char message[200] = {};
+};
+
+struct PngLayout {
+  png_uint_32 width = 0;
+  png_uint_32 height = 0;
+  int bitDepth = 0;
+  int channels = 0;
+  std::size_t rowBytes = 0;
+};
+
+void pngErrorToMessage(png_structp png, png_const_charp text) {
+  auto* decoder = static_cast<PngDecoder*>(png_get_error_ptr(png));
+  std::snprintf(decoder->message, sizeof(decoder->message), "%s", text);
+  png_longjmp(png, 1);
+}
+
+void pngIgnoreWarning(png_structp, png_const_charp) {}
+
+// Reads the header and asks libpng for 8/16-bit grey or RGB, with or without
+// alpha (palettes and sub-byte depths expanded, grey widened to RGB).
+bool decodePngHeader(PngDecoder& d, std::FILE* file, PngLayout& layout) {
+  if (setjmp(png_jmpbuf(d.png))) return false;
+  png_init_io(d.png, file);
+  png_set_sig_bytes(d.png, 8);
+  png_read_info(d.png, d.info);
+  png_set_expand(d.png);
+  png_set_gray_to_rgb(d.png);
+  png_set_interlace_handling(d.png);
+  png_read_update_info(d.png, d.info);
+  layout.width = png_get_image_width(d.png, d.info);
+  layout.height = png_get_image_height(d.png, d.info);
+  layout.bitDepth = png_get_bit_depth(d.png, d.info);
+  layout.channels = png_get_channels(d.png, d.info);
+  layout.rowBytes = png_get_rowbytes(d.png, d.info);
+  return true;
+}
+
+bool decodePngRows(PngDecoder& d, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(d.png))) return false;
+  png_read_image(d.png, rows);
+  png_read_end(d.png, nullptr);
+  return true;
+}
+
+// Decoded samples (big-endian when 16-bit) -> linear float RGBA.
+void pngSamplesToLinear(const std::vector<png_byte>& samples, const PngLayout& layout,
+                        Image& image) {
+  const bool wide = layout.bitDepth == 16;
+  const float maxCode = wide ? 65535.0f : 255.0f;
+  const std::size_t count =
+      std::size_t(layout.width) * layout.height * std::size_t(layout.channels);
+  for (std::size_t s = 0, texel = 0; s < count; s += std::size_t(layout.channels), ++texel) {
+    float* out = &image.rgba[texel * 4];
+    for (int c = 0; c < layout.channels; ++c) {
+      const std::size_t at = (s + std::size_t(c)) * (wide ? 2 : 1);
+      const unsigned code = wide ? (unsigned(samples[at]) << 8) | samples[at + 1] : samples[at];
+      if (c == 3) {
+        out[3] = float(code) / maxCode;
+      } else {
+        out[c] = wide ? srgbToLinear(float(code) / maxCode) : srgb8ToLinear(std::uint8_t(code));
+      }
+    }
+    if (layout.channels == 3) out[3] = 1.0f;
+  }
+}
+
+class PngReader {
+ public:
+  PngReader() {
+    decoder_.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &decoder_, pngErrorToMessage,
+                                          pngIgnoreWarning);
+    if (decoder_.png != nullptr) decoder_.info = png_create_info_struct(decoder_.png);
+    if (decoder_.info == nullptr) throw std::bad_alloc();
+  }
+  ~PngReader() { png_destroy_read_struct(&decoder_.png, &decoder_.info, nullptr); }
+  PngReader(const PngReader&) = delete;
+  PngReader& operator=(const PngReader&) = delete;
+
+  Image read(std::FILE* file, const std::string& path) {
+    PngLayout layout;
+    if (!decodePngHeader(decoder_, file, layout)) throw failure(path);
+    if (std::int64_t(layout.width) * layout.height > kMaxPixels) {
+      throw makeError(path, "image too large");
+    }
+    std::vector<png_byte> samples(layout.rowBytes * layout.height);
+    std::vector<png_bytep> rows(layout.height);
+    for (png_uint_32 y = 0; y < layout.height; ++y) rows[y] = &samples[y * layout.rowBytes];
+    if (!decodePngRows(decoder_, rows.data())) throw failure(path);
+    Image image(static_cast<int>(layout.width), static_cast<int>(layout.height));
+    pngSamplesToLinear(samples, layout, image);
+    return image;
+  }
+
+ private:
+  Error failure(const std::string& path) const {
+    return makeError(path, std::string("invalid or truncated PNG (") + decoder_.message + ")");
+  }
+  PngDecoder decoder_;
+};
+
+// ---- EXR in -----------------------------------------------------------------
+
+// Which stored channel feeds each of R, G, B, A; a luminance-only file's Y
+// feeds all three colours.
+struct ExrSources {
+  const char* names[4] = {"R", "G", "B", "A"};
+  bool greyFromY = false;
+};
+
+ExrSources exrSources(const Imf::ChannelList& channels, const std::string& path) {
+  ExrSources sources;
+  const bool hasColour =
+      channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
+  if (!hasColour && channels.findChannel("Y")) {
+    if (channels.findChannel("RY") || channels.findChannel("BY")) {
+      throw makeError(path, "luminance/chroma EXR images are not supported");
+    }
+    sources.names[0] = "Y";
+    sources.greyFromY = true;
+  }
+  for (const char* name : sources.names) {
+    const Imf::Channel* channel = channels.findChannel(name);
+    if (channel && (channel->xSampling != 1 || channel->ySampling != 1)) {
+      throw makeError(path, "subsampled EXR channels are not supported");
+    }
+  }
+  return sources;
+}
+
+Image readExr(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imath::Box2i window = file.header().dataWindow();
+  const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
+  const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0) throw makeError(path, "empty EXR data window");
+  if (width * height > kMaxPixels) throw makeError(path, "image too large");
+  const ExrSources sources = exrSources(file.header().channels(), path);
+  Image image(static_cast<int>(width), static_cast<int>(height));
+  const std::size_t texelBytes = 4 * sizeof(float);
+  Imf::FrameBuffer buffer;
+  for (int c = 0; c < 4; ++c) {
+    if (sources.greyFromY && c > 0 && c < 3) continue;
+    const double fill = c == 3 ? 1.0 : 0.0;
+    buffer.insert(sources.names[c],
+                  Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, window, texelBytes,
+                                   texelBytes * std::size_t(width), 1, 1, fill));
+  }
+  file.setFrameBuffer(buffer);
+  file.readPixels(window.min.y, window.max.y);
+  if (sources.greyFromY) {
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+      image.rgba[i + 1] = image.rgba[i + 2] = image.rgba[i];
+    }
+  }
+  return image;
+}
+
+enum class FileKind { Png, Exr, Unknown };
+
+FileKind sniff(std::FILE* file, const std::string& path) {
+  unsigned char magic[8] = {};
+  errno = 0;
+  const std::size_t got = std::fread(magic, 1, sizeof(magic), file);
+  if (got < sizeof(magic) && std::ferror(file)) {
+    throw makeError(path, "cannot read file (" + errnoText(errno, "read failed") + ")");
+  }
+  if (got == sizeof(magic) && png_sig_cmp(magic, 0, sizeof(magic)) == 0) return FileKind::Png;
+  const unsigned char exrMagic[4] = {0x76, 0x2f, 0x31, 0x01};
+  if (got >= 4 && std::memcmp(magic, exrMagic, 4) == 0) return FileKind::Exr;
+  return FileKind::Unknown;
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+}  // namespace
+
+Image readImage(const std::string& path) {
+  errno = 0;
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  if (!file) throw makeError(path, "cannot open file (" + errnoText(errno, "open failed") + ")");
+  const FileKind kind = sniff(file.get(), path);
+  try {
+    if (kind == FileKind::Png) return PngReader().read(file.get(), path);
+    if (kind == FileKind::Exr) {
+      file.reset();
+      return readExr(path);
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw makeError(path, "out of memory while reading image");
+  } catch (const std::exception& e) {
+    const char* format = kind == FileKind::Png ? "PNG" : "EXR";
+    throw makeError(path,
+                    std::string("invalid or truncated ") + format + " (" + oneLine(e.what()) + ")");
+  }
+  throw makeError(path, "not a PNG or OpenEXR image");
+}
+
+}  // namespace quadra

@@ -1,0 +1,96 @@
+// Scene: everything a frame draws, decoded and validated, independent of the
+// file format it came from (glTF loader and built-in scenes both produce it).
+//
+// Geometry is kept per primitive as plain triangle lists (strips and fans are
+// expanded at load), with attributes as float arrays: the vertex stage reads
+// nothing else.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "texture/image.h"
+#include "texture/sampler_state.h"
+
+namespace quadra {
+
+class MipChain;
+
+// A texture as the scene holds it: its level-0 image in linear float and its
+// sampler. The mip chain is built on first use, once, and only for textures
+// that a mip filter reads ("model only what a scene needs").
+class Texture {
+ public:
+  Texture(std::shared_ptr<const Image> image, SamplerState sampler);
+  ~Texture();
+
+  const Image& image() const { return *image_; }
+  const SamplerState& sampler() const { return sampler_; }
+  // Thread-safe; builds the chain on the first call.
+  const MipChain& mips() const;
+
+ private:
+  std::shared_ptr<const Image> image_;
+  SamplerState sampler_;
+  mutable std::once_flag mipsOnce_;
+  mutable std::unique_ptr<MipChain> mips_;
+};
+
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
+
+struct Material {
+  glm::vec4 baseColorFactor{1.0f};
+  int baseColorTexture = -1;  // index into Scene::textures, -1 when none
+  int baseColorTexCoord = 0;  // which TEXCOORD_n set the texture reads (0 or 1)
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  bool doubleSided = false;
+};
+
+// One glTF primitive, as a triangle list. Attribute arrays are empty when the
+// primitive does not have them; otherwise they have positions.size() entries.
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> texcoords[2];  // TEXCOORD_0, TEXCOORD_1
+  std::vector<glm::vec4> colors;        // COLOR_0 (vec3 inputs get alpha 1)
+  std::vector<std::uint32_t> indices;   // 3 per triangle, all < positions.size()
+  int material = -1;                    // -1: the glTF default material
+};
+
+// A mesh placed in the world: one node's instance of one primitive.
+struct Instance {
+  int mesh = 0;
+  glm::mat4 world{1.0f};
+};
+
+struct Camera {
+  enum class Type : std::uint8_t { Perspective, Orthographic };
+  Type type = Type::Perspective;
+  float yfov = 0.8f;    // radians, perspective only
+  float xmag = 1.0f;    // orthographic half-extents
+  float ymag = 1.0f;
+  float znear = 0.1f;
+  float zfar = 0.0f;    // 0: infinite (perspective only)
+  glm::mat4 world{1.0f};  // camera-to-world; the camera looks down its -Z
+};
+
+struct Scene {
+  std::string name;  // file path or builtin:NAME, for messages
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<std::shared_ptr<const Texture>> textures;
+  std::vector<Instance> instances;
+  std::vector<Camera> cameras;
+
+  std::size_t triangleCount() const;  // over instances
+  // World-space bounds of all instances; min > max when the scene is empty.
+  void bounds(glm::vec3& lo, glm::vec3& hi) const;
+};
+
+}  // namespace quadra

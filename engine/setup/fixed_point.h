@@ -1,0 +1,30 @@
+// Window-space fixed point and the guard band, with the range proof that keeps
+// every edge function exact in 64-bit integers.
+//
+// Window coordinates are snapped to 1/256 pixel (8 sub-pixel bits, as D3D11).
+// The clip stage keeps every vertex within kGuardBandPixels outside the
+// viewport, and viewports are at most kMaxViewport pixels, so |window| <
+// 2^14 px and a snapped coordinate fits in 2^22 units. Then:
+//   edge deltas dx, dy        < 2^23
+//   step per pixel a = 256*dy < 2^31
+//   constant c = dx*y - dy*x  < 2^46
+//   E(px, py) = a*px + b*py + c over pixels |p| < 2^14:  < 2^47
+// comfortably inside int64, so coverage is decided exactly.
+#pragma once
+
+#include <cstdint>
+
+namespace quadra {
+
+constexpr int kSubpixelBits = 8;
+constexpr int kSubpixelScale = 1 << kSubpixelBits;  // 256
+constexpr int kMaxViewport = 8192;
+constexpr int kGuardBandPixels = 8192;
+
+// Tiles are the unit of parallel work; blocks the unit of coarse accept/reject.
+// 64x64 RGBA32F + D32 is 80 KiB: L2-resident per core, and 510 tiles at 1080p
+// keep two threads balanced.
+constexpr int kTileSize = 64;
+constexpr int kBlockSize = 8;
+
+}  // namespace quadra

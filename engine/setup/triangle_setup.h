@@ -1,0 +1,39 @@
+// Setup stage: clip-space triangles of one draw → TriangleRecords. Culls
+// (outside, back-facing, zero-area, NaN/Inf), clips where needed, divides by w,
+// snaps to 16.8 fixed point, and builds edge functions and attribute planes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "setup/triangle_record.h"
+#include "vertex/draw.h"
+#include "vertex/vertex_stage.h"
+
+namespace quadra {
+
+struct Viewport {
+  int width = 0;
+  int height = 0;
+};
+
+struct SetupCounters {
+  std::size_t in = 0, drawn = 0, backFace = 0, outside = 0, degenerate = 0, invalid = 0,
+              clipped = 0;
+  void add(const SetupCounters& o);
+};
+
+// Output of one front-end chunk, in submission order.
+struct SetupOutput {
+  std::vector<TriangleRecord> triangles;
+  std::vector<Plane> planes;
+  SetupCounters counters;
+};
+
+// Sets up triangles [firstTriangle, lastTriangle) of a draw into out (appending).
+void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& vertices,
+                    std::uint32_t drawIndex, std::size_t firstTriangle,
+                    std::size_t lastTriangle, const Viewport& viewport, SetupOutput& out);
+
+}  // namespace quadra

@@ -1,0 +1,47 @@
+// The sRGB transfer function (IEC 61966-2-1) in both directions, and the
+// 8-bit decode table that PNG and glTF sRGB textures go through.
+#include "texture/image.h"
+
+#include <array>
+#include <cmath>
+
+namespace quadra {
+
+namespace {
+
+// The standard's breakpoints: below them the curve is the linear toe segment.
+constexpr float kEncodedToe = 0.04045f;
+constexpr float kLinearToe = 0.0031308f;
+
+}  // namespace
+
+float srgbToLinear(float encoded) {
+  if (std::isnan(encoded)) return 0.0f;
+  if (encoded <= kEncodedToe) return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float linear) {
+  // NaN fails both comparisons, so it must be caught before clamping.
+  if (!(linear > 0.0f)) return 0.0f;
+  if (linear >= 1.0f) return 1.0f;
+  if (linear <= kLinearToe) return 12.92f * linear;
+  return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgb8ToLinear(std::uint8_t code) {
+  // Built in double so every entry is the correctly rounded float of the
+  // exact curve, not the float curve's own rounding error.
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) {
+      const double e = i / 255.0;
+      const double l = e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
+      t[std::size_t(i)] = float(l);
+    }
+    return t;
+  }();
+  return table[code];
+}
+
+}  // namespace quadra

@@ -1,0 +1,311 @@
+// Texture filtering over SIMD lanes, one source for every ISA (templated on
+// the lane types of simd/lanes.h). Conventions (DESIGN.md): texel i covers
+// [i, i+1) with its centre at i + 0.5, so a lookup at u reads x = u*W - 0.5;
+// LOD λ = log2 of the footprint's longest axis in level-0 texels.
+//
+// Include only from per-ISA kernel translation units. Everything here is a
+// template on the lane type, so no inline function is shared between ISAs.
+#pragma once
+
+#include <algorithm>
+
+#include "simd/lanes.h"
+#include "texture/texture_view.h"
+
+namespace quadra {
+
+template <class L>
+struct Rgba {
+  typename L::F r, g, b, a;
+};
+
+// Screen-space derivatives of (u, v), per lane.
+template <class L>
+struct UvDerivatives {
+  typename L::F dudx, dvdx, dudy, dvdy;
+};
+
+namespace sampling {
+
+// Brings u into a small range where the wrap mode gives the same answer, and
+// replaces NaN/Inf by 0 so no lane ever forms an out-of-range index.
+template <class L>
+typename L::F reduceCoordinate(typename L::F u, WrapMode mode) {
+  using F = typename L::F;
+  if (mode == WrapMode::Repeat) {
+    u = u - simd::floor(u);  // exact: u and simd::floor(u) share the exponent range
+  } else if (mode == WrapMode::MirroredRepeat) {
+    u = u - F(2.0f) * simd::floor(u * F(0.5f));
+  } else {
+    u = simd::max(simd::min(u, F(2.0f)), F(-1.0f));
+  }
+  return simd::select(simd::abs(u) <= F(4.0f), u, F(0.0f));
+}
+
+// Integer-valued texel coordinate x → index in [0, n) per the wrap mode.
+// `inside` is cleared for lanes that read the border colour.
+template <class L>
+typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode, typename L::M& inside) {
+  using F = typename L::F;
+  switch (mode) {
+    case WrapMode::Repeat: {
+      F r = x - n * simd::floor(x / n);
+      r = simd::select(r >= n, r - n, r);
+      return simd::select(r < F(0.0f), r + n, r);
+    }
+    case WrapMode::MirroredRepeat: {
+      const F period = n + n;
+      F r = x - period * simd::floor(x / period);
+      r = simd::select(r >= period, r - period, r);
+      r = simd::select(r < F(0.0f), r + period, r);
+      return simd::select(r >= n, period - F(1.0f) - r, r);
+    }
+    case WrapMode::ClampToEdge: return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
+    case WrapMode::ClampToBorder:
+      inside = inside & (x >= F(0.0f)) & (x <= n - F(1.0f));
+      return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
+  }
+  return x;
+}
+
+// Per-lane level sizes, looked up from the view (lanes may sit on different levels).
+template <class L>
+void levelSizes(const TextureView& view, const typename L::I& level, typename L::F& width,
+                typename L::F& height) {
+  alignas(64) std::int32_t lv[L::kWidth];
+  alignas(64) float w[L::kWidth], h[L::kWidth];
+  level.store_aligned(lv);
+  for (int k = 0; k < L::kWidth; ++k) {
+    w[k] = float(view.levels[lv[k]].width);
+    h[k] = float(view.levels[lv[k]].height);
+  }
+  width = L::F::load_aligned(w);
+  height = L::F::load_aligned(h);
+}
+
+// Gather-free texel fetch: each lane loads its RGBA texel with scalar loads,
+// then the values are read back as lanes (hardware gathers are slow on Zen).
+template <class L>
+Rgba<L> fetch(const TextureView& view, const typename L::I& level, const typename L::F& x,
+              const typename L::F& y) {
+  alignas(64) std::int32_t lv[L::kWidth], xi[L::kWidth], yi[L::kWidth];
+  alignas(64) float r[L::kWidth], g[L::kWidth], b[L::kWidth], a[L::kWidth];
+  level.store_aligned(lv);
+  simd::toInt(x).store_aligned(xi);
+  simd::toInt(y).store_aligned(yi);
+  for (int k = 0; k < L::kWidth; ++k) {
+    const TextureLevel& lev = view.levels[lv[k]];
+    const float* t = lev.texels + (std::size_t(yi[k]) * std::size_t(lev.width) + xi[k]) * 4;
+    r[k] = t[0];
+    g[k] = t[1];
+    b[k] = t[2];
+    a[k] = t[3];
+  }
+  using F = typename L::F;
+  return {F::load_aligned(r), F::load_aligned(g), F::load_aligned(b), F::load_aligned(a)};
+}
+
+// The 2x2 texels of a bilinear lookup in one pass over the lanes: corners
+// (x0,y0), (x1,y0), (x0,y1), (x1,y1).
+template <class L>
+void fetch2x2(const TextureView& view, const typename L::I& level, const typename L::F& x0,
+              const typename L::F& x1, const typename L::F& y0, const typename L::F& y1,
+              Rgba<L> out[4]) {
+  constexpr int W = L::kWidth;
+  alignas(64) std::int32_t lv[W], xs[2][W], ys[2][W];
+  alignas(64) float texel[4][4][W];  // [corner][channel][lane]
+  level.store_aligned(lv);
+  simd::toInt(x0).store_aligned(xs[0]);
+  simd::toInt(x1).store_aligned(xs[1]);
+  simd::toInt(y0).store_aligned(ys[0]);
+  simd::toInt(y1).store_aligned(ys[1]);
+  for (int k = 0; k < W; ++k) {
+    const TextureLevel& lev = view.levels[lv[k]];
+    const std::size_t row0 = std::size_t(ys[0][k]) * std::size_t(lev.width);
+    const std::size_t row1 = std::size_t(ys[1][k]) * std::size_t(lev.width);
+    const float* corner[4] = {lev.texels + (row0 + xs[0][k]) * 4, lev.texels + (row0 + xs[1][k]) * 4,
+                              lev.texels + (row1 + xs[0][k]) * 4, lev.texels + (row1 + xs[1][k]) * 4};
+    for (int c = 0; c < 4; ++c)
+      for (int ch = 0; ch < 4; ++ch) texel[c][ch][k] = corner[c][ch];
+  }
+  using F = typename L::F;
+  for (int c = 0; c < 4; ++c)
+    out[c] = {F::load_aligned(texel[c][0]), F::load_aligned(texel[c][1]),
+              F::load_aligned(texel[c][2]), F::load_aligned(texel[c][3])};
+}
+
+template <class L>
+Rgba<L> withBorder(const TextureView& view, const Rgba<L>& c, const typename L::M& inside) {
+  using F = typename L::F;
+  return {simd::select(inside, c.r, F(view.border[0])), simd::select(inside, c.g, F(view.border[1])),
+          simd::select(inside, c.b, F(view.border[2])), simd::select(inside, c.a, F(view.border[3]))};
+}
+
+template <class L>
+Rgba<L> lerp(const Rgba<L>& p, const Rgba<L>& q, const typename L::F& t) {
+  return {p.r + (q.r - p.r) * t, p.g + (q.g - p.g) * t, p.b + (q.b - p.b) * t,
+          p.a + (q.a - p.a) * t};
+}
+
+}  // namespace sampling
+
+// Nearest texel of the given level(s).
+template <class L>
+Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
+                      const typename L::I& level) {
+  using namespace sampling;
+  using F = typename L::F;
+  F width, height;
+  levelSizes<L>(view, level, width, height);
+  u = reduceCoordinate<L>(u, view.wrapU);
+  v = reduceCoordinate<L>(v, view.wrapV);
+  typename L::M inside = F(0.0f) == F(0.0f);
+  const F x = wrapTexel<L>(simd::floor(u * width), width, view.wrapU, inside);
+  const F y = wrapTexel<L>(simd::floor(v * height), height, view.wrapV, inside);
+  return withBorder<L>(view, fetch<L>(view, level, x, y), inside);
+}
+
+// Bilinear reconstruction on the given level(s).
+template <class L>
+Rgba<L> sampleBilinear(const TextureView& view, typename L::F u, typename L::F v,
+                       const typename L::I& level) {
+  using namespace sampling;
+  using F = typename L::F;
+  using M = typename L::M;
+  F width, height;
+  levelSizes<L>(view, level, width, height);
+  u = reduceCoordinate<L>(u, view.wrapU);
+  v = reduceCoordinate<L>(v, view.wrapV);
+  const F tx = u * width - F(0.5f), ty = v * height - F(0.5f);
+  const F fx0 = simd::floor(tx), fy0 = simd::floor(ty);
+  const F fx = tx - fx0, fy = ty - fy0;
+  const M all = F(0.0f) == F(0.0f);
+  M inX0 = all, inX1 = all, inY0 = all, inY1 = all;
+  const F x0 = wrapTexel<L>(fx0, width, view.wrapU, inX0);
+  const F x1 = wrapTexel<L>(fx0 + F(1.0f), width, view.wrapU, inX1);
+  const F y0 = wrapTexel<L>(fy0, height, view.wrapV, inY0);
+  const F y1 = wrapTexel<L>(fy0 + F(1.0f), height, view.wrapV, inY1);
+  Rgba<L> c[4];
+  fetch2x2<L>(view, level, x0, x1, y0, y1, c);
+  if (view.wrapU == WrapMode::ClampToBorder || view.wrapV == WrapMode::ClampToBorder) {
+    c[0] = withBorder<L>(view, c[0], inX0 & inY0);
+    c[1] = withBorder<L>(view, c[1], inX1 & inY0);
+    c[2] = withBorder<L>(view, c[2], inX0 & inY1);
+    c[3] = withBorder<L>(view, c[3], inX1 & inY1);
+  }
+  const Rgba<L>&c00 = c[0], &c10 = c[1], &c01 = c[2], &c11 = c[3];
+  return lerp<L>(lerp<L>(c00, c10, fx), lerp<L>(c01, c11, fx), fy);
+}
+
+// Footprint size in level-0 texels: the LOD λ of the isotropic filters.
+template <class L>
+typename L::F isotropicLod(const TextureView& view, const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  const F w = F(float(view.levels[0].width)), h = F(float(view.levels[0].height));
+  const F xu = d.dudx * w, xv = d.dvdx * h, yu = d.dudy * w, yv = d.dvdy * h;
+  const F lengthSq = simd::max(xu * xu + xv * xv, yu * yu + yv * yv);
+  return F(0.5f) * simd::log2<L>(lengthSq);
+}
+
+// Trilinear (or nearest-mip) at LOD λ; λ <= 0 is magnification.
+template <class L>
+Rgba<L> sampleMipmapped(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                        typename L::F lod, bool linearBetweenLevels) {
+  using F = typename L::F;
+  using I = typename L::I;
+  const F lastLevel = F(float(view.levelCount - 1));
+  lod = simd::min(simd::max(lod, F(0.0f)), lastLevel);  // simd::max(NaN, 0) is 0: level 0
+  if (!linearBetweenLevels) {
+    const I level = simd::toInt(simd::floor(lod + F(0.5f)));
+    return sampleBilinear<L>(view, u, v, simd::min(level, I(view.levelCount - 1)));
+  }
+  const F levelFloor = simd::floor(lod);
+  const F t = lod - levelFloor;
+  const I level0 = simd::toInt(levelFloor);
+  const I level1 = simd::min(level0 + I(1), I(view.levelCount - 1));
+  const Rgba<L> fine = sampleBilinear<L>(view, u, v, level0);
+  if (!simd::any(t > F(0.0f))) return fine;
+  const Rgba<L> coarse = sampleBilinear<L>(view, u, v, level1);
+  return sampling::lerp<L>(fine, coarse, t);
+}
+
+// Anisotropic: N = simd::min(ceil(major/minor), maxAniso) trilinear probes along the
+// footprint's major axis at λ = log2(major/N). The axes are the singular
+// values of the Jacobian (the footprint ellipse), not the lengths of the two
+// derivative vectors, which can be equal for a strongly sheared footprint.
+template <class L>
+Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                          const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  const F w = F(float(view.levels[0].width)), h = F(float(view.levels[0].height));
+  const F xu = d.dudx * w, xv = d.dvdx * h, yu = d.dudy * w, yv = d.dvdy * h;
+  // J^T J = [[p, q], [q, r]]; its eigenvalues are the squared singular values.
+  const F p = xu * xu + xv * xv, q = xu * yu + xv * yv, r = yu * yu + yv * yv;
+  const F halfSum = F(0.5f) * (p + r), halfDiff = F(0.5f) * (p - r);
+  const F root = simd::sqrt(halfDiff * halfDiff + q * q);
+  const F majorSq = halfSum + root;
+  const F minorSq = simd::max(halfSum - root, F(0.0f));
+  // Eigenvector for the major eigenvalue, in screen space; pick the stabler form.
+  const auto pBigger = p >= r;
+  F ex = simd::select(pBigger, majorSq - r, q);
+  F ey = simd::select(pBigger, q, majorSq - p);
+  const F eLen = simd::sqrt(ex * ex + ey * ey);
+  const auto degenerate = ~(eLen > F(0.0f));
+  ex = simd::select(degenerate, F(1.0f), ex / eLen);
+  ey = simd::select(degenerate, F(0.0f), ey / eLen);
+  // Major axis in uv (normalized texture units).
+  const F axisU = d.dudx * ex + d.dudy * ey, axisV = d.dvdx * ex + d.dvdy * ey;
+
+  const F major = simd::sqrt(majorSq), minor = simd::sqrt(minorSq);
+  const F maxAniso = F(float(view.maxAniso));
+  // ceil(major/minor) in [1, maxAniso]; minor == 0 gives the cap, major == 0 one probe.
+  const F ratio = major / simd::max(minor, F(1e-30f));
+  F probes = simd::floor(ratio);
+  probes = simd::select(ratio > probes, probes + F(1.0f), probes);
+  probes = simd::max(simd::min(probes, maxAniso), F(1.0f));
+  const F lod = simd::log2<L>(major / probes);
+
+  alignas(64) float probeCount[L::kWidth];
+  probes.store_aligned(probeCount);
+  int maxProbes = 1;
+  for (int k = 0; k < L::kWidth; ++k) maxProbes = std::max(maxProbes, int(probeCount[k]));
+
+  Rgba<L> sum{F(0.0f), F(0.0f), F(0.0f), F(0.0f)};
+  for (int i = 0; i < maxProbes; ++i) {
+    const F offset = (F(float(i) + 0.5f) / probes - F(0.5f));
+    const auto active = F(float(i)) < probes;
+    const Rgba<L> c =
+        sampleMipmapped<L>(view, u + axisU * offset, v + axisV * offset, lod, true);
+    sum.r = sum.r + simd::select(active, c.r, F(0.0f));
+    sum.g = sum.g + simd::select(active, c.g, F(0.0f));
+    sum.b = sum.b + simd::select(active, c.b, F(0.0f));
+    sum.a = sum.a + simd::select(active, c.a, F(0.0f));
+  }
+  return {sum.r / probes, sum.g / probes, sum.b / probes, sum.a / probes};
+}
+
+// The view's filter at the footprint given by the derivatives.
+template <class L>
+Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                      const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  using I = typename L::I;
+  const I level0(0);
+  const Filter filter = view.minFilter;
+  if (filter == Filter::Nearest) return sampleNearest<L>(view, u, v, level0);
+  if (filter == Filter::Bilinear) return sampleBilinear<L>(view, u, v, level0);
+  const F lod = isotropicLod<L>(view, d);
+  const auto magnified = ~(lod > F(0.0f));
+  if (!view.magLinear && simd::all(magnified)) return sampleNearest<L>(view, u, v, level0);
+  Rgba<L> c = filter == Filter::Anisotropic
+                  ? sampleAnisotropic<L>(view, u, v, d)
+                  : sampleMipmapped<L>(view, u, v, lod, filter == Filter::Trilinear);
+  if (!view.magLinear && simd::any(magnified)) {
+    const Rgba<L> n = sampleNearest<L>(view, u, v, level0);
+    c = {simd::select(magnified, n.r, c.r), simd::select(magnified, n.g, c.g),
+         simd::select(magnified, n.b, c.b), simd::select(magnified, n.a, c.a)};
+  }
+  return c;
+}
+
+}  // namespace quadra

@@ -1,0 +1,28 @@
+// TextureView: what a sampling kernel reads for one texture, resolved once per
+// draw: the levels it may touch, the wrap modes, and the filter to run.
+#pragma once
+
+#include "texture/sampler_state.h"
+
+namespace quadra {
+
+struct TextureLevel {
+  const float* texels = nullptr;  // linear RGBA float, row-major
+  int width = 0;
+  int height = 0;
+};
+
+struct TextureView {
+  static constexpr int kMaxLevels = 16;  // 32768^2 at most; textures are capped below that
+
+  TextureLevel levels[kMaxLevels];
+  int levelCount = 0;  // 1 when the filter does not use mips
+  WrapMode wrapU = WrapMode::Repeat;
+  WrapMode wrapV = WrapMode::Repeat;
+  float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  Filter minFilter = Filter::Trilinear;  // used when the footprint is minified (LOD > 0)
+  bool magLinear = true;                 // used when magnified (LOD <= 0)
+  int maxAniso = 16;
+};
+
+}  // namespace quadra

@@ -1,0 +1,51 @@
+// Tile stage scheduling and the per-tile loop; the per-pixel work is in the
+// ISA kernels (tile_kernel_impl.h).
+#include "tile/tile_stage.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "core/parallel.h"
+#include "resolve/resolve.h"
+
+namespace quadra {
+
+namespace {
+
+void clearTile(TileBuffers& tile, const glm::vec4& clearColor) {
+  std::fill(std::begin(tile.depth), std::end(tile.depth), 1.0f);
+  for (int c = 0; c < 4; ++c) std::fill(std::begin(tile.color[c]), std::end(tile.color[c]), clearColor[c]);
+}
+
+void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& draws,
+                const std::vector<FrontEndChunk>& chunks, const TileKernels& kernels,
+                const glm::vec4& clearColor, TileBuffers& tile, Frame& frame) {
+  tile.originX = (tileIndex % grid.tilesX) * kTileSize;
+  tile.originY = (tileIndex / grid.tilesX) * kTileSize;
+  tile.width = std::min(kTileSize, grid.width - tile.originX);
+  tile.height = std::min(kTileSize, grid.height - tile.originY);
+  clearTile(tile, clearColor);
+  for (const FrontEndChunk& chunk : chunks) {
+    const std::uint32_t begin = chunk.bins.tileStart[tileIndex];
+    const std::uint32_t end = chunk.bins.tileStart[tileIndex + 1];
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const TriangleRecord& t = chunk.setup.triangles[chunk.bins.triangleIndex[i]];
+      kernels.rasterize(t, &chunk.setup.planes[t.firstPlane], draws[t.draw].shade, tile);
+    }
+  }
+  resolveTile(tile, frame);
+}
+
+}  // namespace
+
+void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
+                 const std::vector<FrontEndChunk>& chunks, const TileKernels& kernels,
+                 const glm::vec4& clearColor, const Executor& executor, Frame& frame) {
+  executor.parallelFor(std::size_t(grid.tileCount()), 1, [&](std::size_t begin, std::size_t end) {
+    auto tile = std::make_unique<TileBuffers>();
+    for (std::size_t t = begin; t < end; ++t)
+      renderTile(int(t), grid, draws, chunks, kernels, clearColor, *tile, frame);
+  });
+}
+
+}  // namespace quadra

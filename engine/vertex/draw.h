@@ -1,0 +1,59 @@
+// Draw: one instance of one mesh with its resolved material state: the unit
+// the front end iterates (vertex → clip → setup → bin) and the tile stage
+// shades. The renderer builds the frame's draw list in submission order:
+// opaque and masked draws first, then blended draws back to front.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+#include "texture/texture_view.h"
+
+namespace quadra {
+
+// Where each interpolated attribute lives in a transformed vertex (after the
+// four clip-space position floats) and in a triangle's plane list (after the
+// z and 1/w planes). -1: not interpolated, because nothing reads it.
+struct AttributeLayout {
+  int texcoord = -1;  // u, v
+  int color = -1;     // r, g, b, a
+  int normal = -1;    // view-space x, y, z
+  int count = 0;
+};
+
+struct DrawGeometry {
+  const Mesh* mesh = nullptr;
+  glm::mat4 modelView{1.0f};
+  glm::mat4 projection{1.0f};
+  int texcoordSet = 0;
+  bool cullBackFaces = true;
+  bool frontIsClockwise = false;  // the world matrix mirrors (negative determinant)
+  AttributeLayout attributes;
+};
+
+enum class BlendMode : std::uint8_t { Replace, Over, Add };
+
+// Everything the tile stage needs to shade a draw's pixels.
+struct ShadeState {
+  glm::vec4 baseColor{1.0f};
+  bool textured = false;
+  TextureView texture;
+  bool vertexColor = false;
+  bool lit = false;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  bool depthTest = true;
+  bool depthWrite = true;
+  BlendMode blend = BlendMode::Replace;
+  bool outputTexCoord = false;  // DebugView::TexCoord
+  AttributeLayout attributes;
+};
+
+struct Draw {
+  DrawGeometry geometry;
+  ShadeState shade;
+};
+
+}  // namespace quadra

@@ -1,0 +1,307 @@
+// Lane types for the kernels: a thin layer over xsimd plus a plain-C++ scalar
+// path with the same interface, so each kernel is one source compiled per ISA.
+//
+// Lanes<Arch>::F (float lanes), ::I (int32 lanes), ::M (float lane mask).
+// Lanes are grouped in 2x2 pixel quads: lane 4q + 2*ly + lx is pixel (lx, ly) of
+// quad q. SSE2 and scalar carry 1 quad, AVX2 2 quads, AVX-512 4 quads.
+//
+// Precision contract (SwiftShader style): every operation here is exactly
+// rounded IEEE (add, sub, mul, div, sqrt, floor, min/max with SSE semantics
+// "a < b ? a : b"), no approximate reciprocals, no fused multiply-add, so the
+// scalar path and every SIMD path produce bit-identical results.
+//
+// Include only from per-ISA kernel translation units (see cmake/QuadraIsa.cmake).
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include <xsimd/xsimd.hpp>
+
+namespace quadra::simd {
+
+// ---------------------------------------------------------------- scalar path
+// Four lanes in plain C++: the readable reference the SIMD paths are tested against.
+struct ScalarArch {};
+
+template <class T>
+struct ScalarBatch;
+
+struct ScalarMask {
+  static constexpr int size = 4;
+  bool v[4];
+  friend ScalarMask operator&(const ScalarMask& a, const ScalarMask& b) {
+    return {{a.v[0] && b.v[0], a.v[1] && b.v[1], a.v[2] && b.v[2], a.v[3] && b.v[3]}};
+  }
+  friend ScalarMask operator|(const ScalarMask& a, const ScalarMask& b) {
+    return {{a.v[0] || b.v[0], a.v[1] || b.v[1], a.v[2] || b.v[2], a.v[3] || b.v[3]}};
+  }
+  friend ScalarMask operator~(const ScalarMask& a) { return {{!a.v[0], !a.v[1], !a.v[2], !a.v[3]}}; }
+};
+
+template <class T>
+struct ScalarBatch {
+  static constexpr int size = 4;
+  T v[4];
+  ScalarBatch() = default;
+  ScalarBatch(T x) : v{x, x, x, x} {}  // NOLINT: broadcast, like xsimd
+  ScalarBatch(T a, T b, T c, T d) : v{a, b, c, d} {}
+
+  static ScalarBatch load_aligned(const T* p) { return {p[0], p[1], p[2], p[3]}; }
+  static ScalarBatch load_unaligned(const T* p) { return load_aligned(p); }
+  void store_aligned(T* p) const { std::memcpy(p, v, sizeof(v)); }
+  void store_unaligned(T* p) const { store_aligned(p); }
+  T get(int i) const { return v[i]; }
+
+  template <class Op>
+  static ScalarBatch map(const ScalarBatch& a, const ScalarBatch& b, Op op) {
+    return {op(a.v[0], b.v[0]), op(a.v[1], b.v[1]), op(a.v[2], b.v[2]), op(a.v[3], b.v[3])};
+  }
+  template <class Op>
+  static ScalarMask test(const ScalarBatch& a, const ScalarBatch& b, Op op) {
+    return {{op(a.v[0], b.v[0]), op(a.v[1], b.v[1]), op(a.v[2], b.v[2]), op(a.v[3], b.v[3])}};
+  }
+  friend ScalarBatch operator+(const ScalarBatch& a, const ScalarBatch& b) {
+    return map(a, b, [](T x, T y) -> T { return x + y; });
+  }
+  friend ScalarBatch operator-(const ScalarBatch& a, const ScalarBatch& b) {
+    return map(a, b, [](T x, T y) -> T { return x - y; });
+  }
+  friend ScalarBatch operator*(const ScalarBatch& a, const ScalarBatch& b) {
+    return map(a, b, [](T x, T y) -> T { return x * y; });
+  }
+  friend ScalarBatch operator/(const ScalarBatch& a, const ScalarBatch& b) {
+    return map(a, b, [](T x, T y) -> T { return x / y; });
+  }
+  friend ScalarBatch operator&(const ScalarBatch& a, const ScalarBatch& b) {
+    return map(a, b, [](T x, T y) -> T { return x & y; });
+  }
+  friend ScalarBatch operator|(const ScalarBatch& a, const ScalarBatch& b) {
+    return map(a, b, [](T x, T y) -> T { return x | y; });
+  }
+  friend ScalarBatch operator-(const ScalarBatch& a) { return ScalarBatch(T(0)) - a; }
+  friend ScalarBatch operator>>(const ScalarBatch& a, int s) {
+    return {T(a.v[0] >> s), T(a.v[1] >> s), T(a.v[2] >> s), T(a.v[3] >> s)};
+  }
+  friend ScalarBatch operator<<(const ScalarBatch& a, int s) {
+    return {T(a.v[0] << s), T(a.v[1] << s), T(a.v[2] << s), T(a.v[3] << s)};
+  }
+  friend ScalarMask operator<(const ScalarBatch& a, const ScalarBatch& b) {
+    return test(a, b, [](T x, T y) { return x < y; });
+  }
+  friend ScalarMask operator<=(const ScalarBatch& a, const ScalarBatch& b) {
+    return test(a, b, [](T x, T y) { return x <= y; });
+  }
+  friend ScalarMask operator>(const ScalarBatch& a, const ScalarBatch& b) {
+    return test(a, b, [](T x, T y) { return x > y; });
+  }
+  friend ScalarMask operator>=(const ScalarBatch& a, const ScalarBatch& b) {
+    return test(a, b, [](T x, T y) { return x >= y; });
+  }
+  friend ScalarMask operator==(const ScalarBatch& a, const ScalarBatch& b) {
+    return test(a, b, [](T x, T y) { return x == y; });
+  }
+  friend ScalarMask operator!=(const ScalarBatch& a, const ScalarBatch& b) {
+    return test(a, b, [](T x, T y) { return x != y; });
+  }
+};
+
+template <class Arch>
+struct Lanes {
+  using F = xsimd::batch<float, Arch>;
+  using I = xsimd::batch<std::int32_t, Arch>;
+  using M = xsimd::batch_bool<float, Arch>;
+  static constexpr int kWidth = int(F::size);
+  static constexpr int kQuads = kWidth / 4;
+};
+
+template <>
+struct Lanes<ScalarArch> {
+  using F = ScalarBatch<float>;
+  using I = ScalarBatch<std::int32_t>;
+  using M = ScalarMask;
+  static constexpr int kWidth = 4;
+  static constexpr int kQuads = 1;
+};
+
+// ------------------------------------------------------------ scalar functions
+inline ScalarBatch<float> select(const ScalarMask& m, const ScalarBatch<float>& a,
+                                 const ScalarBatch<float>& b) {
+  return {m.v[0] ? a.v[0] : b.v[0], m.v[1] ? a.v[1] : b.v[1], m.v[2] ? a.v[2] : b.v[2],
+          m.v[3] ? a.v[3] : b.v[3]};
+}
+inline ScalarBatch<float> min(const ScalarBatch<float>& a, const ScalarBatch<float>& b) {
+  return ScalarBatch<float>::map(a, b, [](float x, float y) { return x < y ? x : y; });
+}
+inline ScalarBatch<float> max(const ScalarBatch<float>& a, const ScalarBatch<float>& b) {
+  return ScalarBatch<float>::map(a, b, [](float x, float y) { return x > y ? x : y; });
+}
+inline ScalarBatch<float> abs(const ScalarBatch<float>& a) {
+  return ScalarBatch<float>::map(a, a, [](float x, float) { return __builtin_fabsf(x); });
+}
+inline ScalarBatch<float> floor(const ScalarBatch<float>& a) {
+  return ScalarBatch<float>::map(a, a, [](float x, float) { return __builtin_floorf(x); });
+}
+inline ScalarBatch<float> sqrt(const ScalarBatch<float>& a) {
+  return ScalarBatch<float>::map(a, a, [](float x, float) { return __builtin_sqrtf(x); });
+}
+inline ScalarBatch<std::int32_t> min(const ScalarBatch<std::int32_t>& a,
+                                     const ScalarBatch<std::int32_t>& b) {
+  return ScalarBatch<std::int32_t>::map(a, b,
+                                        [](std::int32_t x, std::int32_t y) { return x < y ? x : y; });
+}
+inline ScalarBatch<std::int32_t> max(const ScalarBatch<std::int32_t>& a,
+                                     const ScalarBatch<std::int32_t>& b) {
+  return ScalarBatch<std::int32_t>::map(a, b,
+                                        [](std::int32_t x, std::int32_t y) { return x > y ? x : y; });
+}
+// Truncation toward zero (cvttps); callers keep values inside int32 range.
+inline ScalarBatch<std::int32_t> toInt(const ScalarBatch<float>& a) {
+  return {std::int32_t(a.v[0]), std::int32_t(a.v[1]), std::int32_t(a.v[2]), std::int32_t(a.v[3])};
+}
+inline ScalarBatch<float> toFloat(const ScalarBatch<std::int32_t>& a) {
+  return {float(a.v[0]), float(a.v[1]), float(a.v[2]), float(a.v[3])};
+}
+inline ScalarBatch<std::int32_t> asInt(const ScalarBatch<float>& a) {
+  ScalarBatch<std::int32_t> r;
+  std::memcpy(r.v, a.v, sizeof(r.v));
+  return r;
+}
+inline ScalarBatch<float> asFloat(const ScalarBatch<std::int32_t>& a) {
+  ScalarBatch<float> r;
+  std::memcpy(r.v, a.v, sizeof(r.v));
+  return r;
+}
+inline bool any(const ScalarMask& m) { return m.v[0] || m.v[1] || m.v[2] || m.v[3]; }
+inline bool all(const ScalarMask& m) { return m.v[0] && m.v[1] && m.v[2] && m.v[3]; }
+inline std::uint32_t bits(const ScalarMask& m) {
+  return std::uint32_t(m.v[0]) | std::uint32_t(m.v[1]) << 1 | std::uint32_t(m.v[2]) << 2 |
+         std::uint32_t(m.v[3]) << 3;
+}
+// Broadcasts lane k of every quad to all four lanes of that quad.
+template <int k>
+inline ScalarBatch<float> quadBroadcast(const ScalarBatch<float>& a) {
+  return ScalarBatch<float>(a.v[k]);
+}
+
+// ------------------------------------------------------------- xsimd functions
+template <class A>
+inline xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
+                                     const xsimd::batch<float, A>& a,
+                                     const xsimd::batch<float, A>& b) {
+  return xsimd::select(m, a, b);
+}
+template <class T, class A>
+inline xsimd::batch<T, A> min(const xsimd::batch<T, A>& a, const xsimd::batch<T, A>& b) {
+  return xsimd::min(a, b);
+}
+template <class T, class A>
+inline xsimd::batch<T, A> max(const xsimd::batch<T, A>& a, const xsimd::batch<T, A>& b) {
+  return xsimd::max(a, b);
+}
+template <class A>
+inline xsimd::batch<float, A> abs(const xsimd::batch<float, A>& a) {
+  return xsimd::abs(a);
+}
+template <class A>
+inline xsimd::batch<float, A> floor(const xsimd::batch<float, A>& a) {
+  return xsimd::floor(a);
+}
+template <class A>
+inline xsimd::batch<float, A> sqrt(const xsimd::batch<float, A>& a) {
+  return xsimd::sqrt(a);
+}
+template <class A>
+inline xsimd::batch<std::int32_t, A> toInt(const xsimd::batch<float, A>& a) {
+  return xsimd::to_int(a);
+}
+template <class A>
+inline xsimd::batch<float, A> toFloat(const xsimd::batch<std::int32_t, A>& a) {
+  return xsimd::to_float(a);
+}
+template <class A>
+inline xsimd::batch<std::int32_t, A> asInt(const xsimd::batch<float, A>& a) {
+  return xsimd::bitwise_cast<xsimd::batch<std::int32_t, A>>(a);
+}
+template <class A>
+inline xsimd::batch<float, A> asFloat(const xsimd::batch<std::int32_t, A>& a) {
+  return xsimd::bitwise_cast<xsimd::batch<float, A>>(a);
+}
+template <class A>
+inline bool any(const xsimd::batch_bool<float, A>& m) {
+  return xsimd::any(m);
+}
+template <class A>
+inline bool all(const xsimd::batch_bool<float, A>& m) {
+  return xsimd::all(m);
+}
+
+#if defined(__SSE2__)
+inline std::uint32_t bits(const xsimd::batch_bool<float, xsimd::sse2>& m) {
+  return std::uint32_t(_mm_movemask_ps(m));
+}
+template <int k>
+inline xsimd::batch<float, xsimd::sse2> quadBroadcast(const xsimd::batch<float, xsimd::sse2>& a) {
+  return _mm_shuffle_ps(a, a, _MM_SHUFFLE(k, k, k, k));
+}
+#endif
+#if defined(__AVX2__)
+inline std::uint32_t bits(const xsimd::batch_bool<float, xsimd::avx2>& m) {
+  return std::uint32_t(_mm256_movemask_ps(m));
+}
+// vpermilps permutes within each 128-bit half, which is exactly one quad.
+template <int k>
+inline xsimd::batch<float, xsimd::avx2> quadBroadcast(const xsimd::batch<float, xsimd::avx2>& a) {
+  return _mm256_permute_ps(a, _MM_SHUFFLE(k, k, k, k));
+}
+#endif
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+inline std::uint32_t bits(const xsimd::batch_bool<float, xsimd::avx512bw>& m) {
+  return std::uint32_t(m.data);
+}
+template <int k>
+inline xsimd::batch<float, xsimd::avx512bw> quadBroadcast(
+    const xsimd::batch<float, xsimd::avx512bw>& a) {
+  return _mm512_permute_ps(a, _MM_SHUFFLE(k, k, k, k));
+}
+#endif
+
+// ------------------------------------------------------- shared lane helpers
+// Lane constants given per lane (width W entries).
+template <class V, class T>
+inline V fromArray(const T* values) {
+  return V::load_unaligned(values);
+}
+
+// Mask of the lanes whose bit is set in `laneBits` (bit k = lane k).
+template <class L>
+inline typename L::M maskFromBits(std::uint32_t laneBits) {
+  alignas(64) std::int32_t pattern[L::kWidth];
+  for (int k = 0; k < L::kWidth; ++k) pattern[k] = std::int32_t(1) << k;
+  const typename L::I lane = L::I::load_aligned(pattern);
+  return toFloat(typename L::I(std::int32_t(laneBits)) & lane) != typename L::F(0.0f);
+}
+
+// log2(x) for x > 0 finite, absolute error below 1e-7 over the whole range:
+// exponent from the bits, mantissa m in [sqrt(1/2), sqrt(2)) through
+// log2(m) = 2/ln2 * atanh(s), s = (m-1)/(m+1), |s| < 0.172, series to s^7.
+// Only exactly rounded operations, so every path returns the same bits.
+// Zero, negative and NaN inputs return a large negative number (-126 and below).
+template <class L>
+inline typename L::F log2(const typename L::F& x) {
+  using F = typename L::F;
+  using I = typename L::I;
+  const F safe = select(x > F(1.17549435e-38f), x, F(1.17549435e-38f));  // NaN → min normal
+  const I bitsOf = asInt(safe);
+  I exponent = (bitsOf >> 23) - I(127);
+  F m = asFloat((bitsOf & I(0x007FFFFF)) | I(0x3F800000));
+  const auto high = m > F(1.41421356f);
+  m = select(high, m * F(0.5f), m);
+  const F e = toFloat(exponent) + select(high, F(1.0f), F(0.0f));
+  const F s = (m - F(1.0f)) / (m + F(1.0f));
+  const F s2 = s * s;
+  const F series = s * (F(1.0f) + s2 * (F(1.0f / 3.0f) + s2 * (F(0.2f) + s2 * F(1.0f / 7.0f))));
+  return e + series * F(2.88539008f);  // 2 / ln 2
+}
+
+}  // namespace quadra::simd

@@ -1,0 +1,247 @@
+// quadra command-line tool: `quadra render` (DESIGN.md "Contracts") on glTF
+// files and built-in scenes. Every failure is one line on stderr and a
+// non-zero exit; outputs are written only after a frame succeeded.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "api/camera.h"
+#include "api/renderer.h"
+#include "core/error.h"
+#include "resolve/image_io.h"
+#include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
+
+namespace quadra {
+namespace {
+
+constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
+  SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
+  --scene N              which glTF scene to render (default: the file's default scene)
+  --width W --height H   image size, default 1920x1080 (at most 8192 per side)
+  --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
+                         override the scene's first camera (far 0 = infinite)
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso
+                         texture filter for every texture (default: each glTF sampler's)
+  --aniso N              max anisotropy, default 16
+  --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
+  --threads N            default: all cores
+  --isa auto|scalar|sse2|avx2|avx512
+                         kernel path (default auto: the best this CPU has)
+  --frames K             K timed frames after one warm-up (default 1)
+  --out FILE.exr|FILE.png
+                         write the last frame (may be given more than once)
+Prints "quadra frame_ms median=... min=... max=... triangles=... width=... height=...
+threads=..." after rendering.
+built-in scenes: )";
+
+std::string builtinList() {
+  std::string list;
+  for (const std::string& name : builtinSceneNames()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+double parseNumber(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+    throw Error(option + ": '" + text + "' is not a number");
+  return value;
+}
+
+int parseInteger(const std::string& option, const std::string& text, int lo, int hi) {
+  const double value = parseNumber(option, text);
+  if (value != std::floor(value) || value < lo || value > hi)
+    throw Error(option + ": '" + text + "' must be a whole number in " + std::to_string(lo) +
+                ".." + std::to_string(hi));
+  return int(value);
+}
+
+glm::vec3 parseVector(const std::string& option, const std::string& text) {
+  glm::vec3 v;
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = text.find(',', start);
+    if ((i < 2) != (comma != std::string::npos))
+      throw Error(option + ": '" + text + "' must be three numbers x,y,z");
+    v[i] = float(parseNumber(option, text.substr(start, comma - start)));
+    start = comma + 1;
+  }
+  return v;
+}
+
+struct RenderCommand {
+  std::string scenePath = "builtin:showcase";
+  LoadOptions load;
+  RenderSettings settings;
+  RendererConfig config;
+  int frames = 1;
+  std::vector<std::string> outputs;
+  std::optional<glm::vec3> eye, target, up;
+  std::optional<float> fovyDegrees, znear, zfar;
+};
+
+RenderCommand parseRender(const std::vector<std::string>& args) {
+  RenderCommand cmd;
+  bool sceneGiven = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg.rfind("--", 0) != 0) {
+      if (sceneGiven) throw Error("render: more than one scene given ('" + arg + "')");
+      cmd.scenePath = arg;
+      sceneGiven = true;
+      continue;
+    }
+    if (i + 1 >= args.size()) throw Error(arg + ": missing value");
+    const std::string& value = args[++i];
+    if (arg == "--width") cmd.settings.width = parseInteger(arg, value, 1, kMaxViewportSize);
+    else if (arg == "--height") cmd.settings.height = parseInteger(arg, value, 1, kMaxViewportSize);
+    else if (arg == "--scene") cmd.load.sceneIndex = parseInteger(arg, value, 0, 1 << 20);
+    else if (arg == "--eye") cmd.eye = parseVector(arg, value);
+    else if (arg == "--target") cmd.target = parseVector(arg, value);
+    else if (arg == "--up") cmd.up = parseVector(arg, value);
+    else if (arg == "--fovy") {
+      cmd.fovyDegrees = float(parseNumber(arg, value));
+      if (!(*cmd.fovyDegrees > 0.0f && *cmd.fovyDegrees < 180.0f))
+        throw Error(arg + ": '" + value + "' must be between 0 and 180 degrees");
+    } else if (arg == "--near") {
+      cmd.znear = float(parseNumber(arg, value));
+      if (!(*cmd.znear > 0.0f)) throw Error(arg + ": '" + value + "' must be positive");
+    } else if (arg == "--far") {
+      cmd.zfar = float(parseNumber(arg, value));
+      if (*cmd.zfar < 0.0f) throw Error(arg + ": '" + value + "' must be 0 (infinite) or positive");
+    } else if (arg == "--filter") {
+      Filter f;
+      if (!parseFilter(value, f))
+        throw Error(arg + ": unknown filter '" + value +
+                    "' (nearest, bilinear, nearest-mip, trilinear, aniso)");
+      cmd.settings.filter = f;
+    } else if (arg == "--aniso") cmd.settings.maxAniso = parseInteger(arg, value, 1, 64);
+    else if (arg == "--shading") {
+      if (value == "unlit") cmd.settings.shading = Shading::Unlit;
+      else if (value == "lit") cmd.settings.shading = Shading::Lit;
+      else throw Error(arg + ": unknown shading '" + value + "' (unlit, lit)");
+    } else if (arg == "--threads") cmd.config.threads = parseInteger(arg, value, 1, 1024);
+    else if (arg == "--isa") {
+      if (value != "auto") {
+        const std::optional<Isa> isa = parseIsa(value);
+        if (!isa) throw Error(arg + ": unknown ISA '" + value + "' (auto, scalar, sse2, avx2, avx512)");
+        cmd.config.isa = *isa;
+      }
+    } else if (arg == "--frames") cmd.frames = parseInteger(arg, value, 1, 100000);
+    else if (arg == "--out") {
+      std::string lower = value;
+      std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+      const auto endsWith = [&](const char* ext) {
+        const std::string e(ext);
+        return lower.size() > e.size() && lower.compare(lower.size() - e.size(), e.size(), e) == 0;
+      };
+      if (!endsWith(".exr") && !endsWith(".png"))
+        throw Error(value + ": unsupported output format (use .exr or .png)");
+      cmd.outputs.push_back(value);
+    } else throw Error("render: unknown option '" + arg + "' (see quadra render --help)");
+  }
+  return cmd;
+}
+
+Scene loadScene(const RenderCommand& cmd) {
+  const std::string prefix = "builtin:";
+  if (cmd.scenePath.rfind(prefix, 0) == 0) return makeBuiltinScene(cmd.scenePath.substr(prefix.size()));
+  std::vector<std::string> notes;
+  Scene scene = loadGltf(cmd.scenePath, cmd.load, &notes);
+  for (const std::string& note : notes) std::cerr << "quadra: note: " << note << "\n";
+  return scene;
+}
+
+Camera chooseCamera(const Scene& scene, const RenderCommand& cmd) {
+  Camera camera = scene.cameras.empty() ? defaultCamera(scene) : scene.cameras.front();
+  if (cmd.eye || cmd.target || cmd.up) {
+    const glm::vec3 position(camera.world[3]);
+    const glm::vec3 forward = -glm::normalize(glm::vec3(camera.world[2]));
+    const glm::vec3 eye = cmd.eye.value_or(position);
+    const glm::vec3 target = cmd.target.value_or(eye + forward);
+    const glm::vec3 up = cmd.up.value_or(glm::normalize(glm::vec3(camera.world[1])));
+    if (glm::length(target - eye) == 0.0f) throw Error("--target: must differ from --eye");
+    camera.world = lookAtWorld(eye, target, up);
+  }
+  if (cmd.fovyDegrees) {
+    camera.type = Camera::Type::Perspective;
+    camera.yfov = *cmd.fovyDegrees * 3.14159265358979f / 180.0f;
+  }
+  if (cmd.znear) camera.znear = *cmd.znear;
+  if (cmd.zfar) camera.zfar = *cmd.zfar;
+  if (camera.zfar > 0.0f && camera.zfar <= camera.znear)
+    throw Error("--far: the far plane must lie beyond the near plane");
+  return camera;
+}
+
+int runRender(const std::vector<std::string>& args) {
+  for (const std::string& a : args)
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage << builtinList() << "\n";
+      return 0;
+    }
+  const RenderCommand cmd = parseRender(args);
+  Renderer renderer(cmd.config);  // checks --isa before any slow loading
+  const Scene scene = loadScene(cmd);
+  const Camera camera = chooseCamera(scene, cmd);
+
+  Frame frame;
+  FrameStats stats = renderer.render(scene, camera, cmd.settings, frame);  // warm-up
+  std::vector<double> times;
+  for (int i = 0; i < cmd.frames; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    stats = renderer.render(scene, camera, cmd.settings, frame);
+    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  for (const std::string& path : cmd.outputs) {
+    writeFrame(frame, path);
+    std::cout << "quadra wrote " << path << "\n";
+  }
+  std::vector<double> sorted = times;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
+  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  std::printf(
+      "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
+      "isa=%s frames=%d drawn=%zu culled=%zu clipped=%zu\n",
+      median, sorted.front(), sorted.back(), stats.trianglesIn, cmd.settings.width,
+      cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), cmd.frames,
+      stats.trianglesDrawn,
+      stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
+      stats.clipped);
+  return 0;
+}
+
+int run(int argc, char** argv) {
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::cout << kUsage << builtinList() << "\n";
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "render") return runRender({args.begin() + 1, args.end()});
+  throw Error("unknown command '" + args[0] + "' (commands: render)");
+}
+
+}  // namespace
+}  // namespace quadra
+
+int main(int argc, char** argv) {
+  try {
+    return quadra::run(argc, argv);
+  } catch (const quadra::Error& e) {
+    std::fprintf(stderr, "quadra: %s\n", e.what());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "quadra: out of memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "quadra: %s\n", e.what());
+  }
+  return 1;
+}
