@@ -54,6 +54,7 @@ TextureView makeTextureView(const Texture& texture, const RenderSettings& settin
     view.levelCount = 1;
     view.levels[0] = {image.rgba.data(), image.width, image.height};
   }
+  view.computeGatherOffsets();
   return view;
 }
 
@@ -170,9 +171,10 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   const std::vector<Draw> draws = buildDrawList(scene, camera, settings);
 
   // Vertex stage.
+  const Viewport viewport{settings.width, settings.height};
   std::vector<TransformedVertices> vertices(draws.size());
   for (std::size_t d = 0; d < draws.size(); ++d)
-    transformVertices(draws[d].geometry, executor, vertices[d]);
+    transformVertices(draws[d].geometry, viewport, executor, vertices[d]);
 
   // Clip, setup and bin, in fixed-size chunks of each draw's triangles.
   struct ChunkRange {
@@ -185,7 +187,6 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
     for (std::size_t first = 0; first < triangles; first += kChunkTriangles)
       ranges.push_back({d, first, std::min(first + kChunkTriangles, triangles)});
   }
-  const Viewport viewport{settings.width, settings.height};
   const TileGrid grid = TileGrid::forViewport(settings.width, settings.height);
   std::vector<FrontEndChunk> chunks(ranges.size());
   executor.parallelFor(ranges.size(), 1, [&](std::size_t begin, std::size_t end) {

@@ -23,11 +23,13 @@ void SetupCounters::add(const SetupCounters& o) {
 
 namespace {
 
-// A vertex after the perspective divide, snapped.
-struct WindowVertex {
+constexpr int kMaxAttributes = kMaxClipVertexFloats - 4;
+
+// A projected vertex with the attribute values its planes interpolate.
+struct SetupVertex {
   std::int64_t x, y;  // 1/256 pixel
   double z, invW;
-  const double* clip;  // x, y, z, w, attributes
+  double attr[kMaxAttributes];  // attribute / w
 };
 
 struct SetupContext {
@@ -38,19 +40,17 @@ struct SetupContext {
   SetupOutput& out;
 };
 
-WindowVertex toWindow(const double* clip, const Viewport& vp) {
-  const double invW = 1.0 / clip[3];
-  const double xw = (clip[0] * invW + 1.0) * 0.5 * vp.width;
-  const double yw = (1.0 - clip[1] * invW) * 0.5 * vp.height;
-  // nearbyint: round half to even under the default rounding mode.
-  return {std::int64_t(std::nearbyint(xw * kSubpixelScale)),
-          std::int64_t(std::nearbyint(yw * kSubpixelScale)), clip[2] * invW, invW, clip};
+template <class T>
+SetupVertex makeSetupVertex(const ScreenVertex& s, const T* attributes, int count) {
+  SetupVertex v{s.x, s.y, s.z, s.invW, {}};
+  for (int k = 0; k < count; ++k) v.attr[k] = double(attributes[k]) * s.invW;
+  return v;
 }
 
 // Edge from p to q of a triangle with positive area (in y-down window space,
 // i.e. clockwise on screen). Inside is E > 0; ties go to top and left edges
 // (D3D): a top edge runs exactly horizontally to the right, a left edge upward.
-EdgeFunction makeEdge(const WindowVertex& p, const WindowVertex& q) {
+EdgeFunction makeEdge(const SetupVertex& p, const SetupVertex& q) {
   const std::int64_t dx = q.x - p.x, dy = q.y - p.y;
   const bool topLeft = dy < 0 || (dy == 0 && dx > 0);
   const std::int64_t half = kSubpixelScale / 2;  // pixel centre offset
@@ -61,35 +61,44 @@ EdgeFunction makeEdge(const WindowVertex& p, const WindowVertex& q) {
   return e;
 }
 
-// Plane through three (window position, value) pairs, stored relative to the
-// centre of pixel (originX, originY).
-Plane makePlane(const WindowVertex* v, const double* values, double det, int originX,
-                int originY) {
-  const double x0 = double(v[0].x) / kSubpixelScale, y0 = double(v[0].y) / kSubpixelScale;
-  const double x1 = double(v[1].x) / kSubpixelScale - x0, y1 = double(v[1].y) / kSubpixelScale - y0;
-  const double x2 = double(v[2].x) / kSubpixelScale - x0, y2 = double(v[2].y) / kSubpixelScale - y0;
-  const double f1 = values[1] - values[0], f2 = values[2] - values[0];
-  const double dx = (f1 * y2 - f2 * y1) / det;
-  const double dy = (f2 * x1 - f1 * x2) / det;
-  const double c = values[0] + dx * (originX + 0.5 - x0) + dy * (originY + 0.5 - y0);
-  return {float(dx), float(dy), float(c)};
-}
+// Solves value = v0 + dx*(x - x0) + dy*(y - y0) through the three vertices and
+// stores it relative to the centre of the record's first bbox pixel.
+struct PlaneSolver {
+  double x1, y1, x2, y2, invDet, originDx, originDy;
+  PlaneSolver(const SetupVertex* v, double det, int originX, int originY) {
+    const double x0 = double(v[0].x) / kSubpixelScale, y0 = double(v[0].y) / kSubpixelScale;
+    x1 = double(v[1].x) / kSubpixelScale - x0;
+    y1 = double(v[1].y) / kSubpixelScale - y0;
+    x2 = double(v[2].x) / kSubpixelScale - x0;
+    y2 = double(v[2].y) / kSubpixelScale - y0;
+    invDet = 1.0 / det;
+    originDx = originX + 0.5 - x0;
+    originDy = originY + 0.5 - y0;
+  }
+  Plane solve(double f0, double f1, double f2) const {
+    f1 -= f0;
+    f2 -= f0;
+    const double dx = (f1 * y2 - f2 * y1) * invDet;
+    const double dy = (f2 * x1 - f1 * x2) * invDet;
+    return {float(dx), float(dy), float(f0 + dx * originDx + dy * originDy)};
+  }
+};
 
-// Pixel centres px + 0.5 inside [lo, hi] (in 1/256 units), clamped to [0, limit).
+// Pixel indices whose centres px + 0.5 lie in [lo, hi] (1/256 units), clamped to [0, limit).
 void pixelSpan(std::int64_t lo, std::int64_t hi, int limit, std::int32_t& first,
                std::int32_t& last) {
   const std::int64_t half = kSubpixelScale / 2;
-  // ceil((lo - half) / 256) and floor((hi - half) / 256) for signed values.
-  const std::int64_t a = lo - half, b = hi - half;
-  std::int64_t f = a >= 0 ? (a + kSubpixelScale - 1) / kSubpixelScale : -((-a) / kSubpixelScale);
-  std::int64_t l = b >= 0 ? b / kSubpixelScale : -((-b + kSubpixelScale - 1) / kSubpixelScale);
+  // ceil((lo - half) / 256) and floor((hi - half) / 256), with arithmetic shifts.
+  const std::int64_t f = -((half - lo) >> kSubpixelBits);
+  const std::int64_t l = (hi - half) >> kSubpixelBits;
   first = std::int32_t(std::max<std::int64_t>(f, 0));
   last = std::int32_t(std::min<std::int64_t>(l, limit - 1));
 }
 
-void emitTriangle(const SetupContext& ctx, WindowVertex v0, WindowVertex v1, WindowVertex v2) {
+void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVertex& v1In,
+                  const SetupVertex& v2In) {
   SetupCounters& n = ctx.out.counters;
-  const std::int64_t area = (v1.x - v0.x) * (v2.y - v0.y) - (v2.x - v0.x) * (v1.y - v0.y);
+  const std::int64_t area = (v1In.x - v0.x) * (v2In.y - v0.y) - (v2In.x - v0.x) * (v1In.y - v0.y);
   if (area == 0) {
     ++n.degenerate;
     return;
@@ -100,18 +109,20 @@ void emitTriangle(const SetupContext& ctx, WindowVertex v0, WindowVertex v1, Win
     ++n.backFace;
     return;
   }
+  const SetupVertex* v1 = &v1In;
+  const SetupVertex* v2 = &v2In;
   if (area < 0) std::swap(v1, v2);
-  WindowVertex v[3] = {v0, v1, v2};
 
   TriangleRecord t;
-  pixelSpan(std::min({v0.x, v1.x, v2.x}), std::max({v0.x, v1.x, v2.x}), ctx.viewport.width, t.minX,
-            t.maxX);
-  pixelSpan(std::min({v0.y, v1.y, v2.y}), std::max({v0.y, v1.y, v2.y}), ctx.viewport.height,
+  pixelSpan(std::min({v0.x, v1->x, v2->x}), std::max({v0.x, v1->x, v2->x}), ctx.viewport.width,
+            t.minX, t.maxX);
+  pixelSpan(std::min({v0.y, v1->y, v2->y}), std::max({v0.y, v1->y, v2->y}), ctx.viewport.height,
             t.minY, t.maxY);
   if (t.minX > t.maxX || t.minY > t.maxY) {
-    ++n.outside;
+    ++n.outside;  // covers no pixel centre inside the viewport
     return;
   }
+  const SetupVertex v[3] = {v0, *v1, *v2};
   t.edges[0] = makeEdge(v[1], v[2]);
   t.edges[1] = makeEdge(v[2], v[0]);
   t.edges[2] = makeEdge(v[0], v[1]);
@@ -119,21 +130,33 @@ void emitTriangle(const SetupContext& ctx, WindowVertex v0, WindowVertex v1, Win
   t.firstPlane = std::uint32_t(ctx.out.planes.size());
 
   const double det = double(std::llabs(area)) / double(kSubpixelScale * kSubpixelScale);
-  double values[3];
-  for (int i = 0; i < 3; ++i) values[i] = v[i].z;
-  ctx.out.planes.push_back(makePlane(v, values, det, t.minX, t.minY));
-  for (int i = 0; i < 3; ++i) values[i] = v[i].invW;
-  ctx.out.planes.push_back(makePlane(v, values, det, t.minX, t.minY));
-  for (int k = 0; k < ctx.attributeCount; ++k) {
-    for (int i = 0; i < 3; ++i) values[i] = v[i].clip[4 + k] * v[i].invW;
-    ctx.out.planes.push_back(makePlane(v, values, det, t.minX, t.minY));
-  }
+  const PlaneSolver solver(v, det, t.minX, t.minY);
+  ctx.out.planes.push_back(solver.solve(v[0].z, v[1].z, v[2].z));
+  ctx.out.planes.push_back(solver.solve(v[0].invW, v[1].invW, v[2].invW));
+  for (int k = 0; k < ctx.attributeCount; ++k)
+    ctx.out.planes.push_back(solver.solve(v[0].attr[k], v[1].attr[k], v[2].attr[k]));
   ctx.out.triangles.push_back(t);
   ++n.drawn;
 }
 
-bool finitePosition(const float* v) {
-  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
+// Clips a triangle that leaves near/far or the guard band and emits its fan.
+void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats) {
+  double guardX, guardY;
+  guardBand(ctx.viewport, guardX, guardY);
+  ClipPolygon polygon;
+  if (clipTriangle(tri, floats, guardX, guardY, polygon) == ClipResult::Outside) {
+    ++ctx.out.counters.outside;
+    return;
+  }
+  ++ctx.out.counters.clipped;
+  SetupVertex fan[kMaxClipPolygon];
+  for (int i = 0; i < polygon.count; ++i) {
+    const double* c = polygon.vertices[i].v;
+    fan[i] = makeSetupVertex(projectToWindow(c[0], c[1], c[2], c[3], ctx.viewport), c + 4,
+                             ctx.attributeCount);
+  }
+  // The fan's pieces count as drawn (or culled) separately.
+  for (int i = 1; i + 1 < polygon.count; ++i) emitTriangle(ctx, fan[0], fan[i], fan[i + 1]);
 }
 
 }  // namespace
@@ -142,41 +165,31 @@ void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& ver
                     std::uint32_t drawIndex, std::size_t firstTriangle,
                     std::size_t lastTriangle, const Viewport& viewport, SetupOutput& out) {
   const SetupContext ctx{geometry, viewport, drawIndex, geometry.attributes.count, out};
-  const int floats = vertices.stride;
-  // Guard band in units of w: window x stays within kGuardBandPixels of the viewport.
-  const double guardX = 1.0 + 2.0 * kGuardBandPixels / viewport.width;
-  const double guardY = 1.0 + 2.0 * kGuardBandPixels / viewport.height;
   const std::uint32_t* indices = geometry.mesh->indices.data();
-  ClipPolygon polygon;
-  double direct[3][kMaxClipVertexFloats];
+  constexpr std::uint8_t kOutsideViewport = kOutsideNear | kOutsideFar | kOutsideLeft |
+                                            kOutsideRight | kOutsideBottom | kOutsideTop;
+  out.counters.in += lastTriangle - firstTriangle;
   for (std::size_t t = firstTriangle; t < lastTriangle; ++t) {
-    ++out.counters.in;
-    const float* tri[3];
-    for (int i = 0; i < 3; ++i) tri[i] = vertices.vertex(indices[3 * t + i]);
-    if (!finitePosition(tri[0]) || !finitePosition(tri[1]) || !finitePosition(tri[2])) {
+    const std::uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];
+    const std::uint8_t c0 = vertices.outcode[i0], c1 = vertices.outcode[i1],
+                       c2 = vertices.outcode[i2];
+    if ((c0 | c1 | c2) & kNotFinite) {
       ++out.counters.invalid;
       continue;
     }
-    const ClipResult clip = clipTriangle(tri, floats, guardX, guardY, polygon);
-    if (clip == ClipResult::Outside) {
-      ++out.counters.outside;
+    if (c0 & c1 & c2 & kOutsideViewport) {
+      ++out.counters.outside;  // all three beyond one plane
       continue;
     }
-    if (clip == ClipResult::Inside) {
-      WindowVertex w[3];
-      for (int i = 0; i < 3; ++i) {
-        for (int k = 0; k < floats; ++k) direct[i][k] = tri[i][k];
-        w[i] = toWindow(direct[i], viewport);
-      }
-      emitTriangle(ctx, w[0], w[1], w[2]);
+    if ((c0 | c1 | c2) & kNeedsClipping) {
+      const float* tri[3] = {vertices.vertex(i0), vertices.vertex(i1), vertices.vertex(i2)};
+      emitClipped(ctx, tri, vertices.stride);
       continue;
     }
-    // The clipped polygon becomes a fan; its pieces count as drawn separately.
-    ++out.counters.clipped;
-    const WindowVertex first = toWindow(polygon.vertices[0].v, viewport);
-    for (int i = 1; i + 1 < polygon.count; ++i)
-      emitTriangle(ctx, first, toWindow(polygon.vertices[i].v, viewport),
-                   toWindow(polygon.vertices[i + 1].v, viewport));
+    const int count = ctx.attributeCount;
+    emitTriangle(ctx, makeSetupVertex(vertices.screen[i0], vertices.vertex(i0) + 4, count),
+                 makeSetupVertex(vertices.screen[i1], vertices.vertex(i1) + 4, count),
+                 makeSetupVertex(vertices.screen[i2], vertices.vertex(i2) + 4, count));
   }
 }
 

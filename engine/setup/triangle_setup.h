@@ -13,11 +13,6 @@
 
 namespace quadra {
 
-struct Viewport {
-  int width = 0;
-  int height = 0;
-};
-
 struct SetupCounters {
   std::size_t in = 0, drawn = 0, backFace = 0, outside = 0, degenerate = 0, invalid = 0,
               clipped = 0;

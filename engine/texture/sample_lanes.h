@@ -10,6 +10,10 @@
 #include <algorithm>
 
 #include "simd/lanes.h"
+
+#ifndef QUADRA_SAMPLER_GATHER
+#define QUADRA_SAMPLER_GATHER 0
+#endif
 #include "texture/texture_view.h"
 
 namespace quadra {
@@ -26,6 +30,10 @@ struct UvDerivatives {
 };
 
 namespace sampling {
+
+// Hardware gathers on/off per lane type (measured per ISA; see README).
+template <class L>
+constexpr bool kUseHardwareGather = QUADRA_SAMPLER_GATHER && L::kWidth >= 8;
 
 // Brings u into a small range where the wrap mode gives the same answer, and
 // replaces NaN/Inf by 0 so no lane ever forms an out-of-range index.
@@ -107,24 +115,21 @@ Rgba<L> fetch(const TextureView& view, const typename L::I& level, const typenam
 
 // The 2x2 texels of a bilinear lookup in one pass over the lanes: corners
 // (x0,y0), (x1,y0), (x0,y1), (x1,y1).
+// Texel fetch, gather-free: each lane loads its RGBA texels with scalar
+// loads, then the values are read back as lanes (hardware gathers are slow on
+// AMD Zen and microcode-mitigated on many Intel parts).
 template <class L>
-void fetch2x2(const TextureView& view, const typename L::I& level, const typename L::F& x0,
-              const typename L::F& x1, const typename L::F& y0, const typename L::F& y1,
-              Rgba<L> out[4]) {
+void fetch2x2Scalar(const TextureView& view, const std::int32_t* lv, const std::int32_t* xs0,
+                    const std::int32_t* xs1, const std::int32_t* ys0, const std::int32_t* ys1,
+                    Rgba<L> out[4]) {
   constexpr int W = L::kWidth;
-  alignas(64) std::int32_t lv[W], xs[2][W], ys[2][W];
   alignas(64) float texel[4][4][W];  // [corner][channel][lane]
-  level.store_aligned(lv);
-  simd::toInt(x0).store_aligned(xs[0]);
-  simd::toInt(x1).store_aligned(xs[1]);
-  simd::toInt(y0).store_aligned(ys[0]);
-  simd::toInt(y1).store_aligned(ys[1]);
   for (int k = 0; k < W; ++k) {
     const TextureLevel& lev = view.levels[lv[k]];
-    const std::size_t row0 = std::size_t(ys[0][k]) * std::size_t(lev.width);
-    const std::size_t row1 = std::size_t(ys[1][k]) * std::size_t(lev.width);
-    const float* corner[4] = {lev.texels + (row0 + xs[0][k]) * 4, lev.texels + (row0 + xs[1][k]) * 4,
-                              lev.texels + (row1 + xs[0][k]) * 4, lev.texels + (row1 + xs[1][k]) * 4};
+    const std::size_t row0 = std::size_t(ys0[k]) * std::size_t(lev.width);
+    const std::size_t row1 = std::size_t(ys1[k]) * std::size_t(lev.width);
+    const float* corner[4] = {lev.texels + (row0 + xs0[k]) * 4, lev.texels + (row0 + xs1[k]) * 4,
+                              lev.texels + (row1 + xs0[k]) * 4, lev.texels + (row1 + xs1[k]) * 4};
     for (int c = 0; c < 4; ++c)
       for (int ch = 0; ch < 4; ++ch) texel[c][ch][k] = corner[c][ch];
   }
@@ -132,6 +137,43 @@ void fetch2x2(const TextureView& view, const typename L::I& level, const typenam
   for (int c = 0; c < 4; ++c)
     out[c] = {F::load_aligned(texel[c][0]), F::load_aligned(texel[c][1]),
               F::load_aligned(texel[c][2]), F::load_aligned(texel[c][3])};
+}
+
+// The 2x2 texels of a bilinear lookup: corners (x0,y0), (x1,y0), (x0,y1), (x1,y1).
+template <class L>
+void fetch2x2(const TextureView& view, const typename L::I& level, const typename L::F& x0,
+              const typename L::F& x1, const typename L::F& y0, const typename L::F& y1,
+              Rgba<L> out[4]) {
+  constexpr int W = L::kWidth;
+  using I = typename L::I;
+  using F = typename L::F;
+  alignas(64) std::int32_t lv[W];
+  level.store_aligned(lv);
+  if constexpr (kUseHardwareGather<L>) {
+    if (view.gatherable) {
+      alignas(64) std::int32_t base[W], width[W];
+      for (int k = 0; k < W; ++k) {
+        base[k] = view.levelOffset[lv[k]];
+        width[k] = view.levels[lv[k]].width;
+      }
+      const I b = I::load_aligned(base), w = I::load_aligned(width);
+      const I ix0 = simd::toInt(x0), ix1 = simd::toInt(x1);
+      const I row0 = b + simd::toInt(y0) * w, row1 = b + simd::toInt(y1) * w;
+      const I index[4] = {(row0 + ix0) << 2, (row0 + ix1) << 2, (row1 + ix0) << 2,
+                          (row1 + ix1) << 2};
+      const float* texels = view.levels[0].texels;
+      for (int c = 0; c < 4; ++c)
+        out[c] = {F::gather(texels, index[c]), F::gather(texels, index[c] + I(1)),
+                  F::gather(texels, index[c] + I(2)), F::gather(texels, index[c] + I(3))};
+      return;
+    }
+  }
+  alignas(64) std::int32_t xs[2][W], ys[2][W];
+  simd::toInt(x0).store_aligned(xs[0]);
+  simd::toInt(x1).store_aligned(xs[1]);
+  simd::toInt(y0).store_aligned(ys[0]);
+  simd::toInt(y1).store_aligned(ys[1]);
+  fetch2x2Scalar<L>(view, lv, xs[0], xs[1], ys[0], ys[1], out);
 }
 
 template <class L>

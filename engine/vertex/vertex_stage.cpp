@@ -3,14 +3,62 @@
 // same bits).
 #include "vertex/vertex_stage.h"
 
+#include <cmath>
+
 #include "core/parallel.h"
+#include "setup/fixed_point.h"
 
 namespace quadra {
 
+void guardBand(const Viewport& viewport, double& guardX, double& guardY) {
+  guardX = 1.0 + 2.0 * kGuardBandPixels / viewport.width;
+  guardY = 1.0 + 2.0 * kGuardBandPixels / viewport.height;
+}
+
 namespace {
 
-void transformRange(const DrawGeometry& g, std::size_t begin, std::size_t end,
-                    TransformedVertices& out) {
+// Round half to even for |v| < 2^51 without a libm call: adding 1.5 * 2^52
+// leaves no fraction bits, so the FPU's default rounding does the work.
+double roundHalfEven(double v) {
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
+  return (v + kShift) - kShift;
+}
+
+std::uint8_t outcodeOf(const float* v, double guardX, double guardY) {
+  const double x = v[0], y = v[1], z = v[2], w = v[3];
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(w))
+    return kNotFinite;
+  std::uint8_t code = 0;
+  if (z < 0.0) code |= kOutsideNear;
+  if (z > w) code |= kOutsideFar;
+  if (std::fabs(x) > guardX * w || std::fabs(y) > guardY * w) code |= kOutsideGuard;
+  if (x < -w) code |= kOutsideLeft;
+  if (x > w) code |= kOutsideRight;
+  if (y < -w) code |= kOutsideBottom;
+  if (y > w) code |= kOutsideTop;
+  return code;
+}
+
+}  // namespace
+
+ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport) {
+  const double invW = 1.0 / w;
+  const double xw = (x * invW + 1.0) * 0.5 * viewport.width;
+  const double yw = (1.0 - y * invW) * 0.5 * viewport.height;
+  ScreenVertex s;
+  s.x = std::int32_t(roundHalfEven(xw * kSubpixelScale));
+  s.y = std::int32_t(roundHalfEven(yw * kSubpixelScale));
+  s.z = z * invW;
+  s.invW = invW;
+  return s;
+}
+
+namespace {
+
+void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t begin,
+                    std::size_t end, TransformedVertices& out) {
+  double guardX, guardY;
+  guardBand(viewport, guardX, guardY);
   const Mesh& mesh = *g.mesh;
   const glm::mat4 modelViewProjection = g.projection * g.modelView;
   // Normals go to view space with the inverse transpose (non-uniform scale).
@@ -39,18 +87,24 @@ void transformRange(const DrawGeometry& g, std::size_t begin, std::size_t end,
           mesh.normals.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : normalMatrix * mesh.normals[i];
       for (int k = 0; k < 3; ++k) attr[a.normal + k] = n[k];
     }
+    const std::uint8_t code = outcodeOf(v, guardX, guardY);
+    out.outcode[i] = code;
+    if (!(code & (kNeedsClipping | kNotFinite)))
+      out.screen[i] = projectToWindow(v[0], v[1], v[2], v[3], viewport);
   }
 }
 
 }  // namespace
 
-void transformVertices(const DrawGeometry& geometry, const Executor& executor,
-                       TransformedVertices& out) {
+void transformVertices(const DrawGeometry& geometry, const Viewport& viewport,
+                       const Executor& executor, TransformedVertices& out) {
   const std::size_t count = geometry.mesh->positions.size();
   out.stride = 4 + geometry.attributes.count;
   out.data.resize(count * std::size_t(out.stride));
+  out.screen.resize(count);
+  out.outcode.resize(count);
   executor.parallelFor(count, 16384, [&](std::size_t begin, std::size_t end) {
-    transformRange(geometry, begin, end, out);
+    transformRange(geometry, viewport, begin, end, out);
   });
 }
 

@@ -1,7 +1,10 @@
 // Vertex stage: a draw's mesh → clip-space positions plus exactly the
-// attributes the draw's material reads, one flat float array.
+// attributes the draw's material reads (one flat float array), and for each
+// vertex its clip outcode and, when it lies inside the guard band, its
+// snapped window position, so setup projects each shared vertex once.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "vertex/draw.h"
@@ -10,15 +13,51 @@ namespace quadra {
 
 class Executor;
 
+struct Viewport {
+  int width = 0;
+  int height = 0;
+};
+
+// Outcode bits: planes a vertex is outside of.
+enum OutcodeBit : std::uint8_t {
+  kOutsideNear = 1 << 0,   // z < 0
+  kOutsideFar = 1 << 1,    // z > w
+  kOutsideGuard = 1 << 2,  // beyond the guard band on some side (needs side clipping)
+  kOutsideLeft = 1 << 3,   // viewport sides, for trivial rejection only
+  kOutsideRight = 1 << 4,
+  kOutsideBottom = 1 << 5,
+  kOutsideTop = 1 << 6,
+  kNotFinite = 1 << 7,     // NaN or Inf in the position
+};
+constexpr std::uint8_t kNeedsClipping = kOutsideNear | kOutsideFar | kOutsideGuard;
+
+// A vertex after the perspective divide, valid when its outcode has none of
+// kNeedsClipping | kNotFinite.
+struct ScreenVertex {
+  std::int32_t x = 0, y = 0;  // window position in 1/256 pixel
+  double z = 0.0;             // depth z/w
+  double invW = 0.0;          // 1/w
+};
+
 // Vertex i occupies data[i*stride .. i*stride+stride): x, y, z, w (clip space),
 // then the attributes at the offsets of geometry.attributes (plus 4).
 struct TransformedVertices {
   std::vector<float> data;
+  std::vector<ScreenVertex> screen;
+  std::vector<std::uint8_t> outcode;
   int stride = 4;
   const float* vertex(std::uint32_t i) const { return &data[std::size_t(i) * std::size_t(stride)]; }
 };
 
-void transformVertices(const DrawGeometry& geometry, const Executor& executor,
-                       TransformedVertices& out);
+// The guard band as a multiple of w per axis: |x| <= guardX * w keeps window
+// x within kGuardBandPixels of the viewport (see setup/fixed_point.h).
+void guardBand(const Viewport& viewport, double& guardX, double& guardY);
+
+// Window position of a clip-space point (w > 0), snapped to 1/256 pixel with
+// round-half-to-even; the one projection setup and the vertex stage share.
+ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport);
+
+void transformVertices(const DrawGeometry& geometry, const Viewport& viewport,
+                       const Executor& executor, TransformedVertices& out);
 
 }  // namespace quadra
