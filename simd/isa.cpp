@@ -5,10 +5,14 @@ namespace quadra {
 
 const char* isaName(Isa isa) {
   switch (isa) {
-    case Isa::Scalar: return "scalar";
-    case Isa::Sse2: return "sse2";
-    case Isa::Avx2: return "avx2";
-    case Isa::Avx512: return "avx512";
+    case Isa::Scalar:
+      return "scalar";
+    case Isa::Sse2:
+      return "sse2";
+    case Isa::Avx2:
+      return "avx2";
+    case Isa::Avx512:
+      return "avx512";
   }
   return "?";
 }
@@ -22,9 +26,12 @@ std::optional<Isa> parseIsa(const std::string& name) {
 bool isaSupported(Isa isa) {
   // __builtin_cpu_supports also checks that the OS saves the wider registers.
   switch (isa) {
-    case Isa::Scalar: return true;
-    case Isa::Sse2: return __builtin_cpu_supports("sse2");
-    case Isa::Avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("f16c");
+    case Isa::Scalar:
+      return true;
+    case Isa::Sse2:
+      return __builtin_cpu_supports("sse2");
+    case Isa::Avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("f16c");
     case Isa::Avx512:
       return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
              __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&

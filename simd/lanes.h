@@ -36,7 +36,9 @@ struct ScalarMask {
   friend ScalarMask operator|(const ScalarMask& a, const ScalarMask& b) {
     return {{a.v[0] || b.v[0], a.v[1] || b.v[1], a.v[2] || b.v[2], a.v[3] || b.v[3]}};
   }
-  friend ScalarMask operator~(const ScalarMask& a) { return {{!a.v[0], !a.v[1], !a.v[2], !a.v[3]}}; }
+  friend ScalarMask operator~(const ScalarMask& a) {
+    return {{!a.v[0], !a.v[1], !a.v[2], !a.v[3]}};
+  }
 };
 
 template <class T>
@@ -147,13 +149,13 @@ inline ScalarBatch<float> sqrt(const ScalarBatch<float>& a) {
 }
 inline ScalarBatch<std::int32_t> min(const ScalarBatch<std::int32_t>& a,
                                      const ScalarBatch<std::int32_t>& b) {
-  return ScalarBatch<std::int32_t>::map(a, b,
-                                        [](std::int32_t x, std::int32_t y) { return x < y ? x : y; });
+  return ScalarBatch<std::int32_t>::map(
+      a, b, [](std::int32_t x, std::int32_t y) { return x < y ? x : y; });
 }
 inline ScalarBatch<std::int32_t> max(const ScalarBatch<std::int32_t>& a,
                                      const ScalarBatch<std::int32_t>& b) {
-  return ScalarBatch<std::int32_t>::map(a, b,
-                                        [](std::int32_t x, std::int32_t y) { return x > y ? x : y; });
+  return ScalarBatch<std::int32_t>::map(
+      a, b, [](std::int32_t x, std::int32_t y) { return x > y ? x : y; });
 }
 // Truncation toward zero (cvttps); callers keep values inside int32 range.
 inline ScalarBatch<std::int32_t> toInt(const ScalarBatch<float>& a) {
@@ -172,8 +174,12 @@ inline ScalarBatch<float> asFloat(const ScalarBatch<std::int32_t>& a) {
   std::memcpy(r.v, a.v, sizeof(r.v));
   return r;
 }
-inline bool any(const ScalarMask& m) { return m.v[0] || m.v[1] || m.v[2] || m.v[3]; }
-inline bool all(const ScalarMask& m) { return m.v[0] && m.v[1] && m.v[2] && m.v[3]; }
+inline bool any(const ScalarMask& m) {
+  return m.v[0] || m.v[1] || m.v[2] || m.v[3];
+}
+inline bool all(const ScalarMask& m) {
+  return m.v[0] && m.v[1] && m.v[2] && m.v[3];
+}
 inline std::uint32_t bits(const ScalarMask& m) {
   return std::uint32_t(m.v[0]) | std::uint32_t(m.v[1]) << 1 | std::uint32_t(m.v[2]) << 2 |
          std::uint32_t(m.v[3]) << 3;

@@ -21,6 +21,8 @@ inline void transposeToPixelsStreaming(const float* const in[4], float* const ou
 }
 
 // Orders streaming stores before whatever the thread does next.
-inline void streamFence() { _mm_sfence(); }
+inline void streamFence() {
+  _mm_sfence();
+}
 
 }  // namespace quadra::simd

@@ -1,5 +1,5 @@
-// quadra command-line tool: `quadra render` (DESIGN.md "Contracts") on glTF
-// files and built-in scenes. Every failure is one line on stderr and a
+// quadra command-line tool: the entry point and `quadra render` (DESIGN.md
+// "Contracts") on glTF files and built-in scenes. Every failure is one line on stderr and a
 // non-zero exit; outputs are written only after a frame succeeded.
 #include <algorithm>
 #include <chrono>
@@ -14,6 +14,7 @@
 
 #include "api/camera.h"
 #include "api/renderer.h"
+#include "cli_args.h"
 #include "core/error.h"
 #include "resolve/image_io.h"
 #include "scene/builtin_scenes.h"
@@ -23,6 +24,7 @@ namespace quadra {
 namespace {
 
 constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
+       quadra sample --help
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
@@ -46,22 +48,6 @@ std::string builtinList() {
   std::string list;
   for (const std::string& name : builtinSceneNames()) list += (list.empty() ? "" : ", ") + name;
   return list;
-}
-
-double parseNumber(const std::string& option, const std::string& text) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value))
-    throw Error(option + ": '" + text + "' is not a number");
-  return value;
-}
-
-int parseInteger(const std::string& option, const std::string& text, int lo, int hi) {
-  const double value = parseNumber(option, text);
-  if (value != std::floor(value) || value < lo || value > hi)
-    throw Error(option + ": '" + text + "' must be a whole number in " + std::to_string(lo) +
-                ".." + std::to_string(hi));
-  return int(value);
 }
 
 glm::vec3 parseVector(const std::string& option, const std::string& text) {
@@ -101,12 +87,18 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     }
     if (i + 1 >= args.size()) throw Error(arg + ": missing value");
     const std::string& value = args[++i];
-    if (arg == "--width") cmd.settings.width = parseInteger(arg, value, 1, kMaxViewportSize);
-    else if (arg == "--height") cmd.settings.height = parseInteger(arg, value, 1, kMaxViewportSize);
-    else if (arg == "--scene") cmd.load.sceneIndex = parseInteger(arg, value, 0, 1 << 20);
-    else if (arg == "--eye") cmd.eye = parseVector(arg, value);
-    else if (arg == "--target") cmd.target = parseVector(arg, value);
-    else if (arg == "--up") cmd.up = parseVector(arg, value);
+    if (arg == "--width")
+      cmd.settings.width = parseInteger(arg, value, 1, kMaxViewportSize);
+    else if (arg == "--height")
+      cmd.settings.height = parseInteger(arg, value, 1, kMaxViewportSize);
+    else if (arg == "--scene")
+      cmd.load.sceneIndex = parseInteger(arg, value, 0, 1 << 20);
+    else if (arg == "--eye")
+      cmd.eye = parseVector(arg, value);
+    else if (arg == "--target")
+      cmd.target = parseVector(arg, value);
+    else if (arg == "--up")
+      cmd.up = parseVector(arg, value);
     else if (arg == "--fovy") {
       cmd.fovyDegrees = float(parseNumber(arg, value));
       if (!(*cmd.fovyDegrees > 0.0f && *cmd.fovyDegrees < 180.0f))
@@ -123,37 +115,40 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
         throw Error(arg + ": unknown filter '" + value +
                     "' (nearest, bilinear, nearest-mip, trilinear, aniso)");
       cmd.settings.filter = f;
-    } else if (arg == "--aniso") cmd.settings.maxAniso = parseInteger(arg, value, 1, 64);
+    } else if (arg == "--aniso")
+      cmd.settings.maxAniso = parseInteger(arg, value, 1, 64);
     else if (arg == "--shading") {
-      if (value == "unlit") cmd.settings.shading = Shading::Unlit;
-      else if (value == "lit") cmd.settings.shading = Shading::Lit;
-      else throw Error(arg + ": unknown shading '" + value + "' (unlit, lit)");
-    } else if (arg == "--threads") cmd.config.threads = parseInteger(arg, value, 1, 1024);
+      if (value == "unlit")
+        cmd.settings.shading = Shading::Unlit;
+      else if (value == "lit")
+        cmd.settings.shading = Shading::Lit;
+      else
+        throw Error(arg + ": unknown shading '" + value + "' (unlit, lit)");
+    } else if (arg == "--threads")
+      cmd.config.threads = parseInteger(arg, value, 1, 1024);
     else if (arg == "--isa") {
       if (value != "auto") {
         const std::optional<Isa> isa = parseIsa(value);
-        if (!isa) throw Error(arg + ": unknown ISA '" + value + "' (auto, scalar, sse2, avx2, avx512)");
+        if (!isa)
+          throw Error(arg + ": unknown ISA '" + value + "' (auto, scalar, sse2, avx2, avx512)");
         cmd.config.isa = *isa;
       }
-    } else if (arg == "--frames") cmd.frames = parseInteger(arg, value, 1, 100000);
+    } else if (arg == "--frames")
+      cmd.frames = parseInteger(arg, value, 1, 100000);
     else if (arg == "--out") {
-      std::string lower = value;
-      std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-      const auto endsWith = [&](const char* ext) {
-        const std::string e(ext);
-        return lower.size() > e.size() && lower.compare(lower.size() - e.size(), e.size(), e) == 0;
-      };
-      if (!endsWith(".exr") && !endsWith(".png"))
+      if (!endsWithIgnoringCase(value, ".exr") && !endsWithIgnoringCase(value, ".png"))
         throw Error(value + ": unsupported output format (use .exr or .png)");
       cmd.outputs.push_back(value);
-    } else throw Error("render: unknown option '" + arg + "' (see quadra render --help)");
+    } else
+      throw Error("render: unknown option '" + arg + "' (see quadra render --help)");
   }
   return cmd;
 }
 
 Scene loadScene(const RenderCommand& cmd) {
   const std::string prefix = "builtin:";
-  if (cmd.scenePath.rfind(prefix, 0) == 0) return makeBuiltinScene(cmd.scenePath.substr(prefix.size()));
+  if (cmd.scenePath.rfind(prefix, 0) == 0)
+    return makeBuiltinScene(cmd.scenePath.substr(prefix.size()));
   std::vector<std::string> notes;
   Scene scene = loadGltf(cmd.scenePath, cmd.load, &notes);
   for (const std::string& note : notes) std::cerr << "quadra: note: " << note << "\n";
@@ -182,7 +177,7 @@ Camera chooseCamera(const Scene& scene, const RenderCommand& cmd) {
   return camera;
 }
 
-int runRender(const std::vector<std::string>& args) {
+int renderCommand(const std::vector<std::string>& args) {
   for (const std::string& a : args)
     if (a == "--help" || a == "-h") {
       std::cout << kUsage << builtinList() << "\n";
@@ -199,7 +194,9 @@ int runRender(const std::vector<std::string>& args) {
   for (int i = 0; i < cmd.frames; ++i) {
     const auto start = std::chrono::steady_clock::now();
     stats = renderer.render(scene, camera, cmd.settings, frame);
-    times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    times.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
   }
   for (const std::string& path : cmd.outputs) {
     writeFrame(frame, path);
@@ -226,8 +223,9 @@ int run(int argc, char** argv) {
     std::cout << kUsage << builtinList() << "\n";
     return args.empty() ? 2 : 0;
   }
-  if (args[0] == "render") return runRender({args.begin() + 1, args.end()});
-  throw Error("unknown command '" + args[0] + "' (commands: render)");
+  if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
+  if (args[0] == "sample") return runSample(argc - 1, argv + 1);
+  throw Error("unknown command '" + args[0] + "' (commands: render, sample)");
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 #include "core/parallel.h"
 #include "setup/fixed_point.h"
 #include "setup/triangle_setup.h"
-#include "texture/mip_chain.h"
+#include "texture/texture_sampler.h"
 #include "tile/tile_stage.h"
 #include "vertex/vertex_stage.h"
 
@@ -31,32 +31,6 @@ namespace {
 // chunk boundaries, and with them everything downstream, are the same for
 // any number of threads.
 constexpr std::size_t kChunkTriangles = 8192;
-
-TextureView makeTextureView(const Texture& texture, const RenderSettings& settings) {
-  TextureView view;
-  const SamplerState& sampler = texture.sampler();
-  view.wrapU = sampler.wrapU;
-  view.wrapV = sampler.wrapV;
-  std::copy(std::begin(sampler.borderColor), std::end(sampler.borderColor), view.border);
-  view.minFilter = settings.filter.value_or(sampler.minFilter);
-  // An explicit filter decides magnification too: nearest stays nearest.
-  view.magLinear = settings.filter ? *settings.filter != Filter::Nearest : sampler.magLinear;
-  view.maxAniso = settings.maxAniso;
-  if (needsMips(view.minFilter)) {
-    const MipChain& mips = texture.mips();
-    view.levelCount = std::min(mips.levelCount(), TextureView::kMaxLevels);
-    for (int i = 0; i < view.levelCount; ++i) {
-      const Image& level = mips.level(i);
-      view.levels[i] = {level.rgba.data(), level.width, level.height};
-    }
-  } else {
-    const Image& image = texture.image();
-    view.levelCount = 1;
-    view.levels[0] = {image.rgba.data(), image.width, image.height};
-  }
-  view.computeGatherOffsets();
-  return view;
-}
 
 Draw makeDraw(const Scene& scene, const Instance& instance, const glm::mat4& view,
               const glm::mat4& projection, const RenderSettings& settings) {
@@ -79,7 +53,8 @@ Draw makeDraw(const Scene& scene, const Instance& instance, const glm::mat4& vie
   s.alphaCutoff = material.alphaCutoff;
   s.textured = material.baseColorTexture >= 0 && !mesh.texcoords[g.texcoordSet].empty();
   if (s.textured)
-    s.texture = makeTextureView(*scene.textures.at(std::size_t(material.baseColorTexture)), settings);
+    s.texture = makeTextureView(*scene.textures.at(std::size_t(material.baseColorTexture)),
+                                settings.filter, settings.maxAniso);
   s.vertexColor = !mesh.colors.empty();
   s.lit = settings.shading == Shading::Lit;
   if (s.alphaMode == AlphaMode::Blend) {
@@ -146,7 +121,8 @@ void checkSettings(const RenderSettings& s) {
     throw Error("render: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                 " is out of range (1.." + std::to_string(kMaxViewport) + " per side)");
   if (s.maxAniso < 1 || s.maxAniso > 64)
-    throw Error("render: max anisotropy " + std::to_string(s.maxAniso) + " is out of range (1..64)");
+    throw Error("render: max anisotropy " + std::to_string(s.maxAniso) +
+                " is out of range (1..64)");
 }
 
 }  // namespace
@@ -154,15 +130,19 @@ void checkSettings(const RenderSettings& s) {
 Renderer::Renderer(const RendererConfig& config) {
   const Isa isa = config.isa.value_or(detectBestIsa());
   if (!isaSupported(isa))
-    throw Error(std::string("--isa ") + isaName(isa) + ": this CPU does not support it (best: " +
-                isaName(detectBestIsa()) + ")");
+    throw Error(std::string("--isa ") + isaName(isa) +
+                ": this CPU does not support it (best: " + isaName(detectBestIsa()) + ")");
   impl_ = std::make_unique<Impl>(config.threads, isa);
 }
 
 Renderer::~Renderer() = default;
 
-Isa Renderer::isa() const { return impl_->kernels->isa; }
-int Renderer::threadCount() const { return impl_->executor.threadCount(); }
+Isa Renderer::isa() const {
+  return impl_->kernels->isa;
+}
+int Renderer::threadCount() const {
+  return impl_->executor.threadCount();
+}
 
 FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                             const RenderSettings& settings, Frame& out) {

@@ -22,8 +22,8 @@
 namespace quadra {
 
 struct RendererConfig {
-  int threads = 0;          // <= 0: all cores
-  std::optional<Isa> isa;   // unset: the best the CPU has; set: must be supported
+  int threads = 0;         // <= 0: all cores
+  std::optional<Isa> isa;  // unset: the best the CPU has; set: must be supported
 };
 
 enum class Shading : std::uint8_t {
@@ -44,14 +44,14 @@ struct RenderSettings {
   std::optional<Filter> filter;  // unset: each texture's glTF sampler decides
   int maxAniso = 16;
   Shading shading = Shading::Unlit;
-  glm::vec4 clearColor{0.0f};    // premultiplied linear
+  glm::vec4 clearColor{0.0f};  // premultiplied linear
   DebugView debugView = DebugView::None;
 };
 
 // Counts of what the front end did with the frame's triangles.
 struct FrameStats {
-  std::size_t trianglesIn = 0;        // submitted (instances x triangles)
-  std::size_t trianglesDrawn = 0;     // set up and binned (after clipping splits)
+  std::size_t trianglesIn = 0;     // submitted (instances x triangles)
+  std::size_t trianglesDrawn = 0;  // set up and binned (after clipping splits)
   std::size_t culledBackFace = 0;
   std::size_t culledOutside = 0;      // entirely outside a clip plane / the viewport
   std::size_t droppedDegenerate = 0;  // zero area after snapping

@@ -25,7 +25,8 @@ void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& 
   };
   for (const TriangleRecord& t : triangles)
     forEachTile(t, [&](int tile) { ++out.tileStart[tile + 1]; });
-  for (int tile = 0; tile < grid.tileCount(); ++tile) out.tileStart[tile + 1] += out.tileStart[tile];
+  for (int tile = 0; tile < grid.tileCount(); ++tile)
+    out.tileStart[tile + 1] += out.tileStart[tile];
   out.triangleIndex.resize(out.tileStart.back());
   std::vector<std::uint32_t> cursor(out.tileStart.begin(), out.tileStart.end() - 1);
   for (std::uint32_t i = 0; i < triangles.size(); ++i)

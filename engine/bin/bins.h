@@ -11,7 +11,7 @@
 namespace quadra {
 
 struct TileGrid {
-  int width = 0, height = 0;       // viewport in pixels
+  int width = 0, height = 0;  // viewport in pixels
   int tilesX = 0, tilesY = 0;
   int tileCount() const { return tilesX * tilesY; }
   static TileGrid forViewport(int width, int height);

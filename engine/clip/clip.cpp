@@ -12,12 +12,18 @@ constexpr int kPlaneCount = 6;
 
 double planeDistance(int plane, const double* v, double guardX, double guardY) {
   switch (plane) {
-    case 0: return v[2];
-    case 1: return v[3] - v[2];
-    case 2: return guardX * v[3] + v[0];
-    case 3: return guardX * v[3] - v[0];
-    case 4: return guardY * v[3] + v[1];
-    default: return guardY * v[3] - v[1];
+    case 0:
+      return v[2];
+    case 1:
+      return v[3] - v[2];
+    case 2:
+      return guardX * v[3] + v[0];
+    case 3:
+      return guardX * v[3] - v[0];
+    case 4:
+      return guardY * v[3] + v[1];
+    default:
+      return guardY * v[3] - v[1];
   }
 }
 
@@ -52,8 +58,8 @@ void clipAgainst(int plane, int floats, double guardX, double guardY, ClipPolygo
 
 }  // namespace
 
-ClipResult clipTriangle(const float* const vertices[3], int floats, double guardX,
-                        double guardY, ClipPolygon& out) {
+ClipResult clipTriangle(const float* const vertices[3], int floats, double guardX, double guardY,
+                        ClipPolygon& out) {
   unsigned outsideAny = 0;
   for (int plane = 0; plane < kPlaneCount; ++plane) {
     int outside = 0;

@@ -23,7 +23,7 @@ enum class ClipResult : std::uint8_t { Inside, Clipped, Outside };
 
 // guardX/guardY: the guard band as a multiple of w (|x| <= guardX * w).
 // floats: floats per vertex (4 + attributes). On Clipped, out holds the polygon.
-ClipResult clipTriangle(const float* const vertices[3], int floats, double guardX,
-                        double guardY, ClipPolygon& out);
+ClipResult clipTriangle(const float* const vertices[3], int floats, double guardX, double guardY,
+                        ClipPolygon& out);
 
 }  // namespace quadra

@@ -27,18 +27,18 @@ namespace detail {
 }  // namespace quadra
 
 // Always-on invariant check; an internal bug, never a user error.
-#define QUADRA_CHECK(cond)                                                   \
-  do {                                                                       \
-    if (!(cond)) ::quadra::detail::checkFailed(__FILE__, __LINE__, #cond);   \
+#define QUADRA_CHECK(cond)                                                 \
+  do {                                                                     \
+    if (!(cond)) ::quadra::detail::checkFailed(__FILE__, __LINE__, #cond); \
   } while (0)
 
-#define QUADRA_CHECK_OP(a, op, b)                                                     \
-  do {                                                                                \
-    const auto& qa_ = (a);                                                            \
-    const auto& qb_ = (b);                                                            \
-    if (!(qa_ op qb_)) {                                                              \
-      std::ostringstream qs_;                                                         \
-      qs_ << #a " " #op " " #b " (" << qa_ << " vs " << qb_ << ")";                   \
-      ::quadra::detail::checkFailed(__FILE__, __LINE__, qs_.str());                   \
-    }                                                                                 \
+#define QUADRA_CHECK_OP(a, op, b)                                   \
+  do {                                                              \
+    const auto& qa_ = (a);                                          \
+    const auto& qb_ = (b);                                          \
+    if (!(qa_ op qb_)) {                                            \
+      std::ostringstream qs_;                                       \
+      qs_ << #a " " #op " " #b " (" << qa_ << " vs " << qb_ << ")"; \
+      ::quadra::detail::checkFailed(__FILE__, __LINE__, qs_.str()); \
+    }                                                               \
   } while (0)

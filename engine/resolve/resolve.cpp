@@ -24,10 +24,11 @@ void resolveTile(const TileBuffers& tile, Frame& frame) {
     for (int x = 0; x < tile.width; x += 2) {
       const int quad = TileBuffers::index(x, y);
       const bool secondColumn = x + 1 < tile.width;
-      const float* const in[4] = {tile.color[0] + quad, tile.color[1] + quad,
-                                  tile.color[2] + quad, tile.color[3] + quad};
+      const float* const in[4] = {tile.color[0] + quad, tile.color[1] + quad, tile.color[2] + quad,
+                                  tile.color[3] + quad};
       // Quad lanes: (0,0), (1,0), (0,1), (1,1).
-      float* const out[4] = {rgba + (row0 + x) * 4, secondColumn ? rgba + (row0 + x + 1) * 4 : nullptr,
+      float* const out[4] = {rgba + (row0 + x) * 4,
+                             secondColumn ? rgba + (row0 + x + 1) * 4 : nullptr,
                              secondRow ? rgba + (row1 + x) * 4 : nullptr,
                              secondRow && secondColumn ? rgba + (row1 + x + 1) * 4 : nullptr};
       simd::transposeToPixelsStreaming(in, out);

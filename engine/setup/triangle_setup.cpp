@@ -162,12 +162,12 @@ void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats)
 }  // namespace
 
 void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& vertices,
-                    std::uint32_t drawIndex, std::size_t firstTriangle,
-                    std::size_t lastTriangle, const Viewport& viewport, SetupOutput& out) {
+                    std::uint32_t drawIndex, std::size_t firstTriangle, std::size_t lastTriangle,
+                    const Viewport& viewport, SetupOutput& out) {
   const SetupContext ctx{geometry, viewport, drawIndex, geometry.attributes.count, out};
   const std::uint32_t* indices = geometry.mesh->indices.data();
-  constexpr std::uint8_t kOutsideViewport = kOutsideNear | kOutsideFar | kOutsideLeft |
-                                            kOutsideRight | kOutsideBottom | kOutsideTop;
+  constexpr std::uint8_t kOutsideViewport =
+      kOutsideNear | kOutsideFar | kOutsideLeft | kOutsideRight | kOutsideBottom | kOutsideTop;
   out.counters.in += lastTriangle - firstTriangle;
   for (std::size_t t = firstTriangle; t < lastTriangle; ++t) {
     const std::uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];

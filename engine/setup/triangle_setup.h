@@ -28,7 +28,7 @@ struct SetupOutput {
 
 // Sets up triangles [firstTriangle, lastTriangle) of a draw into out (appending).
 void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& vertices,
-                    std::uint32_t drawIndex, std::size_t firstTriangle,
-                    std::size_t lastTriangle, const Viewport& viewport, SetupOutput& out);
+                    std::uint32_t drawIndex, std::size_t firstTriangle, std::size_t lastTriangle,
+                    const Viewport& viewport, SetupOutput& out);
 
 }  // namespace quadra

@@ -33,7 +33,7 @@ namespace sampling {
 
 // Hardware gathers on/off per lane type (measured per ISA; see README).
 template <class L>
-constexpr bool kUseHardwareGather = QUADRA_SAMPLER_GATHER && L::kWidth >= 8;
+constexpr bool kUseHardwareGather = QUADRA_SAMPLER_GATHER&& L::kWidth >= 8;
 
 // Brings u into a small range where the wrap mode gives the same answer, and
 // replaces NaN/Inf by 0 so no lane ever forms an out-of-range index.
@@ -68,7 +68,8 @@ typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode, typenam
       r = simd::select(r < F(0.0f), r + period, r);
       return simd::select(r >= n, period - F(1.0f) - r, r);
     }
-    case WrapMode::ClampToEdge: return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
+    case WrapMode::ClampToEdge:
+      return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
     case WrapMode::ClampToBorder:
       inside = inside & (x >= F(0.0f)) & (x <= n - F(1.0f));
       return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
@@ -179,8 +180,9 @@ void fetch2x2(const TextureView& view, const typename L::I& level, const typenam
 template <class L>
 Rgba<L> withBorder(const TextureView& view, const Rgba<L>& c, const typename L::M& inside) {
   using F = typename L::F;
-  return {simd::select(inside, c.r, F(view.border[0])), simd::select(inside, c.g, F(view.border[1])),
-          simd::select(inside, c.b, F(view.border[2])), simd::select(inside, c.a, F(view.border[3]))};
+  return {
+      simd::select(inside, c.r, F(view.border[0])), simd::select(inside, c.g, F(view.border[1])),
+      simd::select(inside, c.b, F(view.border[2])), simd::select(inside, c.a, F(view.border[3]))};
 }
 
 template <class L>
@@ -316,8 +318,7 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
   for (int i = 0; i < maxProbes; ++i) {
     const F offset = (F(float(i) + 0.5f) / probes - F(0.5f));
     const auto active = F(float(i)) < probes;
-    const Rgba<L> c =
-        sampleMipmapped<L>(view, u + axisU * offset, v + axisV * offset, lod, true);
+    const Rgba<L> c = sampleMipmapped<L>(view, u + axisU * offset, v + axisV * offset, lod, true);
     sum.r = sum.r + simd::select(active, c.r, F(0.0f));
     sum.g = sum.g + simd::select(active, c.g, F(0.0f));
     sum.b = sum.b + simd::select(active, c.b, F(0.0f));

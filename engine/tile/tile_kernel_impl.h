@@ -11,40 +11,7 @@
 
 #include <cstdint>
 
-#if defined(QUADRA_KERNEL_ISA_scalar)
-#define QUADRA_KERNEL_ARCH ::quadra::simd::ScalarArch
-#define QUADRA_KERNEL_NAMESPACE kernel_scalar
-#define QUADRA_KERNEL_ENTRY tileKernelsScalar
-#define QUADRA_KERNEL_ISA_ENUM Isa::Scalar
-#elif defined(QUADRA_KERNEL_ISA_sse2)
-#if !defined(__SSE2__)
-#error "the sse2 kernel file must be compiled with -msse2"
-#endif
-#define QUADRA_KERNEL_ARCH ::xsimd::sse2
-#define QUADRA_KERNEL_NAMESPACE kernel_sse2
-#define QUADRA_KERNEL_ENTRY tileKernelsSse2
-#define QUADRA_KERNEL_ISA_ENUM Isa::Sse2
-#elif defined(QUADRA_KERNEL_ISA_avx2)
-#if !defined(__AVX2__)
-#error "the avx2 kernel file must be compiled with -mavx2"
-#endif
-#define QUADRA_KERNEL_ARCH ::xsimd::avx2
-#define QUADRA_KERNEL_NAMESPACE kernel_avx2
-#define QUADRA_KERNEL_ENTRY tileKernelsAvx2
-#define QUADRA_KERNEL_ISA_ENUM Isa::Avx2
-#elif defined(QUADRA_KERNEL_ISA_avx512)
-#if !defined(__AVX512F__) || !defined(__AVX512BW__)
-#error "the avx512 kernel file must be compiled with -mavx512f -mavx512bw"
-#endif
-#define QUADRA_KERNEL_ARCH ::xsimd::avx512bw
-#define QUADRA_KERNEL_NAMESPACE kernel_avx512
-#define QUADRA_KERNEL_ENTRY tileKernelsAvx512
-#define QUADRA_KERNEL_ISA_ENUM Isa::Avx512
-#else
-#error "define QUADRA_KERNEL_ISA_<isa> before including tile_kernel_impl.h"
-#endif
-
-#include "simd/lanes.h"
+#include "simd/kernel_isa.h"
 #include "texture/sample_lanes.h"
 #include "tile/tile_kernel.h"
 
@@ -110,10 +77,10 @@ std::uint64_t blockCoverage(const TriangleRecord& t, int px, int py, std::uint64
     stepX[e] = f.a;
     stepY[e] = f.b;
     const std::int64_t span = kBlockSize - 1;
-    const std::int64_t lo = corner[e] + std::min<std::int64_t>(0, f.a * span) +
-                            std::min<std::int64_t>(0, f.b * span);
-    const std::int64_t hi = corner[e] + std::max<std::int64_t>(0, f.a * span) +
-                            std::max<std::int64_t>(0, f.b * span);
+    const std::int64_t lo =
+        corner[e] + std::min<std::int64_t>(0, f.a * span) + std::min<std::int64_t>(0, f.b * span);
+    const std::int64_t hi =
+        corner[e] + std::max<std::int64_t>(0, f.a * span) + std::max<std::int64_t>(0, f.b * span);
     if (hi <= 0) return 0;
     full = full && lo > 0;
   }
@@ -253,15 +220,14 @@ void rasterizeWith(const TriangleRecord& t, const Plane* planes, const ShadeStat
   for (int by = yBegin & ~(kBlockSize - 1); by < yEnd; by += kBlockSize) {
     for (int bx = xBegin & ~(kBlockSize - 1); bx < xEnd; bx += kBlockSize) {
       const std::uint64_t valid = blockValidMask(bx, by, xBegin, xEnd, yBegin, yEnd);
-      const std::uint64_t coverage =
-          blockCoverage(t, tile.originX + bx, tile.originY + by, valid);
+      const std::uint64_t coverage = blockCoverage(t, tile.originX + bx, tile.originY + by, valid);
       if (coverage == 0) continue;
       for (int gy = 0; gy < kBlockSize; gy += 2) {
         for (int gx = 0; gx < kBlockSize; gx += kGroupWidth) {
           const int shift = gy * kBlockSize + gx;
-          const std::uint32_t packed =
-              std::uint32_t((coverage >> shift) & kRowBits) |
-              std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits) << kGroupWidth;
+          const std::uint32_t packed = std::uint32_t((coverage >> shift) & kRowBits) |
+                                       std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits)
+                                           << kGroupWidth;
           if (packed == 0) continue;
           const int index = TileBuffers::index(bx + gx, by + gy);
           float* const color[4] = {tile.color[0] + index, tile.color[1] + index,
@@ -275,7 +241,8 @@ void rasterizeWith(const TriangleRecord& t, const Plane* planes, const ShadeStat
 }
 
 template <bool kTextured, bool kVertexColor, bool kLit>
-void dispatchAlpha(const TriangleRecord& t, const Plane* p, const ShadeState& s, TileBuffers& tile) {
+void dispatchAlpha(const TriangleRecord& t, const Plane* p, const ShadeState& s,
+                   TileBuffers& tile) {
   switch (s.alphaMode) {
     case AlphaMode::Opaque:
       return rasterizeWith<Shader<kTextured, kVertexColor, kLit, AlphaMode::Opaque>>(t, p, s, tile);
@@ -306,7 +273,7 @@ void rasterize(const TriangleRecord& t, const Plane* p, const ShadeState& s, Til
 }  // namespace
 }  // namespace QUADRA_KERNEL_NAMESPACE
 
-const TileKernels& QUADRA_KERNEL_ENTRY() {
+const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
   static const TileKernels kernels{QUADRA_KERNEL_ISA_ENUM, QUADRA_KERNEL_NAMESPACE::L::kWidth,
                                    &QUADRA_KERNEL_NAMESPACE::rasterize};
   return kernels;

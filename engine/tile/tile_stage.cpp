@@ -14,7 +14,8 @@ namespace {
 
 void clearTile(TileBuffers& tile, const glm::vec4& clearColor) {
   std::fill(std::begin(tile.depth), std::end(tile.depth), 1.0f);
-  for (int c = 0; c < 4; ++c) std::fill(std::begin(tile.color[c]), std::end(tile.color[c]), clearColor[c]);
+  for (int c = 0; c < 4; ++c)
+    std::fill(std::begin(tile.color[c]), std::end(tile.color[c]), clearColor[c]);
 }
 
 void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& draws,

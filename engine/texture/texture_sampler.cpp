@@ -1,0 +1,64 @@
+// TextureView construction (shared with the renderer) and the dispatch of
+// batch lookups to the per-ISA kernel.
+#include "texture/texture_sampler.h"
+
+#include <algorithm>
+
+#include "texture/mip_chain.h"
+
+namespace quadra {
+
+TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter, int maxAniso) {
+  TextureView view;
+  const SamplerState& sampler = texture.sampler();
+  view.wrapU = sampler.wrapU;
+  view.wrapV = sampler.wrapV;
+  std::copy(std::begin(sampler.borderColor), std::end(sampler.borderColor), view.border);
+  view.minFilter = filter.value_or(sampler.minFilter);
+  // An explicit filter decides magnification too: nearest stays nearest.
+  view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
+  view.maxAniso = maxAniso;
+  if (needsMips(view.minFilter)) {
+    const MipChain& mips = texture.mips();
+    view.levelCount = std::min(mips.levelCount(), TextureView::kMaxLevels);
+    for (int i = 0; i < view.levelCount; ++i) {
+      const Image& level = mips.level(i);
+      view.levels[i] = {level.rgba.data(), level.width, level.height};
+    }
+  } else {
+    const Image& image = texture.image();
+    view.levelCount = 1;
+    view.levels[0] = {image.rgba.data(), image.width, image.height};
+  }
+  view.computeGatherOffsets();
+  return view;
+}
+
+namespace {
+
+SampleBatchKernel kernelFor(Isa isa) {
+  switch (isa) {
+    case Isa::Avx512:
+      return sampleKernelAvx512();
+    case Isa::Avx2:
+      return sampleKernelAvx2();
+    case Isa::Sse2:
+      return sampleKernelSse2();
+    case Isa::Scalar:
+      break;
+  }
+  return sampleKernelScalar();
+}
+
+}  // namespace
+
+TextureSampler::TextureSampler(const Texture& texture, std::optional<Filter> filter, int maxAniso,
+                               Isa isa)
+    : view_(makeTextureView(texture, filter, maxAniso)), isa_(isa), kernel_(kernelFor(isa)) {}
+
+void TextureSampler::sample(const LookupBatch& lookups, std::size_t begin, std::size_t end,
+                            float* rgba) const {
+  kernel_(view_, lookups, begin, end, rgba);
+}
+
+}  // namespace quadra
