@@ -1,7 +1,7 @@
-// 4x4 float transpose for the baseline (SSE2) build: turns four planar
-// channel vectors into four interleaved RGBA pixels, written with streaming
-// stores (the frame is not read again, so skipping the read-for-ownership
-// halves resolve's memory traffic). Used by resolve, not an ISA kernel.
+// 4x4 float transposes between interleaved RGBA and planar channels, in the
+// SSE2 baseline every x86-64 has: resolve's planes → pixels (with streaming
+// stores: the frame is not read again, so skipping the read-for-ownership
+// halves its memory traffic) and the sampler's texels → channel lanes.
 #pragma once
 
 #include <emmintrin.h>
@@ -18,6 +18,18 @@ inline void transposeToPixelsStreaming(const float* const in[4], float* const ou
   if (out[1]) _mm_stream_ps(out[1], g);
   if (out[2]) _mm_stream_ps(out[2], b);
   if (out[3]) _mm_stream_ps(out[3], a);
+}
+
+// Four RGBA texels (unaligned) → four channel runs of 4 floats each (aligned):
+// out[c][k] = channel c of texel k.
+inline void transposeToChannels(const float* const texel[4], float* const out[4]) {
+  __m128 t0 = _mm_loadu_ps(texel[0]), t1 = _mm_loadu_ps(texel[1]), t2 = _mm_loadu_ps(texel[2]),
+         t3 = _mm_loadu_ps(texel[3]);
+  _MM_TRANSPOSE4_PS(t0, t1, t2, t3);
+  _mm_store_ps(out[0], t0);
+  _mm_store_ps(out[1], t1);
+  _mm_store_ps(out[2], t2);
+  _mm_store_ps(out[3], t3);
 }
 
 // Orders streaming stores before whatever the thread does next.

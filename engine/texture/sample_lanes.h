@@ -9,7 +9,10 @@
 
 #include <algorithm>
 
+#include <type_traits>
+
 #include "simd/lanes.h"
+#include "simd/transpose.h"
 
 #ifndef QUADRA_SAMPLER_GATHER
 #define QUADRA_SAMPLER_GATHER 0
@@ -32,6 +35,9 @@ struct UvDerivatives {
 namespace sampling {
 
 // Hardware gathers on/off per lane type (measured per ISA; see README).
+template <class L>
+constexpr bool kIsScalarLanes = std::is_same_v<L, simd::Lanes<simd::ScalarArch>>;
+
 template <class L>
 constexpr bool kUseHardwareGather = QUADRA_SAMPLER_GATHER&& L::kWidth >= 8;
 
@@ -125,14 +131,29 @@ void fetch2x2Scalar(const TextureView& view, const std::int32_t* lv, const std::
                     Rgba<L> out[4]) {
   constexpr int W = L::kWidth;
   alignas(64) float texel[4][4][W];  // [corner][channel][lane]
+  const float* corner[4][W];
   for (int k = 0; k < W; ++k) {
     const TextureLevel& lev = view.levels[lv[k]];
     const std::size_t row0 = std::size_t(ys0[k]) * std::size_t(lev.width);
     const std::size_t row1 = std::size_t(ys1[k]) * std::size_t(lev.width);
-    const float* corner[4] = {lev.texels + (row0 + xs0[k]) * 4, lev.texels + (row0 + xs1[k]) * 4,
-                              lev.texels + (row1 + xs0[k]) * 4, lev.texels + (row1 + xs1[k]) * 4};
+    corner[0][k] = lev.texels + (row0 + xs0[k]) * 4;
+    corner[1][k] = lev.texels + (row0 + xs1[k]) * 4;
+    corner[2][k] = lev.texels + (row1 + xs0[k]) * 4;
+    corner[3][k] = lev.texels + (row1 + xs1[k]) * 4;
+  }
+  if constexpr (kIsScalarLanes<L>) {
     for (int c = 0; c < 4; ++c)
-      for (int ch = 0; ch < 4; ++ch) texel[c][ch][k] = corner[c][ch];
+      for (int k = 0; k < W; ++k)
+        for (int ch = 0; ch < 4; ++ch) texel[c][ch][k] = corner[c][k][ch];
+  } else {
+    // Whole-texel loads, transposed four lanes at a time (a scalar load per
+    // channel cost twice as much).
+    for (int c = 0; c < 4; ++c)
+      for (int k = 0; k < W; k += 4) {
+        float* const channels[4] = {&texel[c][0][k], &texel[c][1][k], &texel[c][2][k],
+                                    &texel[c][3][k]};
+        simd::transposeToChannels(&corner[c][k], channels);
+      }
   }
   using F = typename L::F;
   for (int c = 0; c < 4; ++c)
