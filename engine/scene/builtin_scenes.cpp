@@ -1,0 +1,338 @@
+// The built-in scenes (builtin:NAME): procedural meshes and textures that need
+// no files, for benchmarks (checker-plane, alpha-quads, dense-mesh) and the
+// CLI's default picture (showcase). Every mesh winds counter-clockwise seen
+// from its front, and carries normals, so lit shading works everywhere.
+#include "scene/builtin_scenes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/error.h"
+
+namespace quadra {
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+float radians(float degrees) {
+  return degrees * kPi / 180.0f;
+}
+
+// Camera-to-world of a camera at eye looking at target (+Y up): the inverse of
+// the view matrix, so the camera looks down its -Z as glTF cameras do.
+Camera perspectiveCamera(const glm::vec3& eye, const glm::vec3& target, float yfovDegrees,
+                         float znear) {
+  Camera camera;
+  camera.type = Camera::Type::Perspective;
+  camera.world = glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f)));
+  camera.yfov = radians(yfovDegrees);
+  camera.znear = znear;
+  camera.zfar = 0.0f;  // infinite
+  return camera;
+}
+
+// ---- meshes -----------------------------------------------------------------------
+
+// Appends a quad c ± u ± v facing u × v, with texture v = 0 along c + v.
+void addQuad(Mesh& mesh, const glm::vec3& center, const glm::vec3& u, const glm::vec3& v) {
+  const auto base = std::uint32_t(mesh.positions.size());
+  const glm::vec3 normal = glm::normalize(glm::cross(u, v));
+  const glm::vec3 corners[4] = {center - u - v, center + u - v, center + u + v, center - u + v};
+  const glm::vec2 uvs[4] = {{0.0f, 1.0f}, {1.0f, 1.0f}, {1.0f, 0.0f}, {0.0f, 0.0f}};
+  for (int i = 0; i < 4; ++i) {
+    mesh.positions.push_back(corners[i]);
+    mesh.normals.push_back(normal);
+    mesh.texcoords[0].push_back(uvs[i]);
+  }
+  // (u, u + v) from the first corner: their cross product is along u × v.
+  mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+}
+
+// The unit quad [-1, 1]^2 in the z = 0 plane, facing +Z.
+Mesh makeQuad(int material) {
+  Mesh mesh;
+  addQuad(mesh, glm::vec3(0.0f), glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f));
+  mesh.material = material;
+  return mesh;
+}
+
+// The cube [-1, 1]^3, one textured quad per face.
+Mesh makeCube(int material) {
+  Mesh mesh;
+  const glm::vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  // For each face normal n and up direction v, u = v × n makes u × v = n.
+  const glm::vec3 faces[6][2] = {{x, y}, {-x, y}, {z, y}, {-z, y}, {y, -z}, {-y, z}};
+  for (const auto& [n, v] : faces) addQuad(mesh, n, glm::cross(v, n), v);
+  mesh.material = material;
+  return mesh;
+}
+
+// The square y = 0, |x|, |z| <= halfSize, facing +Y, with texcoords (x, z) / period.
+Mesh makeGroundPlane(float halfSize, float period, int material) {
+  Mesh mesh;
+  const float h = halfSize;
+  mesh.positions = {{-h, 0, -h}, {-h, 0, h}, {h, 0, h}, {h, 0, -h}};
+  for (const glm::vec3& p : mesh.positions) {
+    mesh.normals.push_back(glm::vec3(0.0f, 1.0f, 0.0f));
+    mesh.texcoords[0].push_back(glm::vec2(p.x, p.z) / period);
+  }
+  // Seen from above (+Y), -x,-z → -x,+z → +x,+z turns counter-clockwise.
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  mesh.material = material;
+  return mesh;
+}
+
+// Unit sphere with `stacks` rings from the +Y pole and `slices` segments; u runs
+// around, v from the top pole (0) to the bottom (1). 2 * slices * (stacks - 1)
+// triangles: the pole rows have one triangle per segment.
+Mesh makeSphere(int stacks, int slices, int material) {
+  Mesh mesh;
+  const std::size_t rowLength = std::size_t(slices) + 1;  // seam vertex duplicated for u = 1
+  const std::size_t vertexCount = (std::size_t(stacks) + 1) * rowLength;
+  mesh.positions.resize(vertexCount);
+  mesh.normals.resize(vertexCount);
+  mesh.texcoords[0].resize(vertexCount);
+  std::vector<float> sinPhi(rowLength), cosPhi(rowLength);
+  for (std::size_t l = 0; l < rowLength; ++l) {
+    const float phi = 2.0f * kPi * float(l) / float(slices);
+    sinPhi[l] = std::sin(phi);
+    cosPhi[l] = std::cos(phi);
+  }
+  for (int s = 0; s <= stacks; ++s) {
+    const float theta = kPi * float(s) / float(stacks);
+    const float ringRadius = std::sin(theta), height = std::cos(theta);
+    for (std::size_t l = 0; l < rowLength; ++l) {
+      const std::size_t i = std::size_t(s) * rowLength + l;
+      // φ = 0 faces +Z; increasing φ moves towards +X.
+      const glm::vec3 p(ringRadius * sinPhi[l], height, ringRadius * cosPhi[l]);
+      mesh.positions[i] = p;
+      mesh.normals[i] = p;
+      mesh.texcoords[0][i] = glm::vec2(float(l) / float(slices), float(s) / float(stacks));
+    }
+  }
+  mesh.indices.reserve(std::size_t(slices) * std::size_t(stacks - 1) * 6);
+  for (int s = 0; s < stacks; ++s) {
+    for (int l = 0; l < slices; ++l) {
+      // a above b, d right of a: (a, b, c) and (a, c, d) wind CCW seen from outside.
+      const auto a = std::uint32_t(std::size_t(s) * rowLength + std::size_t(l));
+      const auto b = std::uint32_t(a + rowLength), c = b + 1, d = a + 1;
+      if (s != 0) mesh.indices.insert(mesh.indices.end(), {a, c, d});
+      if (s != stacks - 1) mesh.indices.insert(mesh.indices.end(), {a, b, c});
+    }
+  }
+  mesh.material = material;
+  return mesh;
+}
+
+// ---- textures ---------------------------------------------------------------------
+
+Image makeImage(int width, int height, const std::function<glm::vec4(int, int)>& texel) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const glm::vec4 value = texel(x, y);
+      std::copy_n(&value.x, 4, image.texel(x, y));
+    }
+  }
+  return image;
+}
+
+// A smooth hue sweep across u, brightness across v, dark grid lines every 32
+// texels and a small dot in each cell: detail at several frequencies.
+Image makeGradientGridImage(int size) {
+  return makeImage(size, size, [size](int x, int y) {
+    const float u = (float(x) + 0.5f) / float(size), v = (float(y) + 0.5f) / float(size);
+    const glm::vec3 hue = 0.5f + 0.5f * glm::cos(2.0f * kPi * (u + glm::vec3(0.0f, 0.33f, 0.67f)));
+    glm::vec3 color = hue * (0.35f + 0.65f * (1.0f - v));
+    const int cx = x % 32, cy = y % 32;
+    if (cx < 2 || cy < 2) color *= 0.15f;
+    const int dx = cx - 17, dy = cy - 17;
+    if (dx * dx + dy * dy <= 9) color = glm::vec3(1.0f);
+    return glm::vec4(color, 1.0f);
+  });
+}
+
+// Orange tiles with round holes (alpha 0), for alpha MASK.
+Image makeHolesImage(int size) {
+  return makeImage(size, size, [size](int x, int y) {
+    const int cell = size / 4;
+    const float dx = float(x % cell) + 0.5f - 0.5f * float(cell);
+    const float dy = float(y % cell) + 0.5f - 0.5f * float(cell);
+    const bool hole = dx * dx + dy * dy < 0.09f * float(cell * cell);
+    return hole ? glm::vec4(0.0f) : glm::vec4(0.9f, 0.35f, 0.05f, 1.0f);
+  });
+}
+
+int addTexture(Scene& scene, Image image, const SamplerState& sampler = {}) {
+  auto shared = std::make_shared<const Image>(std::move(image));
+  scene.textures.push_back(std::make_shared<const Texture>(std::move(shared), sampler));
+  return int(scene.textures.size()) - 1;
+}
+
+int addMaterial(Scene& scene, const Material& material) {
+  scene.materials.push_back(material);
+  return int(scene.materials.size()) - 1;
+}
+
+int addMesh(Scene& scene, Mesh mesh) {
+  scene.meshes.push_back(std::move(mesh));
+  return int(scene.meshes.size()) - 1;
+}
+
+glm::mat4 placement(const glm::vec3& at, float yawDegrees, const glm::vec3& scale) {
+  glm::mat4 m = glm::translate(glm::mat4(1.0f), at);
+  m = glm::rotate(m, radians(yawDegrees), glm::vec3(0.0f, 1.0f, 0.0f));
+  return glm::scale(m, scale);
+}
+
+// ---- scenes -----------------------------------------------------------------------
+
+Scene checkerPlane() {
+  Scene scene;
+  scene.name = "builtin:checker-plane";
+  SamplerState sampler;
+  sampler.wrapU = sampler.wrapV = WrapMode::Repeat;
+  sampler.magLinear = true;
+  sampler.minFilter = Filter::Trilinear;
+  Material material;
+  material.baseColorTexture = addTexture(scene, makeCheckerImage(8, 64), sampler);
+  const int mesh = addMesh(scene, makeGroundPlane(1000.0f, 4.0f, addMaterial(scene, material)));
+  scene.instances.push_back({mesh, glm::mat4(1.0f)});
+  scene.cameras.push_back(
+      perspectiveCamera({0.0f, 1.5f, 0.0f}, {0.0f, 0.5f, -10.0f}, 60.0f, 0.05f));
+  return scene;
+}
+
+// Overdraw-heavy blending: five half-transparent textured quads, back to front
+// in submission order, over an opaque textured background. With yfov 60° and
+// a 16:9 view, the view at distance d is 2.05 d wide and 1.15 d high.
+Scene alphaQuads() {
+  Scene scene;
+  scene.name = "builtin:alpha-quads";
+  const float halfHeightPerDistance = std::tan(radians(30.0f));
+  const float halfWidthPerDistance = halfHeightPerDistance * 16.0f / 9.0f;
+  const int texture = addTexture(scene, makeGradientGridImage(256));
+
+  Material background;
+  background.baseColorTexture = texture;
+  const int backgroundMesh = addMesh(scene, makeQuad(addMaterial(scene, background)));
+  const float backDistance = 10.0f;  // 20% margin so the quad fills any 16:9 view
+  scene.instances.push_back(
+      {backgroundMesh, placement({0.0f, 0.0f, -backDistance}, 0.0f,
+                                 {1.2f * halfWidthPerDistance * backDistance,
+                                  1.2f * halfHeightPerDistance * backDistance, 1.0f})});
+
+  const glm::vec3 tints[5] = {{1.0f, 0.3f, 0.3f},
+                              {0.3f, 1.0f, 0.3f},
+                              {0.3f, 0.3f, 1.0f},
+                              {1.0f, 1.0f, 0.3f},
+                              {0.3f, 1.0f, 1.0f}};
+  // Offsets in view fractions: each quad is 72% x 72% of the view (52% of its
+  // area) and stays inside it.
+  const glm::vec2 offsets[5] = {
+      {-0.12f, 0.1f}, {0.12f, 0.1f}, {0.0f, 0.0f}, {-0.12f, -0.1f}, {0.12f, -0.1f}};
+  for (int i = 0; i < 5; ++i) {
+    Material blend;
+    blend.baseColorFactor = glm::vec4(tints[i], 0.5f);
+    blend.baseColorTexture = texture;
+    blend.alphaMode = AlphaMode::Blend;
+    const int mesh = addMesh(scene, makeQuad(addMaterial(scene, blend)));
+    const float d = 8.0f - float(i);  // farthest first
+    const glm::vec3 at(2.0f * offsets[i].x * halfWidthPerDistance * d,
+                       2.0f * offsets[i].y * halfHeightPerDistance * d, -d);
+    scene.instances.push_back({mesh, placement(at, 0.0f,
+                                               {0.72f * halfWidthPerDistance * d,
+                                                0.72f * halfHeightPerDistance * d, 1.0f})});
+  }
+  scene.cameras.push_back(perspectiveCamera({0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 60.0f, 0.1f));
+  return scene;
+}
+
+// Triangle throughput: 2,000,000 small textured triangles on a unit sphere
+// seen from 2.5 units, where it spans about 80% of the view's height.
+Scene denseMesh() {
+  Scene scene;
+  scene.name = "builtin:dense-mesh";
+  Material material;
+  material.baseColorTexture = addTexture(scene, makeGradientGridImage(1024));
+  const int mesh = addMesh(scene, makeSphere(501, 2000, addMaterial(scene, material)));
+  scene.instances.push_back({mesh, glm::mat4(1.0f)});
+  scene.cameras.push_back(perspectiveCamera({0.0f, 0.0f, 2.5f}, {0.0f, 0.0f, 0.0f}, 60.0f, 0.1f));
+  return scene;
+}
+
+// Rainbow vertex colours from the normal direction.
+void paintByNormal(Mesh& mesh) {
+  mesh.colors.clear();
+  for (const glm::vec3& n : mesh.normals) mesh.colors.push_back(glm::vec4(0.5f + 0.5f * n, 1.0f));
+}
+
+// The default picture: textures at several scales, occlusion, vertex colour,
+// alpha mask and blending, all in one view.
+Scene showcase() {
+  Scene scene;
+  scene.name = "builtin:showcase";
+  Material ground, cube, sphere, mask, glass;
+  ground.baseColorTexture = addTexture(scene, makeCheckerImage(8, 32));
+  ground.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+  cube.baseColorTexture = addTexture(scene, makeGradientGridImage(256));
+  mask.baseColorTexture = addTexture(scene, makeHolesImage(128));
+  mask.alphaMode = AlphaMode::Mask;
+  mask.doubleSided = true;
+  glass.baseColorFactor = glm::vec4(0.4f, 0.7f, 1.0f, 0.4f);
+  glass.baseColorTexture = cube.baseColorTexture;
+  glass.alphaMode = AlphaMode::Blend;
+  glass.doubleSided = true;
+
+  const int groundMesh = addMesh(scene, makeGroundPlane(20.0f, 4.0f, addMaterial(scene, ground)));
+  const int cubeMesh = addMesh(scene, makeCube(addMaterial(scene, cube)));
+  Mesh ball = makeSphere(48, 96, addMaterial(scene, sphere));
+  paintByNormal(ball);
+  const int sphereMesh = addMesh(scene, std::move(ball));
+  const int maskMesh = addMesh(scene, makeQuad(addMaterial(scene, mask)));
+  const int glassMesh = addMesh(scene, makeQuad(addMaterial(scene, glass)));
+
+  scene.instances.push_back({groundMesh, glm::mat4(1.0f)});
+  scene.instances.push_back({cubeMesh, placement({-2.6f, 0.75f, 0.0f}, 30.0f, glm::vec3(0.75f))});
+  scene.instances.push_back({cubeMesh, placement({0.0f, 0.6f, -2.2f}, -20.0f, glm::vec3(0.6f))});
+  scene.instances.push_back({cubeMesh, placement({2.7f, 1.0f, -0.6f}, 55.0f, glm::vec3(1.0f))});
+  scene.instances.push_back({sphereMesh, placement({0.4f, 0.9f, 1.0f}, 0.0f, glm::vec3(0.9f))});
+  scene.instances.push_back({maskMesh, placement({-1.2f, 1.2f, -3.6f}, 15.0f, {1.6f, 1.2f, 1.0f})});
+  // Blended last, in front of the sphere, so it composites over everything.
+  scene.instances.push_back({glassMesh, placement({1.9f, 0.9f, 2.3f}, -25.0f, {0.9f, 0.9f, 1.0f})});
+  scene.cameras.push_back(perspectiveCamera({0.0f, 2.6f, 6.6f}, {0.0f, 0.9f, -0.6f}, 50.0f, 0.1f));
+  return scene;
+}
+
+}  // namespace
+
+std::vector<std::string> builtinSceneNames() {
+  return {"showcase", "checker-plane", "alpha-quads", "dense-mesh"};
+}
+
+Scene makeBuiltinScene(const std::string& name) {
+  if (name == "showcase") return showcase();
+  if (name == "checker-plane") return checkerPlane();
+  if (name == "alpha-quads") return alphaQuads();
+  if (name == "dense-mesh") return denseMesh();
+  std::string known;
+  for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
+  throw makeError("builtin:" + name, "unknown built-in scene (known: " + known + ")");
+}
+
+// Square (0, 0) in the top-left corner is white; neighbours alternate.
+Image makeCheckerImage(int squares, int texelsPerSquare) {
+  QUADRA_CHECK(squares > 0 && texelsPerSquare > 0);
+  const int size = squares * texelsPerSquare;
+  return makeImage(size, size, [texelsPerSquare](int x, int y) {
+    const bool white = (x / texelsPerSquare + y / texelsPerSquare) % 2 == 0;
+    return white ? glm::vec4(1.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  });
+}
+
+}  // namespace quadra

@@ -1,0 +1,123 @@
+// Internals of the glTF loader shared by its translation units: the model a
+// load is reading plus its path (for messages), the checked accessor reader,
+// primitive → Mesh conversion, and the material/texture/image table. Not part
+// of the public API; tinygltf types are only forward-declared here.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "scene/scene.h"
+
+namespace tinygltf {
+class Model;
+struct Image;
+}  // namespace tinygltf
+
+namespace quadra::gltf {
+
+// The parsed file as tinygltf left it (nothing in it is trusted yet) and the
+// path every message starts with.
+struct ModelRef {
+  const tinygltf::Model& model;
+  const std::string& path;
+
+  Error fail(const std::string& problem) const { return makeError(path, problem); }
+  std::string note(const std::string& text) const { return path + ": " + text; }
+};
+
+// ---- accessors (gltf_accessor.cpp) -------------------------------------------
+
+// An accessor after every reference and byte range in it was checked: its
+// elements can be read without further checks.
+struct AccessorView {
+  int index = -1;
+  int componentType = 0;  // a glTF componentType code (5120..5126)
+  int components = 0;     // 1 for SCALAR .. 4 for VEC4 (matrices are rejected)
+  bool normalized = false;
+  std::uint64_t count = 0;
+  const std::uint8_t* data = nullptr;  // null: no bufferView, the base values are zeros
+  std::uint64_t stride = 0;            // bytes between elements
+};
+
+// Checks accessor `index` (what: the role it plays, for messages, e.g.
+// "mesh 0 primitive 1 NORMAL").
+AccessorView viewAccessor(const ModelRef& ref, int index, const std::string& what);
+
+// count * components floats, glTF's normalization rules applied and sparse
+// substitutions made.
+std::vector<float> decodeFloats(const ModelRef& ref, const AccessorView& view);
+// Integer elements of an unsigned SCALAR accessor (indices), sparse applied.
+std::vector<std::uint32_t> decodeUnsigned(const ModelRef& ref, const AccessorView& view);
+
+// The bytes of bufferView `index`, checked to lie inside its buffer.
+struct ByteRange {
+  const std::uint8_t* data = nullptr;
+  std::uint64_t size = 0;
+};
+ByteRange bufferViewBytes(const ModelRef& ref, int index);
+
+// ---- primitives (gltf_primitive.cpp) -----------------------------------------
+
+// What of a primitive the scene needs beyond positions, normals and colours.
+struct PrimitiveNeeds {
+  int texcoordSet = -1;  // the TEXCOORD_n its material's texture reads; -1: none
+};
+
+// Primitive `primitiveIndex` of glTF mesh `meshIndex` as a triangle list.
+// Returns false (with a note) when the primitive draws nothing we rasterize.
+bool buildMesh(const ModelRef& ref, int meshIndex, int primitiveIndex, const PrimitiveNeeds& needs,
+               Mesh& out, std::vector<std::string>& notes);
+
+// ---- materials, textures, images (gltf_material.cpp) -------------------------
+
+// Encoded image bytes that tinygltf read for images given by URI (file or data
+// URI), keyed by image index. Images inside bufferViews are not copied here:
+// their bytes are taken from the (checked) bufferView when needed.
+struct ImageStash {
+  std::map<int, std::vector<std::uint8_t>> encoded;
+};
+
+// tinygltf's image callback: stashes the bytes instead of decoding, so only the
+// images some used material reads get decoded (user_data: an ImageStash).
+bool stashImageBytes(tinygltf::Image* image, int imageIndex, std::string* err, std::string* warn,
+                     int requiredWidth, int requiredHeight, const unsigned char* bytes, int size,
+                     void* userData);
+
+// The scene's materials and textures, made on first use from the glTF ones a
+// drawn primitive references.
+class MaterialTable {
+ public:
+  MaterialTable(const ModelRef& ref, const ImageStash& stash, std::vector<std::string>& notes);
+
+  // Scene material index for glTF material `gltfMaterial` (-1 stays -1).
+  int sceneMaterial(int gltfMaterial);
+  // The TEXCOORD set the scene material reads, -1 when it has no texture.
+  int texcoordSetRead(int sceneMaterialIndex) const;
+  // Decodes the images the textures use and moves materials and textures into
+  // the scene.
+  void finish(Scene& scene);
+
+ private:
+  int sceneTexture(int gltfTexture, const std::string& what);
+  std::shared_ptr<const Image> decodeImage(int imageIndex) const;
+
+  struct PendingTexture {
+    int image = -1;  // glTF image index
+    SamplerState sampler;
+  };
+
+  const ModelRef& ref_;
+  const ImageStash& stash_;
+  std::vector<std::string>& notes_;
+  std::vector<Material> materials_;
+  std::vector<PendingTexture> textures_;
+  std::map<int, int> materialOf_;  // glTF material → scene material
+  std::map<int, int> textureOf_;   // glTF texture → scene texture
+};
+
+}  // namespace quadra::gltf

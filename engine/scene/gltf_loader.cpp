@@ -1,0 +1,448 @@
+// loadGltf: reads the file, validates a GLB container before tinygltf sees it,
+// lets tinygltf parse the JSON (and fetch buffers), then walks the chosen
+// scene's node tree into instances and cameras. Primitives, accessors and
+// materials are converted by the other gltf_*.cpp files; every reference and
+// range is checked there, because tinygltf has had overflows in both.
+#include "scene/gltf_loader.h"
+
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <new>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/parallel.h"
+#include "scene/gltf_internal.h"
+
+namespace quadra {
+
+namespace {
+
+using gltf::ModelRef;
+
+constexpr std::uint32_t kGlbMagic = 0x46546C67;      // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;     // "JSON"
+constexpr std::uint32_t kChunkBinary = 0x004E4942;   // "BIN\0"
+constexpr std::uint64_t kMaxFileSize = 0xFFFFFFFFu;  // tinygltf takes 32-bit sizes
+
+std::string firstLine(const std::string& text) {
+  std::size_t begin = text.find_first_not_of(" \t\r\n");
+  if (begin == std::string::npos) return "";
+  std::size_t end = text.find_first_of("\r\n", begin);
+  std::string line = text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+  while (!line.empty() && (line.back() == ' ' || line.back() == '\t')) line.pop_back();
+  return line;
+}
+
+// Names and URIs from the file end up in messages; keep each message one line.
+std::string oneLine(std::string text) {
+  for (char& c : text) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return text;
+}
+
+std::vector<std::uint8_t> readWholeFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw makeError(path, "is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw makeError(path, "cannot open file");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size < 0) throw makeError(path, "cannot read file");
+  if (size == 0) throw makeError(path, "file is empty");
+  if (std::uint64_t(size) > kMaxFileSize) throw makeError(path, "file is larger than 4 GiB");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  in.seekg(0, std::ios::beg);
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) {
+    throw makeError(path, "cannot read file");
+  }
+  return bytes;
+}
+
+std::uint32_t readU32(const std::vector<std::uint8_t>& bytes, std::uint64_t offset) {
+  return std::uint32_t(bytes[offset]) | std::uint32_t(bytes[offset + 1]) << 8 |
+         std::uint32_t(bytes[offset + 2]) << 16 | std::uint32_t(bytes[offset + 3]) << 24;
+}
+
+bool isGlb(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  if (bytes.size() >= 4 && readU32(bytes, 0) == kGlbMagic) return true;
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".glb";
+}
+
+// GLB container (glTF 2.0 §4.4): 12-byte header, a JSON chunk, an optional BIN
+// chunk, each 4-byte aligned, all inside the file and the declared length.
+void checkGlbLayout(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const std::uint64_t size = bytes.size();
+  if (size < 12) {
+    throw makeError(path, "truncated GLB header (" + std::to_string(size) + " of 12 bytes)");
+  }
+  if (readU32(bytes, 0) != kGlbMagic) throw makeError(path, "not a GLB file (bad magic)");
+  const std::uint32_t version = readU32(bytes, 4);
+  if (version != 2) {
+    throw makeError(path, "GLB version " + std::to_string(version) + " is not supported (needs 2)");
+  }
+  const std::uint32_t length = readU32(bytes, 8);
+  if (length != size) {
+    throw makeError(path, "GLB header says " + std::to_string(length) + " bytes but the file has " +
+                              std::to_string(size));
+  }
+  std::uint64_t offset = 12;
+  for (int chunk = 0; offset < size; ++chunk) {
+    const std::string name = "GLB chunk " + std::to_string(chunk);
+    if (size - offset < 8) throw makeError(path, name + " header is truncated");
+    const std::uint64_t chunkLength = readU32(bytes, offset);
+    const std::uint32_t chunkType = readU32(bytes, offset + 4);
+    if (chunkLength > size - offset - 8) {
+      throw makeError(path, name + " (" + std::to_string(chunkLength) +
+                                " bytes) runs past the end of the file");
+    }
+    if (chunkLength % 4 != 0) {
+      throw makeError(path,
+                      name + " length " + std::to_string(chunkLength) + " is not a multiple of 4");
+    }
+    if (chunk == 0 && (chunkType != kChunkJson || chunkLength == 0)) {
+      throw makeError(path, "GLB does not start with a JSON chunk");
+    }
+    if (chunk == 1 && chunkType != kChunkBinary) {
+      throw makeError(path, "GLB chunk 1 is not a BIN chunk");
+    }
+    offset += 8 + chunkLength;
+  }
+  if (offset == 12) throw makeError(path, "GLB has no JSON chunk");
+}
+
+tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8_t>& bytes,
+                           gltf::ImageStash& stash) {
+  const bool binary = isGlb(path, bytes);
+  if (binary) checkGlbLayout(path, bytes);
+  tinygltf::TinyGLTF parser;
+  parser.SetImageLoader(&gltf::stashImageBytes, &stash);
+  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  tinygltf::Model model;
+  std::string err, warn;
+  bool ok = false;
+  try {
+    ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                              unsigned(bytes.size()), baseDir)
+                : parser.LoadASCIIFromString(&model, &err, &warn,
+                                             reinterpret_cast<const char*>(bytes.data()),
+                                             unsigned(bytes.size()), baseDir);
+  } catch (const std::exception& e) {
+    throw makeError(path, "invalid glTF (" + firstLine(e.what()) + ")");
+  }
+  if (!ok) {
+    const std::string problem = firstLine(err);
+    throw makeError(path, problem.empty() ? "invalid glTF" : problem);
+  }
+  return model;
+}
+
+void checkExtensions(const ModelRef& ref, std::vector<std::string>& notes) {
+  for (const std::string& extension : ref.model.extensionsRequired) {
+    // Integer attribute types are read generically, so quantized meshes load.
+    if (extension == "KHR_mesh_quantization" || extension == "KHR_texture_transform") continue;
+    throw ref.fail("unsupported required extension " + extension);
+  }
+  for (const std::string& extension : ref.model.extensionsUsed) {
+    if (extension == "KHR_texture_transform") {
+      notes.push_back(ref.note("KHR_texture_transform ignored (textures are drawn untransformed)"));
+    }
+  }
+}
+
+// ---- node tree ----------------------------------------------------------------
+
+glm::mat4 localMatrix(const ModelRef& ref, int index) {
+  const tinygltf::Node& node = ref.model.nodes[std::size_t(index)];
+  const std::string what = "node " + std::to_string(index);
+  if (!node.matrix.empty()) {
+    if (node.matrix.size() != 16) throw ref.fail(what + " matrix does not have 16 numbers");
+    glm::mat4 m;
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(node.matrix[std::size_t(i)]);
+    return m;  // both glTF and glm store columns first
+  }
+  if (!node.translation.empty() && node.translation.size() != 3) {
+    throw ref.fail(what + " translation does not have 3 numbers");
+  }
+  if (!node.rotation.empty() && node.rotation.size() != 4) {
+    throw ref.fail(what + " rotation does not have 4 numbers");
+  }
+  if (!node.scale.empty() && node.scale.size() != 3) {
+    throw ref.fail(what + " scale does not have 3 numbers");
+  }
+  glm::mat4 m(1.0f);
+  if (!node.translation.empty()) {
+    m = glm::translate(m, glm::vec3(float(node.translation[0]), float(node.translation[1]),
+                                    float(node.translation[2])));
+  }
+  if (!node.rotation.empty()) {
+    // glTF stores x, y, z, w; glm's constructor takes w first.
+    glm::quat q(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                float(node.rotation[2]));
+    const float length = glm::length(q);
+    if (length > 0.0f && std::isfinite(length)) q /= length;  // exporters round
+    m *= glm::mat4_cast(q);
+  }
+  if (!node.scale.empty()) {
+    m = glm::scale(m, glm::vec3(float(node.scale[0]), float(node.scale[1]), float(node.scale[2])));
+  }
+  return m;
+}
+
+struct PlacedNode {
+  int node;
+  glm::mat4 world;
+};
+
+// Pre-order walk from the roots; a node reached twice means a cycle or a node
+// with two parents, both forbidden by glTF 2.0 §3.5.2.
+std::vector<PlacedNode> walkNodes(const ModelRef& ref, const std::vector<int>& roots) {
+  const std::size_t nodeCount = ref.model.nodes.size();
+  std::vector<char> visited(nodeCount, 0);
+  std::vector<PlacedNode> stack, order;
+  for (auto root = roots.rbegin(); root != roots.rend(); ++root) {
+    stack.push_back({*root, glm::mat4(1.0f)});
+  }
+  while (!stack.empty()) {
+    const PlacedNode parent = stack.back();
+    stack.pop_back();
+    if (parent.node < 0 || std::size_t(parent.node) >= nodeCount) {
+      throw ref.fail("node " + std::to_string(parent.node) + " does not exist (the file has " +
+                     std::to_string(nodeCount) + ")");
+    }
+    if (visited[std::size_t(parent.node)]) {
+      throw ref.fail("node " + std::to_string(parent.node) +
+                     " is reached twice (a cycle or a node with two parents)");
+    }
+    visited[std::size_t(parent.node)] = 1;
+    const glm::mat4 world = parent.world * localMatrix(ref, parent.node);
+    order.push_back({parent.node, world});
+    const std::vector<int>& children = ref.model.nodes[std::size_t(parent.node)].children;
+    for (auto child = children.rbegin(); child != children.rend(); ++child) {
+      stack.push_back({*child, world});
+    }
+  }
+  return order;
+}
+
+std::vector<int> sceneRoots(const ModelRef& ref, const LoadOptions& options,
+                            std::vector<std::string>& notes) {
+  const auto& scenes = ref.model.scenes;
+  int index = options.sceneIndex >= 0 ? options.sceneIndex : ref.model.defaultScene;
+  if (scenes.empty() && index < 0) {
+    // A file without scenes is a library of nodes; draw its root nodes.
+    notes.push_back(ref.note("no scene defined; drawing every root node"));
+    std::vector<char> isChild(ref.model.nodes.size(), 0);
+    for (const tinygltf::Node& node : ref.model.nodes) {
+      for (int child : node.children) {
+        if (child >= 0 && std::size_t(child) < isChild.size()) isChild[std::size_t(child)] = 1;
+      }
+    }
+    std::vector<int> roots;
+    for (std::size_t i = 0; i < isChild.size(); ++i) {
+      if (!isChild[i]) roots.push_back(int(i));
+    }
+    return roots;
+  }
+  if (index < 0) index = 0;
+  if (std::size_t(index) >= scenes.size()) {
+    throw ref.fail("scene " + std::to_string(index) + " does not exist (the file has " +
+                   std::to_string(scenes.size()) + ")");
+  }
+  return scenes[std::size_t(index)].nodes;
+}
+
+// ---- cameras --------------------------------------------------------------------
+
+bool positiveFinite(double v) {
+  return std::isfinite(v) && v > 0.0;
+}
+
+// Camera::world is a rigid transform: the node's scale is divided out.
+glm::mat4 withoutScale(glm::mat4 world) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const float length = glm::length(glm::vec3(world[axis]));
+    if (length > 0.0f && std::isfinite(length)) world[axis] /= length;
+  }
+  return world;
+}
+
+Camera makeCamera(const ModelRef& ref, int index, const glm::mat4& world) {
+  if (index < 0 || std::size_t(index) >= ref.model.cameras.size()) {
+    throw ref.fail("camera " + std::to_string(index) + " does not exist");
+  }
+  const tinygltf::Camera& source = ref.model.cameras[std::size_t(index)];
+  const std::string what = "camera " + std::to_string(index);
+  Camera camera;
+  camera.world = withoutScale(world);
+  if (source.type == "perspective") {
+    const tinygltf::PerspectiveCamera& p = source.perspective;
+    const bool farOk = p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear);
+    if (!positiveFinite(p.yfov) || !positiveFinite(p.znear) || !farOk) {
+      throw ref.fail(what + " needs yfov > 0, znear > 0 and zfar > znear (or no zfar)");
+    }
+    camera.type = Camera::Type::Perspective;
+    camera.yfov = float(p.yfov);
+    camera.znear = float(p.znear);
+    camera.zfar = float(p.zfar);
+  } else if (source.type == "orthographic") {
+    const tinygltf::OrthographicCamera& o = source.orthographic;
+    const bool magOk =
+        std::isfinite(o.xmag) && std::isfinite(o.ymag) && o.xmag != 0.0 && o.ymag != 0.0;
+    const bool depthOk =
+        std::isfinite(o.znear) && o.znear >= 0.0 && std::isfinite(o.zfar) && o.zfar > o.znear;
+    if (!magOk || !depthOk) {
+      throw ref.fail(what + " needs non-zero xmag and ymag and zfar > znear >= 0");
+    }
+    camera.type = Camera::Type::Orthographic;
+    camera.xmag = float(o.xmag);
+    camera.ymag = float(o.ymag);
+    camera.znear = float(o.znear);
+    camera.zfar = float(o.zfar);
+  } else {
+    throw ref.fail(what + " has unknown type '" + source.type + "'");
+  }
+  return camera;
+}
+
+// ---- meshes ---------------------------------------------------------------------
+
+// One (glTF mesh, primitive) pair, decoded once however many nodes draw it.
+struct PrimitiveJob {
+  int mesh = 0;
+  int primitive = 0;
+  gltf::PrimitiveNeeds needs;
+  int material = -1;  // scene material
+  Mesh result;
+  bool drawn = false;
+  std::vector<std::string> notes;
+  std::string error;
+};
+
+void decodePrimitives(const ModelRef& ref, std::vector<PrimitiveJob>& jobs) {
+  const Executor executor(jobs.size() > 1 ? 0 : 1);
+  executor.parallelFor(jobs.size(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      PrimitiveJob& job = jobs[i];
+      try {
+        job.drawn = gltf::buildMesh(ref, job.mesh, job.primitive, job.needs, job.result, job.notes);
+      } catch (const Error& e) {
+        job.error = e.what();
+      } catch (const std::exception& e) {  // bad_alloc and the like
+        job.error = ref.fail("mesh " + std::to_string(job.mesh) + ": " + e.what()).what();
+      }
+    }
+  });
+}
+
+class SceneBuilder {
+ public:
+  SceneBuilder(const ModelRef& ref, gltf::MaterialTable& materials, Scene& scene)
+      : ref_(ref), materials_(materials), scene_(scene) {}
+
+  void addNode(const PlacedNode& placed) {
+    const tinygltf::Node& node = ref_.model.nodes[std::size_t(placed.node)];
+    if (node.camera != -1) scene_.cameras.push_back(makeCamera(ref_, node.camera, placed.world));
+    if (node.mesh == -1) return;
+    if (node.mesh < 0 || std::size_t(node.mesh) >= ref_.model.meshes.size()) {
+      throw ref_.fail("node " + std::to_string(placed.node) + " refers to mesh " +
+                      std::to_string(node.mesh) + ", which does not exist");
+    }
+    const std::size_t primitiveCount = ref_.model.meshes[std::size_t(node.mesh)].primitives.size();
+    for (std::size_t p = 0; p < primitiveCount; ++p) {
+      placements_.push_back({jobFor(node.mesh, int(p)), placed.world});
+    }
+  }
+
+  // Decodes every primitive some node draws, then places the drawn ones.
+  void finish(std::vector<std::string>& notes) {
+    decodePrimitives(ref_, jobs_);
+    std::vector<int> sceneMesh(jobs_.size(), -1);
+    for (std::size_t i = 0; i < jobs_.size(); ++i) {
+      PrimitiveJob& job = jobs_[i];
+      if (!job.error.empty()) throw Error(job.error);
+      notes.insert(notes.end(), job.notes.begin(), job.notes.end());
+      if (!job.drawn) continue;
+      job.result.material = job.material;
+      sceneMesh[i] = int(scene_.meshes.size());
+      scene_.meshes.push_back(std::move(job.result));
+    }
+    for (const auto& [job, world] : placements_) {
+      if (sceneMesh[std::size_t(job)] >= 0)
+        scene_.instances.push_back({sceneMesh[std::size_t(job)], world});
+    }
+  }
+
+ private:
+  int jobFor(int mesh, int primitive) {
+    const auto key = std::make_pair(mesh, primitive);
+    if (const auto known = jobOf_.find(key); known != jobOf_.end()) return known->second;
+    PrimitiveJob job;
+    job.mesh = mesh;
+    job.primitive = primitive;
+    const auto& source = ref_.model.meshes[std::size_t(mesh)].primitives[std::size_t(primitive)];
+    job.material = materials_.sceneMaterial(source.material);
+    job.needs.texcoordSet = materials_.texcoordSetRead(job.material);
+    jobs_.push_back(std::move(job));
+    jobOf_[key] = int(jobs_.size()) - 1;
+    return int(jobs_.size()) - 1;
+  }
+
+  const ModelRef& ref_;
+  gltf::MaterialTable& materials_;
+  Scene& scene_;
+  std::vector<PrimitiveJob> jobs_;
+  std::map<std::pair<int, int>, int> jobOf_;
+  std::vector<std::pair<int, glm::mat4>> placements_;  // (job, world)
+};
+
+Scene convertModel(const std::string& path, const tinygltf::Model& model,
+                   const gltf::ImageStash& stash, const LoadOptions& options,
+                   std::vector<std::string>& notes) {
+  const ModelRef ref{model, path};
+  checkExtensions(ref, notes);
+  Scene scene;
+  scene.name = path;
+  gltf::MaterialTable materials(ref, stash, notes);
+  SceneBuilder builder(ref, materials, scene);
+  for (const PlacedNode& placed : walkNodes(ref, sceneRoots(ref, options, notes))) {
+    builder.addNode(placed);
+  }
+  builder.finish(notes);
+  materials.finish(scene);
+  return scene;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path, const LoadOptions& options,
+               std::vector<std::string>* notes) {
+  std::vector<std::string> collected;
+  try {
+    const std::vector<std::uint8_t> bytes = readWholeFile(path);
+    gltf::ImageStash stash;
+    const tinygltf::Model model = parseModel(path, bytes, stash);
+    Scene scene = convertModel(path, model, stash, options, collected);
+    if (notes) {
+      for (const std::string& note : collected) notes->push_back(oneLine(note));
+    }
+    return scene;
+  } catch (const Error& e) {
+    throw Error(oneLine(e.what()));
+  } catch (const std::bad_alloc&) {
+    throw makeError(path, "out of memory while loading");
+  } catch (const std::exception& e) {
+    throw makeError(path, firstLine(e.what()));
+  }
+}
+
+}  // namespace quadra

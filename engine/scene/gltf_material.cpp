@@ -1,0 +1,265 @@
+// glTF materials, textures, samplers and images → Scene materials and
+// textures, made only for what a drawn primitive uses: an image is decoded
+// (sRGB → linear float RGBA) only when some used material's baseColorTexture
+// reads it, and textures sharing an image share one decoded Image.
+#include <tiny_gltf.h>
+
+#include <cctype>
+#include <climits>
+#include <cstring>
+#include <map>
+#include <set>
+
+#include "core/parallel.h"
+#include "scene/gltf_internal.h"
+
+namespace quadra::gltf {
+
+namespace {
+
+WrapMode wrapMode(const ModelRef& ref, int sampler, int code) {
+  switch (code) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT:
+      return WrapMode::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return WrapMode::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return WrapMode::MirroredRepeat;
+  }
+  throw ref.fail("sampler " + std::to_string(sampler) + " has unknown wrap mode " +
+                 std::to_string(code));
+}
+
+Filter minFilter(const ModelRef& ref, int sampler, int code) {
+  switch (code) {
+    case -1:  // unset: the implementation chooses; mipmapped is the safe choice
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR:
+      return Filter::Trilinear;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST:
+      return Filter::Nearest;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR:
+      return Filter::Bilinear;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+      return Filter::NearestMip;
+  }
+  throw ref.fail("sampler " + std::to_string(sampler) + " has unknown minFilter " +
+                 std::to_string(code));
+}
+
+SamplerState samplerState(const ModelRef& ref, int index) {
+  SamplerState state;  // glTF's defaults: repeat, linear magnification, mipmapped
+  if (index == -1) return state;
+  if (index < 0 || std::size_t(index) >= ref.model.samplers.size()) {
+    throw ref.fail("sampler " + std::to_string(index) + " does not exist");
+  }
+  const tinygltf::Sampler& sampler = ref.model.samplers[std::size_t(index)];
+  state.wrapU = wrapMode(ref, index, sampler.wrapS);
+  state.wrapV = wrapMode(ref, index, sampler.wrapT);
+  if (sampler.magFilter != -1 && sampler.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST &&
+      sampler.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR) {
+    throw ref.fail("sampler " + std::to_string(index) + " has unknown magFilter " +
+                   std::to_string(sampler.magFilter));
+  }
+  state.magLinear = sampler.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST;
+  state.minFilter = minFilter(ref, index, sampler.minFilter);
+  return state;
+}
+
+AlphaMode alphaMode(const ModelRef& ref, int material, const std::string& name) {
+  if (name == "OPAQUE" || name.empty()) return AlphaMode::Opaque;
+  if (name == "MASK") return AlphaMode::Mask;
+  if (name == "BLEND") return AlphaMode::Blend;
+  throw ref.fail("material " + std::to_string(material) + " has unknown alphaMode '" + name + "'");
+}
+
+std::string percentDecode(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(uint8_t(uri[i + 1])) &&
+        std::isxdigit(uint8_t(uri[i + 2]))) {
+      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
+}
+
+// 8-bit or 16-bit RGBA as stb_image returned it → linear float; colour
+// channels are sRGB-encoded (glTF baseColorTexture), alpha is linear.
+Image toLinear(const tinygltf::Image& decoded) {
+  Image image(decoded.width, decoded.height);
+  const std::size_t values = image.rgba.size();
+  if (decoded.bits == 8) {
+    const unsigned char* codes = decoded.image.data();
+    for (std::size_t i = 0; i < values; ++i) {
+      image.rgba[i] = i % 4 == 3 ? codes[i] / 255.0f : srgb8ToLinear(codes[i]);
+    }
+  } else {
+    for (std::size_t i = 0; i < values; ++i) {
+      std::uint16_t code;
+      std::memcpy(&code, decoded.image.data() + 2 * i, 2);
+      const float encoded = code / 65535.0f;
+      image.rgba[i] = i % 4 == 3 ? encoded : srgbToLinear(encoded);
+    }
+  }
+  return image;
+}
+
+}  // namespace
+
+bool stashImageBytes(tinygltf::Image* image, int imageIndex, std::string*, std::string*, int, int,
+                     const unsigned char* bytes, int size, void* userData) {
+  // bufferView images: the bufferView is not checked yet, so its bytes are not
+  // touched here; they are read later through bufferViewBytes.
+  if (image->bufferView != -1 || size <= 0) return true;
+  auto& stash = *static_cast<ImageStash*>(userData);
+  stash.encoded[imageIndex].assign(bytes, bytes + size);
+  return true;
+}
+
+MaterialTable::MaterialTable(const ModelRef& ref, const ImageStash& stash,
+                             std::vector<std::string>& notes)
+    : ref_(ref), stash_(stash), notes_(notes) {}
+
+int MaterialTable::sceneMaterial(int gltfMaterial) {
+  if (gltfMaterial == -1) return -1;
+  if (gltfMaterial < 0 || std::size_t(gltfMaterial) >= ref_.model.materials.size()) {
+    throw ref_.fail("material " + std::to_string(gltfMaterial) + " does not exist (the file has " +
+                    std::to_string(ref_.model.materials.size()) + ")");
+  }
+  if (const auto known = materialOf_.find(gltfMaterial); known != materialOf_.end()) {
+    return known->second;
+  }
+  const tinygltf::Material& source = ref_.model.materials[std::size_t(gltfMaterial)];
+  const std::string what = "material " + std::to_string(gltfMaterial);
+  Material material;
+  const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+  if (factor.size() != 4) throw ref_.fail(what + " baseColorFactor does not have 4 numbers");
+  material.baseColorFactor =
+      glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
+  material.alphaMode = alphaMode(ref_, gltfMaterial, source.alphaMode);
+  material.alphaCutoff = float(source.alphaCutoff);
+  material.doubleSided = source.doubleSided;
+
+  const tinygltf::TextureInfo& baseColor = source.pbrMetallicRoughness.baseColorTexture;
+  if (baseColor.index != -1) {
+    material.baseColorTexture = sceneTexture(baseColor.index, what);
+    if (baseColor.texCoord == 0 || baseColor.texCoord == 1) {
+      material.baseColorTexCoord = baseColor.texCoord;
+    } else {
+      notes_.push_back(ref_.note(what + " baseColorTexture reads TEXCOORD_" +
+                                 std::to_string(baseColor.texCoord) +
+                                 ", which is not supported; using TEXCOORD_0"));
+    }
+  }
+  materials_.push_back(material);
+  materialOf_[gltfMaterial] = int(materials_.size()) - 1;
+  return int(materials_.size()) - 1;
+}
+
+int MaterialTable::texcoordSetRead(int sceneMaterialIndex) const {
+  if (sceneMaterialIndex < 0) return -1;
+  const Material& material = materials_[std::size_t(sceneMaterialIndex)];
+  return material.baseColorTexture < 0 ? -1 : material.baseColorTexCoord;
+}
+
+int MaterialTable::sceneTexture(int gltfTexture, const std::string& what) {
+  const auto& textures = ref_.model.textures;
+  if (gltfTexture < 0 || std::size_t(gltfTexture) >= textures.size()) {
+    throw ref_.fail(what + " refers to texture " + std::to_string(gltfTexture) +
+                    ", which does not exist");
+  }
+  if (const auto known = textureOf_.find(gltfTexture); known != textureOf_.end()) {
+    return known->second;
+  }
+  const tinygltf::Texture& texture = textures[std::size_t(gltfTexture)];
+  if (texture.source == -1) {
+    // Only an extension (e.g. KHR_texture_basisu) gives this texture an image.
+    notes_.push_back(ref_.note("texture " + std::to_string(gltfTexture) +
+                               " has no glTF 2.0 image source; " + what + " drawn untextured"));
+    textureOf_[gltfTexture] = -1;
+    return -1;
+  }
+  if (texture.source < 0 || std::size_t(texture.source) >= ref_.model.images.size()) {
+    throw ref_.fail("texture " + std::to_string(gltfTexture) + " refers to image " +
+                    std::to_string(texture.source) + ", which does not exist");
+  }
+  textures_.push_back({texture.source, samplerState(ref_, texture.sampler)});
+  textureOf_[gltfTexture] = int(textures_.size()) - 1;
+  return int(textures_.size()) - 1;
+}
+
+std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex) const {
+  const tinygltf::Image& source = ref_.model.images[std::size_t(imageIndex)];
+  const std::string what = "image " + std::to_string(imageIndex) +
+                           (source.uri.empty() ? "" : " ('" + percentDecode(source.uri) + "')");
+  ByteRange bytes;
+  if (source.bufferView != -1) {
+    bytes = bufferViewBytes(ref_, source.bufferView);
+  } else if (const auto stashed = stash_.encoded.find(imageIndex);
+             stashed != stash_.encoded.end()) {
+    bytes = {stashed->second.data(), stashed->second.size()};
+  } else {
+    throw ref_.fail(what + (source.uri.empty() ? " has no data" : ": file cannot be read"));
+  }
+  if (bytes.size == 0 || bytes.size > std::uint64_t(INT_MAX)) {
+    throw ref_.fail(what + " has " + std::to_string(bytes.size) + " bytes of data");
+  }
+  tinygltf::Image decoded;
+  std::string err, warn;
+  // The library's own stb_image decoder, expanding to RGBA at 8 or 16 bits.
+  if (!tinygltf::LoadImageData(&decoded, imageIndex, &err, &warn, 0, 0, bytes.data, int(bytes.size),
+                               nullptr)) {
+    throw ref_.fail(what + " cannot be decoded (PNG and JPEG are supported)");
+  }
+  const std::size_t bytesPerValue = decoded.bits == 16 ? 2 : 1;
+  const bool layoutOk = decoded.component == 4 && (decoded.bits == 8 || decoded.bits == 16) &&
+                        decoded.width > 0 && decoded.height > 0 &&
+                        decoded.image.size() == std::size_t(decoded.width) *
+                                                    std::size_t(decoded.height) * 4 * bytesPerValue;
+  if (!layoutOk) throw ref_.fail(what + " decoded to an unexpected pixel layout");
+  return std::make_shared<const Image>(toLinear(decoded));
+}
+
+void MaterialTable::finish(Scene& scene) {
+  std::vector<int> imageIndices;
+  for (const PendingTexture& texture : textures_) imageIndices.push_back(texture.image);
+  const std::set<int> unique(imageIndices.begin(), imageIndices.end());
+  imageIndices.assign(unique.begin(), unique.end());
+
+  // PNG/JPEG decoding dominates load time for textured models: one task per
+  // image. Errors are kept per image and the first in index order is thrown,
+  // so the message does not depend on scheduling.
+  std::vector<std::shared_ptr<const Image>> images(imageIndices.size());
+  std::vector<std::string> errors(imageIndices.size());
+  const Executor executor(imageIndices.size() > 1 ? 0 : 1);
+  executor.parallelFor(imageIndices.size(), 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      try {
+        images[i] = decodeImage(imageIndices[i]);
+      } catch (const Error& e) {
+        errors[i] = e.what();
+      } catch (const std::exception& e) {  // e.g. bad_alloc for a huge image
+        errors[i] = ref_.fail("image " + std::to_string(imageIndices[i]) + ": " + e.what()).what();
+      }
+    }
+  });
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw Error(error);
+  }
+
+  std::map<int, std::shared_ptr<const Image>> imageOf;
+  for (std::size_t i = 0; i < imageIndices.size(); ++i) imageOf[imageIndices[i]] = images[i];
+  scene.textures.clear();
+  for (const PendingTexture& texture : textures_) {
+    scene.textures.push_back(
+        std::make_shared<const Texture>(imageOf[texture.image], texture.sampler));
+  }
+  scene.materials = std::move(materials_);
+}
+
+}  // namespace quadra::gltf

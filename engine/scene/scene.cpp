@@ -1,0 +1,45 @@
+// Scene and Texture members: the lazily built mip chain, triangle counts and
+// world-space bounds.
+#include "scene/scene.h"
+
+#include <cmath>
+#include <limits>
+
+#include "texture/mip_chain.h"
+
+namespace quadra {
+
+Texture::Texture(std::shared_ptr<const Image> image, SamplerState sampler)
+    : image_(std::move(image)), sampler_(sampler) {}
+
+// Out of line: MipChain is only forward-declared in the header.
+Texture::~Texture() = default;
+
+const MipChain& Texture::mips() const {
+  std::call_once(mipsOnce_, [this] { mips_ = std::make_unique<MipChain>(*image_, nullptr); });
+  return *mips_;
+}
+
+std::size_t Scene::triangleCount() const {
+  std::size_t count = 0;
+  for (const Instance& instance : instances) {
+    count += meshes[std::size_t(instance.mesh)].indices.size() / 3;
+  }
+  return count;
+}
+
+void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
+  lo = glm::vec3(std::numeric_limits<float>::infinity());
+  hi = -lo;
+  for (const Instance& instance : instances) {
+    for (const glm::vec3& p : meshes[std::size_t(instance.mesh)].positions) {
+      const glm::vec3 world = glm::vec3(instance.world * glm::vec4(p, 1.0f));
+      // Vertices with NaN or Inf are dropped by the renderer, so they bound nothing.
+      if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) continue;
+      lo = glm::min(lo, world);
+      hi = glm::max(hi, world);
+    }
+  }
+}
+
+}  // namespace quadra
