@@ -1,0 +1,525 @@
+// The double-precision reference ray caster, followed by its self-tests
+// against closed-form answers (box-filtered bilinear textures via hat-function
+// integrals, exact pixel/half-plane areas, alpha compositing by hand).
+#include "reference/reference_tracer.h"
+
+#include <gtest/gtest.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+
+#include "core/error.h"
+#include "reference/reference_raster.h"
+
+namespace quadra::ref {
+
+namespace {
+
+// Texel index → index inside [0, n), or -1 for the border colour.
+std::int64_t wrapTexel(std::int64_t i, std::int64_t n, WrapMode mode) {
+  switch (mode) {
+    case WrapMode::Repeat:
+      return ((i % n) + n) % n;
+    case WrapMode::MirroredRepeat: {
+      const std::int64_t k = ((i % (2 * n)) + 2 * n) % (2 * n);
+      return k < n ? k : 2 * n - 1 - k;
+    }
+    case WrapMode::ClampToEdge:
+      return std::clamp<std::int64_t>(i, 0, n - 1);
+    case WrapMode::ClampToBorder:
+      return (i < 0 || i >= n) ? -1 : i;
+  }
+  return 0;
+}
+
+glm::dvec4 fetch(const Image& image, const SamplerState& sampler, std::int64_t x, std::int64_t y) {
+  const std::int64_t wx = wrapTexel(x, image.width, sampler.wrapU);
+  const std::int64_t wy = wrapTexel(y, image.height, sampler.wrapV);
+  if (wx < 0 || wy < 0) {
+    const float* b = sampler.borderColor;
+    return {b[0], b[1], b[2], b[3]};
+  }
+  const float* t = image.texel(int(wx), int(wy));
+  return {t[0], t[1], t[2], t[3]};
+}
+
+}  // namespace
+
+glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const glm::dvec2& uv) {
+  const double x = uv.x * image.width - 0.5, y = uv.y * image.height - 0.5;
+  const double x0 = std::floor(x), y0 = std::floor(y);
+  const double fx = x - x0, fy = y - y0;
+  const auto ix = std::int64_t(x0), iy = std::int64_t(y0);
+  const glm::dvec4 top =
+      (1 - fx) * fetch(image, sampler, ix, iy) + fx * fetch(image, sampler, ix + 1, iy);
+  const glm::dvec4 bottom =
+      (1 - fx) * fetch(image, sampler, ix, iy + 1) + fx * fetch(image, sampler, ix + 1, iy + 1);
+  return (1 - fy) * top + fy * bottom;
+}
+
+ReferenceTracer::ReferenceTracer(const Scene& scene, const Camera& camera, int width, int height)
+    : scene_(scene),
+      camera_(camera),
+      width_(width),
+      height_(height),
+      aspect_(double(width) / double(height)) {
+  const glm::dmat4 view = referenceViewMatrix(camera);
+  for (const Instance& instance : scene.instances) {
+    PreparedInstance prepared;
+    prepared.mesh = &scene.meshes.at(instance.mesh);
+    const int material = prepared.mesh->material;
+    prepared.material = material >= 0 ? &scene.materials.at(material) : nullptr;
+    prepared.cullBack = prepared.material == nullptr || !prepared.material->doubleSided;
+    prepared.mirrored = glm::determinant(glm::dmat4(instance.world)) < 0.0;
+    const glm::dmat4 modelView = view * glm::dmat4(instance.world);
+    prepared.boundsLo = glm::dvec3(std::numeric_limits<double>::infinity());
+    prepared.boundsHi = -prepared.boundsLo;
+    for (const glm::vec3& p : prepared.mesh->positions) {
+      const glm::dvec3 v(modelView * glm::dvec4(glm::dvec3(p), 1.0));
+      prepared.viewPositions.push_back(v);
+      prepared.boundsLo = glm::min(prepared.boundsLo, v);
+      prepared.boundsHi = glm::max(prepared.boundsHi, v);
+    }
+    instances_.push_back(std::move(prepared));
+  }
+}
+
+Ray ReferenceTracer::primaryRay(const glm::dvec2& window) const {
+  const double xNdc = 2.0 * window.x / width_ - 1.0;
+  const double yNdc = 1.0 - 2.0 * window.y / height_;
+  if (camera_.type == Camera::Type::Orthographic) {
+    const double ymag = camera_.ymag;
+    return {{xNdc * ymag * aspect_, yNdc * ymag, 0.0}, {0.0, 0.0, -1.0}};
+  }
+  const double f = 1.0 / std::tan(double(camera_.yfov) / 2.0);
+  return {{0.0, 0.0, 0.0}, {xNdc * aspect_ / f, yNdc / f, -1.0}};
+}
+
+bool ReferenceTracer::rayMayHit(const PreparedInstance& instance, const Ray& ray) const {
+  double tLo = -std::numeric_limits<double>::infinity();
+  double tHi = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    const double o = ray.origin[axis], d = ray.direction[axis];
+    const double lo = instance.boundsLo[axis], hi = instance.boundsHi[axis];
+    if (d == 0.0) {
+      if (o < lo || o > hi) return false;
+      continue;
+    }
+    const double a = (lo - o) / d, b = (hi - o) / d;
+    tLo = std::max(tLo, std::min(a, b));
+    tHi = std::min(tHi, std::max(a, b));
+  }
+  return tLo <= tHi && tHi >= 0.0;
+}
+
+void ReferenceTracer::allHits(const Ray& ray, std::vector<TracerHit>& out) const {
+  out.clear();
+  const double znear = camera_.znear;
+  const double zfar = camera_.type == Camera::Type::Orthographic
+                          ? (camera_.zfar > camera_.znear ? camera_.zfar : HUGE_VAL)
+                          : (camera_.zfar != 0.0f ? camera_.zfar : HUGE_VAL);
+  for (std::size_t index = 0; index < instances_.size(); ++index) {
+    const PreparedInstance& instance = instances_[index];
+    if (!rayMayHit(instance, ray)) continue;
+    const std::vector<std::uint32_t>& indices = instance.mesh->indices;
+    for (std::size_t tri = 0; tri * 3 < indices.size(); ++tri) {
+      const glm::dvec3& v0 = instance.viewPositions[indices[tri * 3]];
+      const glm::dvec3& v1 = instance.viewPositions[indices[tri * 3 + 1]];
+      const glm::dvec3& v2 = instance.viewPositions[indices[tri * 3 + 2]];
+      // Moller-Trumbore with inclusive edges: a ray through a shared edge hits
+      // both neighbours at the same distance, never neither.
+      const glm::dvec3 e1 = v1 - v0, e2 = v2 - v0;
+      const glm::dvec3 p = glm::cross(ray.direction, e2);
+      const double det = glm::dot(e1, p);
+      if (det == 0.0) continue;  // edge-on: zero projected area
+      // det = -dot(direction, e1 x e2) > 0: the ray sees the counter-clockwise
+      // (front) side; a mirroring instance matrix swaps which side that is.
+      const bool front = (det > 0.0) != instance.mirrored;
+      if (instance.cullBack && !front) continue;
+      const glm::dvec3 s = ray.origin - v0;
+      const double b1 = glm::dot(s, p) / det;
+      if (b1 < 0.0 || b1 > 1.0) continue;
+      const glm::dvec3 q = glm::cross(s, e1);
+      const double b2 = glm::dot(ray.direction, q) / det;
+      if (b2 < 0.0 || b1 + b2 > 1.0) continue;
+      const double t = glm::dot(e2, q) / det;
+      const double distance = -(ray.origin.z + t * ray.direction.z);
+      if (distance < znear || distance > zfar) continue;
+      out.push_back({int(index), int(tri), distance, {1.0 - b1 - b2, b1, b2}});
+    }
+  }
+  // Equal distances keep submission order, as the engine's LESS depth test does.
+  std::stable_sort(out.begin(), out.end(), [](const TracerHit& a, const TracerHit& b) {
+    return a.viewDistance < b.viewDistance;
+  });
+}
+
+std::optional<TracerHit> ReferenceTracer::nearestHit(const glm::dvec2& window) const {
+  std::vector<TracerHit> hits;
+  allHits(primaryRay(window), hits);
+  if (hits.empty()) return std::nullopt;
+  return hits.front();
+}
+
+glm::dvec2 ReferenceTracer::texCoord(const TracerHit& hit, int set) const {
+  const Mesh& mesh = *instances_[hit.instance].mesh;
+  const std::vector<glm::vec2>& uv = mesh.texcoords[set];
+  if (uv.empty()) return glm::dvec2(0.0);
+  glm::dvec2 sum(0.0);
+  for (int k = 0; k < 3; ++k)
+    sum += hit.bary[k] * glm::dvec2(uv[mesh.indices[hit.triangle * 3 + k]]);
+  return sum;
+}
+
+glm::dvec4 ReferenceTracer::surfaceColour(const TracerHit& hit) const {
+  const PreparedInstance& instance = instances_[hit.instance];
+  glm::dvec4 colour(1.0);
+  if (instance.material) {
+    const Material& material = *instance.material;
+    colour = glm::dvec4(material.baseColorFactor);
+    if (material.baseColorTexture >= 0) {
+      const Texture& texture = *scene_.textures.at(material.baseColorTexture);
+      colour *= sampleBilinear(texture.image(), texture.sampler(),
+                               texCoord(hit, material.baseColorTexCoord));
+    }
+  }
+  const Mesh& mesh = *instance.mesh;
+  if (!mesh.colors.empty()) {
+    glm::dvec4 vertexColour(0.0);
+    for (int k = 0; k < 3; ++k)
+      vertexColour += hit.bary[k] * glm::dvec4(mesh.colors[mesh.indices[hit.triangle * 3 + k]]);
+    colour *= vertexColour;
+  }
+  return colour;
+}
+
+glm::dvec4 ReferenceTracer::shade(const glm::dvec2& window, std::vector<TracerHit>& scratch) const {
+  allHits(primaryRay(window), scratch);
+  // Front to back "under" compositing, which equals back-to-front "over".
+  glm::dvec4 result(0.0);
+  const TracerHit* lastBlended = nullptr;
+  for (const TracerHit& hit : scratch) {
+    const Material* material = instances_[hit.instance].material;
+    const AlphaMode mode = material ? material->alphaMode : AlphaMode::Opaque;
+    glm::dvec4 colour = surfaceColour(hit);
+    if (mode == AlphaMode::Mask && colour.a < material->alphaCutoff) continue;  // discarded
+    if (mode != AlphaMode::Blend) colour.a = 1.0;
+    if (mode == AlphaMode::Blend) {
+      const bool sameSurface = lastBlended && lastBlended->instance == hit.instance &&
+                               std::fabs(lastBlended->viewDistance - hit.viewDistance) <=
+                                   1e-9 * std::max(1.0, hit.viewDistance);
+      if (sameSurface) continue;
+      lastBlended = &hit;
+    }
+    const glm::dvec4 premultiplied(glm::dvec3(colour) * colour.a, colour.a);
+    result += (1.0 - result.a) * premultiplied;
+    if (mode != AlphaMode::Blend) break;  // an opaque surface hides what lies behind
+  }
+  return result;
+}
+
+Image ReferenceTracer::render(int samplesPerAxis) const {
+  QUADRA_CHECK(samplesPerAxis > 0);
+  Image image(width_, height_);
+  const double weight = 1.0 / (double(samplesPerAxis) * samplesPerAxis);
+  tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<TracerHit> scratch;
+    for (int y = rows.begin(); y < rows.end(); ++y) {
+      for (int x = 0; x < width_; ++x) {
+        glm::dvec4 sum(0.0);
+        for (int j = 0; j < samplesPerAxis; ++j)
+          for (int i = 0; i < samplesPerAxis; ++i) {
+            const glm::dvec2 at(x + (i + 0.5) / samplesPerAxis, y + (j + 0.5) / samplesPerAxis);
+            sum += shade(at, scratch);
+          }
+        float* out = image.texel(x, y);
+        for (int c = 0; c < 4; ++c) out[c] = float(sum[c] * weight);
+      }
+    }
+  });
+  return image;
+}
+
+// ---------------------------------------------------------------------------
+// Self-tests.
+
+namespace {
+
+// Antiderivative of the unit hat function max(0, 1 - |t|).
+double hatIntegralUpTo(double t) {
+  if (t <= -1.0) return 0.0;
+  if (t <= 0.0) return 0.5 * (t + 1.0) * (t + 1.0);
+  if (t <= 1.0) return 1.0 - 0.5 * (1.0 - t) * (1.0 - t);
+  return 1.0;
+}
+
+// Bilinear reconstruction is sum_i T[wrap(i)] hat(s - i) in texel space s; its
+// mean over [s0, s1] weights texel i by the hat's integral there.
+std::vector<std::pair<std::int64_t, double>> hatWeights(double s0, double s1) {
+  std::vector<std::pair<std::int64_t, double>> weights;
+  const double lo = std::min(s0, s1), hi = std::max(s0, s1);
+  for (auto i = std::int64_t(std::floor(lo)) - 1; i <= std::int64_t(std::ceil(hi)) + 1; ++i) {
+    const double w =
+        (hatIntegralUpTo(s1 - double(i)) - hatIntegralUpTo(s0 - double(i))) / (s1 - s0);
+    if (w != 0.0) weights.push_back({i, w});
+  }
+  return weights;
+}
+
+glm::dvec4 texelAt(const Image& image, int x, int y) {
+  const float* t = image.texel(x, y);
+  return {t[0], t[1], t[2], t[3]};
+}
+
+struct QuadSetup {
+  Scene scene;
+  Camera camera;
+};
+
+// An orthographic camera whose view is exactly filled by a textured quad at
+// z = -1 with uv running over [uv0, uv1] (u left to right, v top to bottom).
+QuadSetup fullScreenQuad(int width, int height, Image texture, const SamplerState& sampler,
+                         const glm::dvec2& uv0, const glm::dvec2& uv1) {
+  QuadSetup s;
+  s.camera.type = Camera::Type::Orthographic;
+  s.camera.ymag = 1.0f;
+  s.camera.znear = 0.5f;
+  s.camera.zfar = 2.0f;
+  const float hx = float(width) / float(height);
+  Mesh mesh;
+  mesh.positions = {{-hx, 1, -1}, {hx, 1, -1}, {hx, -1, -1}, {-hx, -1, -1}};
+  mesh.texcoords[0] = {glm::vec2(uv0.x, uv0.y), glm::vec2(uv1.x, uv0.y), glm::vec2(uv1.x, uv1.y),
+                       glm::vec2(uv0.x, uv1.y)};
+  mesh.colors = std::vector<glm::vec4>(4, glm::vec4(0.5f, 1.0f, 1.0f, 1.0f));
+  mesh.indices = {0, 3, 2, 0, 2, 1};  // counter-clockwise seen from the camera
+  mesh.material = 0;
+  Material material;
+  material.baseColorFactor = {1.0f, 0.25f, 1.0f, 1.0f};
+  material.baseColorTexture = 0;
+  s.scene.meshes.push_back(mesh);
+  s.scene.materials.push_back(material);
+  s.scene.textures.push_back(
+      std::make_shared<Texture>(std::make_shared<Image>(std::move(texture)), sampler));
+  s.scene.instances.push_back(Instance{});
+  return s;
+}
+
+Image randomImage(int width, int height, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> value(0.0f, 1.0f);
+  Image image(width, height);
+  for (float& v : image.rgba) v = value(rng);
+  return image;
+}
+
+// Renders the quad and compares every pixel to the exact box filter of the
+// bilinear reconstruction (times the constant factor and vertex colour).
+double maxQuadError(int width, int height, const Image& texture, const SamplerState& sampler,
+                    const glm::dvec2& uv0, const glm::dvec2& uv1, int samplesPerAxis) {
+  const QuadSetup s = fullScreenQuad(width, height, texture, sampler, uv0, uv1);
+  const Image rendered = ReferenceTracer(s.scene, s.camera, width, height).render(samplesPerAxis);
+  const glm::dvec4 tint(0.5, 0.25, 1.0, 1.0);
+  double worst = 0.0;
+  for (int y = 0; y < height; ++y) {
+    const double v0 = uv0.y + (uv1.y - uv0.y) * y / height;
+    const double v1 = uv0.y + (uv1.y - uv0.y) * (y + 1) / height;
+    const auto wy = hatWeights(v0 * texture.height - 0.5, v1 * texture.height - 0.5);
+    for (int x = 0; x < width; ++x) {
+      const double u0 = uv0.x + (uv1.x - uv0.x) * x / width;
+      const double u1 = uv0.x + (uv1.x - uv0.x) * (x + 1) / width;
+      const auto wx = hatWeights(u0 * texture.width - 0.5, u1 * texture.width - 0.5);
+      glm::dvec4 expected(0.0);
+      for (const auto& [j, weightY] : wy)
+        for (const auto& [i, weightX] : wx) {
+          const std::int64_t ti = wrapTexel(i, texture.width, sampler.wrapU);
+          const std::int64_t tj = wrapTexel(j, texture.height, sampler.wrapV);
+          const glm::dvec4 texel = (ti < 0 || tj < 0)
+                                       ? glm::dvec4(sampler.borderColor[0], sampler.borderColor[1],
+                                                    sampler.borderColor[2], sampler.borderColor[3])
+                                       : texelAt(texture, int(ti), int(tj));
+          expected += weightX * weightY * texel;
+        }
+      expected *= tint;
+      expected = glm::dvec4(glm::dvec3(expected), 1.0);  // OPAQUE: alpha 1
+      for (int c = 0; c < 4; ++c)
+        worst = std::max(worst, std::fabs(double(rendered.texel(x, y)[c]) - expected[c]));
+    }
+  }
+  return worst;
+}
+
+TEST(ReferenceTracer, BilinearWrapModesAtTexelCentresAndBetween) {
+  Image image(2, 1);
+  image.texel(0, 0)[0] = 1.0f;
+  image.texel(1, 0)[0] = 3.0f;
+  SamplerState sampler;
+  sampler.wrapU = WrapMode::Repeat;
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {0.25, 0.5}).r, 1.0);
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {0.5, 0.5}).r, 2.0);
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {0.0, 0.5}).r, 2.0);  // wraps to texel 1
+  sampler.wrapU = WrapMode::ClampToEdge;
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {0.0, 0.5}).r, 1.0);
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {-3.0, 0.5}).r, 1.0);
+  sampler.wrapU = WrapMode::MirroredRepeat;
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {-0.25, 0.5}).r, 1.0);  // texel -1 mirrors to 0
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {1.25, 0.5}).r, 3.0);   // texel 2 mirrors to 1
+  sampler.wrapU = WrapMode::ClampToBorder;
+  sampler.borderColor[0] = 5.0f;
+  EXPECT_DOUBLE_EQ(sampleBilinear(image, sampler, {0.0, 0.5}).r, 3.0);  // half border, half texel 0
+}
+
+// Texel centres land on pixel edges (8 texels over 32 pixels), so every
+// subsample cell sees one bilinear patch and the midpoint rule is exact.
+TEST(ReferenceTracer, FullScreenQuadIsTheBoxFilteredTexture) {
+  const Image texture = randomImage(8, 4, 7);
+  EXPECT_LT(maxQuadError(32, 16, texture, SamplerState{}, {0, 0}, {1, 1}, 4), 1e-6);
+}
+
+// Texel centres anywhere and uv outside [0, 1]: the stratified average only
+// converges, with a midpoint-rule error below (slope jump) * h^2 / 8 per kink.
+TEST(ReferenceTracer, FullScreenQuadWrapModesConverge) {
+  const Image texture = randomImage(5, 3, 11);
+  for (const WrapMode mode : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
+                              WrapMode::ClampToBorder}) {
+    SamplerState sampler;
+    sampler.wrapU = sampler.wrapV = mode;
+    sampler.borderColor[1] = 0.75f;
+    SCOPED_TRACE(wrapName(mode));
+    EXPECT_LT(maxQuadError(24, 12, texture, sampler, {-0.7, 1.4}, {1.6, -0.3}, 16), 2e-3);
+  }
+}
+
+// Area of the unit pixel square [x, x+1] x [y, y+1] where (b - a) x (p - a) >= 0,
+// by clipping the square against the line.
+double pixelAreaLeftOf(const glm::dvec2& a, const glm::dvec2& b, int x, int y) {
+  const glm::dvec2 square[4] = {{x, y}, {x + 1, y}, {x + 1, y + 1}, {x, y + 1}};
+  std::vector<glm::dvec2> kept;
+  const auto side = [&](const glm::dvec2& p) {
+    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+  };
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec2 &p = square[i], &q = square[(i + 1) % 4];
+    const double sp = side(p), sq = side(q);
+    if (sp >= 0) kept.push_back(p);
+    if ((sp >= 0) != (sq >= 0)) kept.push_back(p + (q - p) * (sp / (sp - sq)));
+  }
+  double twiceArea = 0.0;
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    twiceArea +=
+        kept[i].x * kept[(i + 1) % kept.size()].y - kept[(i + 1) % kept.size()].x * kept[i].y;
+  return std::fabs(twiceArea) / 2.0;
+}
+
+// A huge perspective triangle with one slanted edge across the view: each
+// pixel's alpha is the covered fraction of its square. Counting an S x S grid
+// under a straight edge misses less than one sample per column: error < 1/S.
+TEST(ReferenceTracer, EdgeCoverageIsThePixelArea) {
+  Scene scene;
+  Mesh mesh;
+  // The edge from a to b crosses the whole view; c and the other edges are far
+  // outside it.
+  const glm::dvec3 a(-2.7, -7, -2), b(2.9, 7, -2), c(-60, 0, -2);
+  mesh.positions = {glm::vec3(a), glm::vec3(b), glm::vec3(c)};
+  mesh.indices = {0, 1, 2};
+  scene.meshes.push_back(mesh);
+  scene.instances.push_back(Instance{});
+  Camera camera;
+  camera.yfov = 1.0f;
+  const int width = 24, height = 16, samples = 32;
+  const ReferenceTracer tracer(scene, camera, width, height);
+  const Image image = tracer.render(samples);
+  // The edge's end points in window space.
+  const double f = 1.0 / std::tan(0.5), aspect = double(width) / height;
+  const auto toWindow = [&](const glm::dvec3& p) {
+    return glm::dvec2((f / aspect * p.x / -p.z + 1.0) * width / 2,
+                      (1.0 - f * p.y / -p.z) * height / 2);
+  };
+  glm::dvec2 from = toWindow(a), to = toWindow(b);
+  const glm::dvec2 inside = toWindow(c);
+  if ((to.x - from.x) * (inside.y - from.y) - (to.y - from.y) * (inside.x - from.x) < 0)
+    std::swap(from, to);
+  int partial = 0, full = 0, empty = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double area = pixelAreaLeftOf(from, to, x, y);
+      partial += area > 0.0 && area < 1.0, full += area == 1.0, empty += area == 0.0;
+      ASSERT_NEAR(image.texel(x, y)[3], area, 1.0 / samples) << x << "," << y;
+    }
+  EXPECT_GT(partial, 10);
+  EXPECT_GT(full, 10);
+  EXPECT_GT(empty, 10);
+}
+
+Scene coloredQuads(const std::vector<std::pair<float, glm::vec4>>& depthAndColour, AlphaMode mode) {
+  Scene scene;
+  for (const auto& [z, colour] : depthAndColour) {
+    Mesh mesh;
+    mesh.positions = {{-1, -1, z}, {1, -1, z}, {1, 1, z}, {-1, 1, z}};
+    mesh.indices = {0, 1, 2, 0, 2, 3};
+    mesh.material = int(scene.materials.size());
+    Material material;
+    material.baseColorFactor = colour;
+    material.alphaMode = mode;
+    scene.materials.push_back(material);
+    scene.instances.push_back({int(scene.meshes.size()), glm::mat4(1.0f)});
+    scene.meshes.push_back(mesh);
+  }
+  return scene;
+}
+
+TEST(ReferenceTracer, AlphaModes) {
+  Camera camera;
+  std::vector<TracerHit> scratch;
+  const glm::dvec2 centre(4.0, 4.0);  // on the quads' shared diagonal, too
+  const glm::vec4 red(1, 0, 0, 0.25f), green(0, 1, 0, 0.5f);
+  {
+    const Scene scene = coloredQuads({{-3.0f, red}, {-5.0f, green}}, AlphaMode::Blend);
+    const glm::dvec4 got = ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch);
+    // red over green, premultiplied: each edge hit counted once.
+    const glm::dvec4 expected = glm::dvec4(0.25, 0, 0, 0.25) + 0.75 * glm::dvec4(0, 0.5, 0, 0.5);
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[c], expected[c], 1e-6);
+  }
+  {
+    const Scene scene = coloredQuads({{-3.0f, red}, {-5.0f, green}}, AlphaMode::Mask);
+    // red (0.25 < 0.5 cutoff) is discarded; green passes with alpha forced to 1.
+    const glm::dvec4 got = ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch);
+    EXPECT_EQ(got, glm::dvec4(0, 1, 0, 1));
+  }
+  {
+    const Scene scene = coloredQuads({{-5.0f, green}, {-3.0f, red}}, AlphaMode::Opaque);
+    EXPECT_EQ(ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch), glm::dvec4(1, 0, 0, 1));
+  }
+}
+
+TEST(ReferenceTracer, CullingNearPlaneAndMirroring) {
+  Camera camera;
+  camera.znear = 4.0f;
+  std::vector<TracerHit> scratch;
+  const glm::vec4 red(1, 0, 0, 1), green(0, 1, 0, 1);
+  const glm::dvec2 centre(4.5, 3.5);
+  // The red quad is nearer than the near plane, so only green is seen.
+  Scene scene = coloredQuads({{-3.0f, red}, {-5.0f, green}}, AlphaMode::Opaque);
+  EXPECT_EQ(ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch), glm::dvec4(0, 1, 0, 1));
+  // Flipping the green quad's winding makes it a culled back face...
+  std::swap(scene.meshes[1].indices[1], scene.meshes[1].indices[2]);
+  std::swap(scene.meshes[1].indices[4], scene.meshes[1].indices[5]);
+  EXPECT_EQ(ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch), glm::dvec4(0.0));
+  // ...which a mirroring instance (z scaled by -1, quad moved to z = +5) makes front again.
+  scene.meshes[1].positions = {{-1, -1, 5}, {1, -1, 5}, {1, 1, 5}, {-1, 1, 5}};
+  scene.instances[1].world = glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 1, 0, 0),
+                                       glm::vec4(0, 0, -1, 0), glm::vec4(0, 0, 0, 1));
+  EXPECT_EQ(ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch), glm::dvec4(0, 1, 0, 1));
+  // Double-sided materials draw either winding.
+  scene.instances[1].world = glm::mat4(1.0f);
+  scene.meshes[1].positions = {{-1, -1, -5}, {1, -1, -5}, {1, 1, -5}, {-1, 1, -5}};
+  scene.materials[1].doubleSided = true;
+  EXPECT_EQ(ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch), glm::dvec4(0, 1, 0, 1));
+}
+
+}  // namespace
+}  // namespace quadra::ref

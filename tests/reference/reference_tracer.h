@@ -1,0 +1,88 @@
+// The frame reference of DESIGN.md ("Accuracy"): a brute-force double-precision
+// ray caster. Each pixel averages S x S stratified subsamples (a box filter);
+// each subsample's primary ray takes its exact nearest triangle hit, whose
+// barycentrics give the attributes; colour is baseColorFactor x level-0
+// bilinear texture x COLOR_0 (unlit only), with OPAQUE / MASK handled per the
+// spec and BLEND composited back to front over the nearest opaque hit.
+//
+// BLEND caveat: the reference sorts every hit by distance, exactly; a
+// rasterizer orders whole draws at best. They agree when blended surfaces do
+// not interpenetrate and no blended draw overlaps itself on screen. Coplanar
+// hits of one instance at one distance (a ray through a shared edge) count once.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+#include "texture/image.h"
+#include "texture/sampler_state.h"
+
+namespace quadra::ref {
+
+struct Ray {
+  glm::dvec3 origin;     // view space
+  glm::dvec3 direction;  // view space, z = -1 (so t is the view distance gained)
+};
+
+struct TracerHit {
+  int instance = 0;
+  int triangle = 0;         // index within the instance's mesh
+  double viewDistance = 0;  // -z of the hit in view space
+  glm::dvec3 bary{0.0};     // weights of the triangle's vertices, in index order
+};
+
+// Level-0 bilinear lookup in double, per the texel convention (lookup at u reads
+// texel-space x = u*W - 0.5; row 0 is v = 0) and the sampler's wrap modes.
+glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const glm::dvec2& uv);
+
+class ReferenceTracer {
+ public:
+  // The scene must outlive the tracer.
+  ReferenceTracer(const Scene& scene, const Camera& camera, int width, int height);
+
+  // The primary ray through a window-space point (pixels, y down).
+  Ray primaryRay(const glm::dvec2& window) const;
+
+  // Every hit of the ray that survives culling and lies between the near and
+  // far planes, nearest first.
+  void allHits(const Ray& ray, std::vector<TracerHit>& out) const;
+  std::optional<TracerHit> nearestHit(const glm::dvec2& window) const;
+
+  // TEXCOORD_n interpolated at the hit; (0, 0) when the mesh has no such set.
+  glm::dvec2 texCoord(const TracerHit& hit, int set) const;
+  // baseColorFactor x texture x COLOR_0 at the hit, straight (not premultiplied).
+  glm::dvec4 surfaceColour(const TracerHit& hit) const;
+
+  // Premultiplied RGBA seen along the ray through a window point. scratch is
+  // reused between calls to avoid allocation.
+  glm::dvec4 shade(const glm::dvec2& window, std::vector<TracerHit>& scratch) const;
+
+  // The whole frame: samplesPerAxis^2 stratified subsamples per pixel, box
+  // filtered; premultiplied linear RGBA. Rows run in parallel.
+  Image render(int samplesPerAxis) const;
+
+ private:
+  struct PreparedInstance {
+    const Mesh* mesh = nullptr;
+    const Material* material = nullptr;  // nullptr: the glTF default material
+    std::vector<glm::dvec3> viewPositions;
+    glm::dvec3 boundsLo{0.0}, boundsHi{0.0};
+    bool cullBack = true;   // single-sided: draw only front faces
+    bool mirrored = false;  // negative determinant: front faces are clockwise
+  };
+
+  bool rayMayHit(const PreparedInstance& instance, const Ray& ray) const;
+
+  const Scene& scene_;
+  Camera camera_;
+  int width_;
+  int height_;
+  double aspect_;
+  std::vector<PreparedInstance> instances_;
+};
+
+}  // namespace quadra::ref

@@ -1,0 +1,269 @@
+// Engine coverage against the exact reference rasterizer: the top-left fill
+// rule on shared edges and vertices at pixel centres, tile (64 px) and block
+// (8 px) borders, watertight meshes, random and sliver triangles, culling.
+//
+// An orthographic camera with ymag = 128 on a 256 x 256 viewport maps world
+// (x, y) to window (x + 128, 128 - y) with power-of-two scales only, so the
+// engine's float transform is exact and both sides snap the same positions.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+#include <sstream>
+#include <vector>
+
+#include "api/renderer.h"
+#include "reference/reference_raster.h"
+
+namespace quadra {
+namespace {
+
+constexpr int kSize = 256;
+using WindowTriangle = std::array<glm::dvec2, 3>;
+
+Camera pixelExactCamera() {
+  Camera camera;
+  camera.type = Camera::Type::Orthographic;
+  camera.ymag = kSize / 2;
+  camera.xmag = kSize / 2;
+  camera.znear = 0.5f;
+  camera.zfar = 4.0f;
+  return camera;
+}
+
+glm::vec3 worldFromWindow(const glm::dvec2& w) {
+  return {float(w.x - kSize / 2), float(kSize / 2 - w.y), -1.0f};
+}
+
+// One mesh holding all triangles, drawn in order. mirrored: the instance
+// scales z by -1 (the mesh sits at z = +1), which flips the front winding.
+Scene sceneFromWindow(const std::vector<WindowTriangle>& triangles, bool doubleSided,
+                      bool mirrored = false) {
+  Scene scene;
+  Mesh mesh;
+  for (const WindowTriangle& t : triangles)
+    for (const glm::dvec2& p : t) {
+      glm::vec3 world = worldFromWindow(p);
+      if (mirrored) world.z = -world.z;
+      mesh.indices.push_back(std::uint32_t(mesh.positions.size()));
+      mesh.positions.push_back(world);
+    }
+  mesh.material = 0;
+  Material material;
+  material.doubleSided = doubleSided;
+  scene.materials.push_back(material);
+  scene.meshes.push_back(mesh);
+  Instance instance;
+  if (mirrored) instance.world[2][2] = -1.0f;
+  scene.instances.push_back(instance);
+  return scene;
+}
+
+std::vector<Isa> supportedIsas() {
+  std::vector<Isa> isas;
+  for (Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
+    if (isaSupported(isa)) isas.push_back(isa);
+  return isas;
+}
+
+// Renders the coverage count and compares it, pixel by pixel, with the
+// reference fed the same scene through the double-precision projection.
+// Returns the reference image for further checks.
+ref::CoverageImage expectCoverageMatches(const Scene& scene, const std::vector<Isa>& isas) {
+  const Camera camera = pixelExactCamera();
+  const auto projected = ref::projectScene(scene, camera, kSize, kSize);
+  const ref::CoverageImage expected =
+      ref::rasterizeCoverage(ref::gridTriangles(projected), kSize, kSize);
+  RenderSettings settings;
+  settings.width = settings.height = kSize;
+  settings.debugView = DebugView::CoverageCount;
+  for (Isa isa : isas) {
+    SCOPED_TRACE(isaName(isa));
+    Renderer renderer({.threads = 2, .isa = isa});
+    Frame frame;
+    renderer.render(scene, camera, settings, frame);
+    EXPECT_EQ(frame.width, kSize);
+    EXPECT_EQ(frame.height, kSize);
+    if (frame.width != kSize || frame.height != kSize) continue;
+    int mismatches = 0;
+    std::ostringstream first;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const float got = frame.rgba[(std::size_t(y) * kSize + x) * 4];
+        if (got == float(expected.at(x, y))) continue;
+        if (++mismatches <= 8)
+          first << " (" << x << "," << y << "): engine " << got << " ref " << expected.at(x, y);
+      }
+    EXPECT_EQ(mismatches, 0) << "first mismatches:" << first.str();
+  }
+  return expected;
+}
+
+// The premise of this file: the reference projection lands exactly where the
+// test placed the vertices.
+TEST(RasterFillRule, OrthographicSetupIsPixelExact) {
+  const WindowTriangle t = {{{0.5, 64.0}, {200.25, 8.00390625}, {255.99609375, 255.5}}};
+  const auto projected =
+      ref::projectScene(sceneFromWindow({t}, true), pixelExactCamera(), kSize, kSize);
+  ASSERT_EQ(projected.size(), 1u);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(projected[0].v[i].window, t[i]);
+    EXPECT_EQ(projected[0].v[i].windowExact, t[i]);
+  }
+}
+
+// A rectangular grid over (and past) the whole viewport whose lines sit on
+// tile borders, block borders, pixel centres and in between, split along
+// random diagonals; inner vertices jittered by half pixels so the slanted
+// shared edges pass through pixel centres. Every pixel is covered once.
+TEST(RasterFillRule, GridOverViewportCoversEveryPixelOnce) {
+  const std::vector<double> lines = {-8,  0,     8,      13.5, 27.5,  40,    63.5,
+                                     64,  64.5,  100.25, 128,  136,   150.5, 191.5,
+                                     192, 200.5, 224,    248,  255.5, 256,   264};
+  std::mt19937 rng(2024);
+  std::uniform_int_distribution<int> jitter(-1, 1), coin(0, 1);
+  const int n = int(lines.size());
+  // Half-pixel jitter only where the neighbouring lines are >= 3 px away: the
+  // quads then stay convex (each corner moves < 0.71 px, less than half the
+  // 2.1 px from a corner to the opposite diagonal), so no triangle folds.
+  const auto jitterable = [&](int i) {
+    return i > 0 && i + 1 < n && lines[i] - lines[i - 1] >= 3 && lines[i + 1] - lines[i] >= 3;
+  };
+  std::vector<glm::dvec2> vertices;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const bool movable = jitterable(i) && jitterable(j);
+      const double dx = movable ? 0.5 * jitter(rng) : 0.0, dy = movable ? 0.5 * jitter(rng) : 0.0;
+      vertices.push_back({lines[i] + dx, lines[j] + dy});
+    }
+  std::vector<WindowTriangle> triangles;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const glm::dvec2 a = vertices[j * n + i], b = vertices[j * n + i + 1];
+      const glm::dvec2 c = vertices[(j + 1) * n + i], d = vertices[(j + 1) * n + i + 1];
+      // Alternate windings too: both are drawn (double-sided).
+      if (coin(rng)) {
+        triangles.push_back({a, b, d}), triangles.push_back({a, c, d});
+      } else {
+        triangles.push_back({a, b, c}), triangles.push_back({b, c, d});
+      }
+    }
+  const ref::CoverageImage expected =
+      expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
+  for (int count : expected.count) ASSERT_EQ(count, 1);  // the reference agrees with the premise
+}
+
+// Fans around a vertex on a pixel centre, on tile corners, on a block/tile
+// corner and on none of those; rim vertices on pixel centres and borders.
+TEST(RasterFillRule, FansShareEdgesWithoutGapsOrOverlaps) {
+  struct Fan {
+    glm::dvec2 centre;
+    double radius;
+  };
+  // Centres far enough apart that the discs do not overlap.
+  const std::vector<Fan> fans = {{{64.5, 64.5}, 40},
+                                 {{192, 64}, 40},
+                                 {{64, 192}, 40},
+                                 {{200, 192}, 40},
+                                 {{128.25, 128.75}, 20}};
+  std::vector<WindowTriangle> triangles;
+  const int spokes = 23;
+  for (const auto& [c, radius] : fans) {
+    std::vector<glm::dvec2> rim;
+    for (int k = 0; k < spokes; ++k) {
+      const double angle = 2.0 * M_PI * k / spokes;
+      // Rounded to half pixels: on pixel centres or pixel borders.
+      rim.push_back({c.x + std::round(2 * radius * std::cos(angle)) / 2,
+                     c.y + std::round(2 * radius * std::sin(angle)) / 2});
+    }
+    for (int k = 0; k < spokes; ++k) triangles.push_back({c, rim[k], rim[(k + 1) % spokes]});
+  }
+  const ref::CoverageImage expected =
+      expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
+  int covered = 0;
+  for (int count : expected.count) {
+    ASSERT_LE(count, 1);  // fans are disjoint and watertight
+    covered += count;
+  }
+  EXPECT_GT(covered, 20000);  // four discs of radius 40 px and one of 20: ~21360 px
+}
+
+// Random triangles, many overlapping, half on a half-pixel lattice (edges
+// through pixel centres) and half anywhere on the 1/256 grid; some reach
+// outside the viewport, some are tiny or degenerate.
+TEST(RasterFillRule, RandomTrianglesMatchReference) {
+  std::mt19937 rng(77);
+  std::uniform_int_distribution<int> halfPixel(-40 * 2, (kSize + 40) * 2);
+  std::uniform_int_distribution<int> subpixel(-40 * 256, (kSize + 40) * 256);
+  std::uniform_int_distribution<int> small(-6 * 256, 6 * 256);
+  std::vector<WindowTriangle> triangles;
+  for (int n = 0; n < 600; ++n) {
+    WindowTriangle t;
+    if (n % 3 == 0) {
+      for (glm::dvec2& p : t) p = {halfPixel(rng) / 2.0, halfPixel(rng) / 2.0};
+    } else if (n % 3 == 1) {
+      for (glm::dvec2& p : t) p = {subpixel(rng) / 256.0, subpixel(rng) / 256.0};
+    } else {  // small, around a random point
+      const glm::dvec2 at(subpixel(rng) / 256.0, subpixel(rng) / 256.0);
+      for (glm::dvec2& p : t) p = at + glm::dvec2(small(rng), small(rng)) / 256.0;
+    }
+    triangles.push_back(t);
+  }
+  expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
+}
+
+// Needles one grid unit wide that run along rows and columns of pixel centres
+// and across many tiles, at shallow and steep slopes.
+TEST(RasterFillRule, SliversMatchReference) {
+  const double unit = 1.0 / 256;
+  std::vector<WindowTriangle> triangles;
+  for (int k = 0; k < 12; ++k) {
+    const double row = 10.5 + 20 * k;
+    triangles.push_back({{{0.5, row}, {255.5, row + k * unit}, {255.5, row + (k + 1) * unit}}});
+    triangles.push_back({{{row, 0.5}, {row + unit, 250.5}, {row - k * unit, 255.5}}});
+    triangles.push_back({{{3.5 + k, 0.0}, {250.0 - k, 256.0}, {250.0 - k + unit, 256.0}}});
+    // Exactly horizontal and vertical slivers: top edge on a centre row, left
+    // edge on a centre column.
+    triangles.push_back({{{1.5, 5.5 + 20 * k}, {254.5, 5.5 + 20 * k}, {1.5, 5.5 + 20 * k + unit}}});
+    triangles.push_back({{{5.5 + 20 * k, 1.5}, {5.5 + 20 * k, 254.5}, {5.5 + 20 * k + unit, 1.5}}});
+  }
+  const ref::CoverageImage expected =
+      expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
+  int covered = 0;
+  for (int count : expected.count) covered += count;
+  EXPECT_GT(covered, 12 * 2 * 250);  // the horizontal/vertical slivers cover a full line each
+}
+
+// Single-sided materials: only counter-clockwise (as seen) triangles are drawn,
+// and a mirroring instance matrix swaps which winding that is.
+TEST(RasterFillRule, CullingFollowsWindingAndMirroring) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> coord(-10 * 2, (kSize + 10) * 2);
+  std::vector<WindowTriangle> triangles;
+  for (int n = 0; n < 200; ++n) {
+    WindowTriangle t;
+    for (glm::dvec2& p : t) p = {coord(rng) / 2.0, coord(rng) / 2.0};
+    triangles.push_back(t);
+  }
+  for (bool mirrored : {false, true}) {
+    SCOPED_TRACE(mirrored ? "mirrored" : "plain");
+    const Scene scene = sceneFromWindow(triangles, false, mirrored);
+    const auto projected = ref::projectScene(scene, pixelExactCamera(), kSize, kSize);
+    ASSERT_EQ(projected.size(), triangles.size());
+    EXPECT_EQ(projected[0].cull, mirrored ? ref::CullMode::Front : ref::CullMode::Back);
+    const ref::CoverageImage expected = expectCoverageMatches(scene, {detectBestIsa()});
+    // The reference keeps only one winding: the counts are those of a subset.
+    const ref::CoverageImage all = ref::rasterizeCoverage(
+        ref::gridTriangles(
+            ref::projectScene(sceneFromWindow(triangles, true), pixelExactCamera(), kSize, kSize)),
+        kSize, kSize);
+    long kept = 0, total = 0;
+    for (std::size_t i = 0; i < all.count.size(); ++i)
+      kept += expected.count[i], total += all.count[i];
+    EXPECT_GT(kept, total / 4);
+    EXPECT_LT(kept, total * 3 / 4);
+  }
+}
+
+}  // namespace
+}  // namespace quadra
