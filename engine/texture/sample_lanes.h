@@ -47,7 +47,7 @@ template <class L>
 typename L::F reduceCoordinate(typename L::F u, WrapMode mode) {
   using F = typename L::F;
   if (mode == WrapMode::Repeat) {
-    u = u - simd::floor(u);  // exact: u and simd::floor(u) share the exponent range
+    u = u - simd::floor(u);  // exact (Sterbenz): u and floor(u) are close; result in [0, 1]
   } else if (mode == WrapMode::MirroredRepeat) {
     u = u - F(2.0f) * simd::floor(u * F(0.5f));
   } else {
@@ -57,25 +57,24 @@ typename L::F reduceCoordinate(typename L::F u, WrapMode mode) {
 }
 
 // Integer-valued texel coordinate x → index in [0, n) per the wrap mode.
-// `inside` is cleared for lanes that read the border colour.
+// `inside` is cleared for lanes that read the border colour. x comes from a
+// coordinate reduced by reduceCoordinate, so x lies in [-1, n] (repeat) or
+// [-1, 2n] (mirrored repeat): one compare-and-shift wraps it, no division.
 template <class L>
 typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode, typename L::M& inside) {
   using F = typename L::F;
   switch (mode) {
     case WrapMode::Repeat: {
-      F r = x - n * simd::floor(x / n);
-      r = simd::select(r >= n, r - n, r);
-      return simd::select(r < F(0.0f), r + n, r);
+      x = simd::select(x < F(0.0f), x + n, x);
+      return simd::select(x >= n, x - n, x);
     }
     case WrapMode::MirroredRepeat: {
       const F period = n + n;
-      F r = x - period * simd::floor(x / period);
-      r = simd::select(r >= period, r - period, r);
-      r = simd::select(r < F(0.0f), r + period, r);
-      return simd::select(r >= n, period - F(1.0f) - r, r);
+      x = simd::select(x < F(0.0f), x + period, x);
+      x = simd::select(x >= period, x - period, x);
+      return simd::select(x >= n, period - F(1.0f) - x, x);
     }
-    case WrapMode::ClampToEdge:
-      return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
+    case WrapMode::ClampToEdge: return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
     case WrapMode::ClampToBorder:
       inside = inside & (x >= F(0.0f)) & (x <= n - F(1.0f));
       return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
@@ -87,6 +86,11 @@ typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode, typenam
 template <class L>
 void levelSizes(const TextureView& view, const typename L::I& level, typename L::F& width,
                 typename L::F& height) {
+  if (view.levelCount == 1) {
+    width = typename L::F(float(view.levels[0].width));
+    height = typename L::F(float(view.levels[0].height));
+    return;
+  }
   alignas(64) std::int32_t lv[L::kWidth];
   alignas(64) float w[L::kWidth], h[L::kWidth];
   level.store_aligned(lv);
