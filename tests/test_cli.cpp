@@ -1,0 +1,190 @@
+// The command-line contracts of DESIGN.md, exercised on the built binary:
+// the `quadra frame_ms` and `quadra sample_ns` lines, outputs, and one-line
+// errors with a non-zero exit and no output file left behind.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "resolve/image_io.h"
+
+namespace quadra {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+// One directory per test process: CTest runs the cases in parallel.
+fs::path testDir() {
+  const fs::path dir = fs::temp_directory_path() / ("quadra_cli_test_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+RunResult run(const std::string& arguments) {
+  const fs::path dir = testDir();
+  const std::string outFile = (dir / "stdout.txt").string(),
+                    errFile = (dir / "stderr.txt").string();
+  const std::string command = std::string(QUADRA_CLI_PATH) + " " + arguments + " >" + outFile +
+                              " 2>" + errFile + " </dev/null";
+  const int status = std::system(command.c_str());
+  RunResult r;
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream o(outFile), e(errFile);
+  std::stringstream os, es;
+  os << o.rdbuf();
+  es << e.rdbuf();
+  r.out = os.str();
+  r.err = es.str();
+  return r;
+}
+
+// key=value pairs of the line starting with `prefix`.
+std::map<std::string, std::string> keyValues(const std::string& text, const std::string& prefix) {
+  std::map<std::string, std::string> pairs;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) != 0) continue;
+    std::istringstream words(line.substr(prefix.size()));
+    for (std::string word; words >> word;) {
+      const std::size_t eq = word.find('=');
+      if (eq != std::string::npos) pairs[word.substr(0, eq)] = word.substr(eq + 1);
+    }
+  }
+  return pairs;
+}
+
+fs::path tempPath(const std::string& name) {
+  const fs::path dir = testDir();
+  fs::remove(dir / name);
+  return dir / name;
+}
+
+void expectOneLineError(const RunResult& r, const std::string& mentions) {
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
+  ASSERT_FALSE(r.err.empty());
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
+}
+
+TEST(Cli, RenderPrintsTheFrameLineAndWritesBothFormats) {
+  const fs::path exr = tempPath("cli.exr"), png = tempPath("cli.png");
+  const RunResult r =
+      run("render builtin:checker-plane --width 96 --height 54 --frames 3 --threads 2 "
+          "--filter trilinear --out " +
+          exr.string() + " --out " + png.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto line = keyValues(r.out, "quadra frame_ms ");
+  for (const char* key : {"median", "min", "max", "triangles", "width", "height", "threads"})
+    EXPECT_TRUE(line.count(key)) << key << " missing in: " << r.out;
+  EXPECT_EQ(line.at("width"), "96");
+  EXPECT_EQ(line.at("height"), "54");
+  EXPECT_EQ(line.at("threads"), "2");
+  EXPECT_EQ(line.at("triangles"), "2");
+  EXPECT_LE(std::stod(line.at("min")), std::stod(line.at("median")));
+  EXPECT_LE(std::stod(line.at("median")), std::stod(line.at("max")));
+  const Image fromExr = readImage(exr.string()), fromPng = readImage(png.string());
+  EXPECT_EQ(fromExr.width, 96);
+  EXPECT_EQ(fromPng.height, 54);
+}
+
+TEST(Cli, CameraOverridesChangeTheImage) {
+  const fs::path a = tempPath("cam_a.exr"), b = tempPath("cam_b.exr");
+  ASSERT_EQ(run("render builtin:checker-plane --width 64 --height 36 --out " + a.string()).exitCode,
+            0);
+  ASSERT_EQ(run("render builtin:checker-plane --width 64 --height 36 --eye 0,3,2 --target 0,0,-5 "
+                "--up 0,1,0 --fovy 40 --near 0.1 --far 500 --out " +
+                b.string())
+                .exitCode,
+            0);
+  EXPECT_NE(readImage(a.string()).rgba, readImage(b.string()).rgba);
+}
+
+TEST(Cli, BadOptionsAreOneLineErrorsAndWriteNothing) {
+  const fs::path out = tempPath("never.png");
+  expectOneLineError(run("render builtin:checker-plane --width 0 --out " + out.string()),
+                     "--width");
+  expectOneLineError(run("render builtin:checker-plane --filter sharpest --out " + out.string()),
+                     "--filter");
+  expectOneLineError(run("render builtin:checker-plane --isa mmx --out " + out.string()), "--isa");
+  expectOneLineError(run("render builtin:checker-plane --eye 1,2 --out " + out.string()), "--eye");
+  expectOneLineError(run("render builtin:checker-plane --out " + tempPath("x.bmp").string()),
+                     ".bmp");
+  expectOneLineError(run("render builtin:no-such-scene --out " + out.string()), "no-such-scene");
+  expectOneLineError(run("render /nonexistent/model.gltf --out " + out.string()),
+                     "/nonexistent/model.gltf");
+  expectOneLineError(run("render builtin:checker-plane --frobnicate 1"), "--frobnicate");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, UnwritableOutputFailsWithoutPartialFile) {
+  const RunResult r =
+      run("render builtin:checker-plane --width 32 --height 32 --out "
+          "/nonexistent-dir/frame.exr");
+  expectOneLineError(r, "/nonexistent-dir/frame.exr");
+}
+
+TEST(Cli, MalformedGltfIsAOneLineError) {
+  const fs::path bad = tempPath("bad.gltf");
+  std::ofstream(bad) << "{ \"asset\": {\"version\": \"2.0\"}, \"meshes\": [ {";
+  expectOneLineError(run("render " + bad.string() + " --width 32 --height 32"), bad.string());
+}
+
+TEST(Cli, SampleReadsLookupsAndWritesValuesInOrder) {
+  // A 2x1 texture: left texel linear 0, right texel linear 1 (an EXR, read as linear).
+  Frame texture;
+  texture.width = 2;
+  texture.height = 1;
+  texture.rgba = {0, 0, 0, 1, 1, 1, 1, 1};
+  texture.depth = {1, 1};
+  const fs::path tex = tempPath("tex.exr"), in = tempPath("lookups.csv"),
+                 out = tempPath("values.csv");
+  writeFrame(texture, tex.string());
+  // Texel centres sit at u = 0.25 and 0.75; halfway between them bilinear gives 0.5.
+  std::ofstream(in)
+      << "u,v,dudx,dvdx,dudy,dvdy\n0.25,0.5,0,0,0,0\n0.5,0.5,0,0,0,0\n0.75,0.5,0,0,0,0\n";
+  const RunResult r =
+      run("sample --texture " + tex.string() + " --filter bilinear --wrap clamp --in " +
+          in.string() + " --out " + out.string() + " --threads 1");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto line = keyValues(r.out, "quadra sample_ns ");
+  for (const char* key : {"per_lookup", "lookups", "threads", "isa"}) EXPECT_TRUE(line.count(key));
+  EXPECT_EQ(line.at("lookups"), "3");
+  std::ifstream values(out);
+  std::string header, row;
+  std::getline(values, header);
+  EXPECT_EQ(header, "r,g,b,a");
+  const double expected[3] = {0.0, 0.5, 1.0};
+  for (double e : expected) {
+    ASSERT_TRUE(std::getline(values, row));
+    EXPECT_NEAR(std::stod(row.substr(0, row.find(','))), e, 1e-6) << row;
+  }
+}
+
+TEST(Cli, SampleRejectsMalformedCsv) {
+  const fs::path tex = tempPath("tex2.exr"), in = tempPath("bad.csv"), out = tempPath("never.csv");
+  Frame texture;
+  texture.width = texture.height = 1;
+  texture.rgba = {1, 1, 1, 1};
+  texture.depth = {1};
+  writeFrame(texture, tex.string());
+  std::ofstream(in) << "u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,0,0,0\n";
+  const RunResult r = run("sample --texture " + tex.string() + " --filter bilinear --in " +
+                          in.string() + " --out " + out.string());
+  expectOneLineError(r, in.string() + ": line 2");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace quadra
