@@ -74,7 +74,8 @@ typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode, typenam
       x = simd::select(x >= period, x - period, x);
       return simd::select(x >= n, period - F(1.0f) - x, x);
     }
-    case WrapMode::ClampToEdge: return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
+    case WrapMode::ClampToEdge:
+      return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
     case WrapMode::ClampToBorder:
       inside = inside & (x >= F(0.0f)) & (x <= n - F(1.0f));
       return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
@@ -94,6 +95,16 @@ void levelSizes(const TextureView& view, const typename L::I& level, typename L:
   alignas(64) std::int32_t lv[L::kWidth];
   alignas(64) float w[L::kWidth], h[L::kWidth];
   level.store_aligned(lv);
+  // Usually every lane of a group sits on one level: broadcast its size rather
+  // than assemble lanes from scalar stores (a wide load of narrow stores
+  // cannot be store-forwarded and stalls).
+  bool uniform = true;
+  for (int k = 1; k < L::kWidth; ++k) uniform = uniform && lv[k] == lv[0];
+  if (uniform) {
+    width = typename L::F(float(view.levels[lv[0]].width));
+    height = typename L::F(float(view.levels[lv[0]].height));
+    return;
+  }
   for (int k = 0; k < L::kWidth; ++k) {
     w[k] = float(view.levels[lv[k]].width);
     h[k] = float(view.levels[lv[k]].height);
