@@ -38,7 +38,7 @@ void frameTime(benchmark::State& state, const std::string& source) {
     state.SkipWithError(e.what());
     return;
   }
-  const Camera camera = scene.cameras.empty() ? defaultCamera(scene) : scene.cameras.front();
+  const Camera camera = firstCameraOrDefault(scene);
   RendererConfig config;
   config.threads = int(state.range(0));
   Renderer renderer(config);

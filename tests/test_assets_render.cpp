@@ -37,7 +37,7 @@ TEST_P(AssetsRender, LoadsAndRendersSomething) {
   const std::string path = GetParam();
   Scene scene;
   ASSERT_NO_THROW(scene = loadGltf(path)) << path;
-  const Camera camera = scene.cameras.empty() ? defaultCamera(scene) : scene.cameras.front();
+  const Camera camera = firstCameraOrDefault(scene);
   RendererConfig config;
   config.threads = 2;
   Renderer renderer(config);

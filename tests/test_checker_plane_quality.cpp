@@ -10,6 +10,7 @@
 
 #include "api/renderer.h"
 #include "reference/reference_tracer.h"
+#include "render_helpers.h"
 #include "scene/builtin_scenes.h"
 
 namespace quadra {
@@ -23,16 +24,11 @@ constexpr int kHeight = 144;
 constexpr int kSamplesPerAxis = 32;
 
 Frame renderFiltered(const Scene& scene, const Camera& camera, Filter filter) {
-  RendererConfig config;
-  config.threads = 2;
-  Renderer renderer(config);
   RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.filter = filter;
-  Frame frame;
-  renderer.render(scene, camera, settings, frame);
-  return frame;
+  return renderOnce(scene, camera, settings);
 }
 
 // Over the colour channels of every pixel (sky included: both sides clear it).
@@ -50,7 +46,7 @@ double rmse(const Frame& frame, const Image& reference) {
 
 TEST(CheckerPlaneQuality, MipFiltersBeatBilinearAndNearest) {
   const Scene scene = makeBuiltinScene("checker-plane");
-  const Camera camera = scene.cameras.empty() ? defaultCamera(scene) : scene.cameras.front();
+  const Camera camera = firstCameraOrDefault(scene);
 
   const auto start = std::chrono::steady_clock::now();
   const Image reference =

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "api/renderer.h"
+#include "render_helpers.h"
 #include "resolve/image_io.h"
 #include "scene/builtin_scenes.h"
 
@@ -23,23 +24,13 @@ namespace {
 constexpr int kWidth = 320;
 constexpr int kHeight = 180;
 
-Camera firstCamera(const Scene& scene) {
-  return scene.cameras.empty() ? defaultCamera(scene) : scene.cameras.front();
-}
-
 Frame renderWith(const Scene& scene, int threads, std::optional<Isa> isa,
                  std::optional<Filter> filter = std::nullopt) {
-  RendererConfig config;
-  config.threads = threads;
-  config.isa = isa;
-  Renderer renderer(config);
   RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.filter = filter;
-  Frame frame;
-  renderer.render(scene, firstCamera(scene), settings, frame);
-  return frame;
+  return renderOnce(scene, firstCameraOrDefault(scene), settings, threads, isa);
 }
 
 // Bitwise equality (so -0 vs +0 or NaN payloads count as differences), with the
@@ -116,9 +107,9 @@ TEST(Determinism, RepeatedFramesFromOneRendererAreIdentical) {
   settings.width = kWidth;
   settings.height = kHeight;
   Frame first, again;
-  renderer.render(scene, firstCamera(scene), settings, first);
+  renderer.render(scene, firstCameraOrDefault(scene), settings, first);
   for (int run = 0; run < 3; ++run) {
-    renderer.render(scene, firstCamera(scene), settings, again);
+    renderer.render(scene, firstCameraOrDefault(scene), settings, again);
     expectSameFrame(again, first);
   }
 }

@@ -13,6 +13,7 @@
 #include "api/renderer.h"
 #include "reference/reference_raster.h"
 #include "reference/reference_tracer.h"
+#include "render_helpers.h"
 
 namespace quadra {
 namespace {
@@ -54,17 +55,11 @@ Camera perspectiveCamera(float znear, float zfar) {
 
 Frame render(const Scene& scene, const Camera& camera, DebugView view,
              FrameStats* stats = nullptr) {
-  RendererConfig config;
-  config.threads = 2;
-  Renderer renderer(config);
   RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.debugView = view;
-  Frame frame;
-  const FrameStats s = renderer.render(scene, camera, settings, frame);
-  if (stats) *stats = s;
-  return frame;
+  return renderOnce(scene, camera, settings, 2, std::nullopt, stats);
 }
 
 const float* pixel(const Frame& frame, int x, int y) {

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "api/renderer.h"
+#include "render_helpers.h"
 
 namespace quadra {
 namespace {
@@ -40,15 +41,11 @@ Counted renderTriangles(const std::vector<glm::vec3>& positions, bool doubleSide
   scene.materials.push_back(material);
   scene.meshes.push_back(mesh);
   scene.instances.push_back({0, glm::mat4(1.0f)});
-  RendererConfig config;
-  config.threads = 2;
-  Renderer renderer(config);
   RenderSettings settings;
   settings.width = settings.height = kSize;
   settings.debugView = DebugView::CoverageCount;
-  Frame frame;
   Counted c;
-  c.stats = renderer.render(scene, pixelCamera(), settings, frame);
+  const Frame frame = renderOnce(scene, pixelCamera(), settings, 2, std::nullopt, &c.stats);
   for (int i = 0; i < kSize * kSize; ++i) c.coverage += frame.rgba[std::size_t(i) * 4];
   return c;
 }

@@ -156,7 +156,7 @@ Scene loadScene(const RenderCommand& cmd) {
 }
 
 Camera chooseCamera(const Scene& scene, const RenderCommand& cmd) {
-  Camera camera = scene.cameras.empty() ? defaultCamera(scene) : scene.cameras.front();
+  Camera camera = firstCameraOrDefault(scene);
   if (cmd.eye || cmd.target || cmd.up) {
     const glm::vec3 position(camera.world[3]);
     const glm::vec3 forward = -glm::normalize(glm::vec3(camera.world[2]));

@@ -73,4 +73,8 @@ Camera defaultCamera(const Scene& scene) {
   return camera;
 }
 
+Camera firstCameraOrDefault(const Scene& scene) {
+  return scene.cameras.empty() ? defaultCamera(scene) : scene.cameras.front();
+}
+
 }  // namespace quadra

@@ -87,4 +87,7 @@ constexpr int kMaxViewportSize = 8192;
 // for scenes that have none.
 Camera defaultCamera(const Scene& scene);
 
+// The scene's first camera, or defaultCamera when it has none.
+Camera firstCameraOrDefault(const Scene& scene);
+
 }  // namespace quadra
