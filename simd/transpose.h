@@ -5,6 +5,9 @@
 #pragma once
 
 #include <emmintrin.h>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 namespace quadra::simd {
 
@@ -31,6 +34,28 @@ inline void transposeToChannels(const float* const texel[4], float* const out[4]
   _mm_store_ps(out[2], t2);
   _mm_store_ps(out[3], t3);
 }
+
+#if defined(__AVX__)
+// Two texels per lane for four lanes in one 8-wide transpose: left[k] and
+// right[k] are lane k's texels; out[c] receives channel c of the left texels
+// (4 floats) and out[4 + c] of the right ones. One shuffle per texel where two
+// 4-wide transposes take two. Only in files built with AVX (the per-ISA kernels).
+inline void transposeTexelPairs(const float* const left[4], const float* const right[4],
+                                float* const out[8]) {
+  __m256 t0 = _mm256_loadu2_m128(right[0], left[0]), t1 = _mm256_loadu2_m128(right[1], left[1]),
+         t2 = _mm256_loadu2_m128(right[2], left[2]), t3 = _mm256_loadu2_m128(right[3], left[3]);
+  const __m256 lo01 = _mm256_unpacklo_ps(t0, t1), hi01 = _mm256_unpackhi_ps(t0, t1);
+  const __m256 lo23 = _mm256_unpacklo_ps(t2, t3), hi23 = _mm256_unpackhi_ps(t2, t3);
+  const __m256 r = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(1, 0, 1, 0));
+  const __m256 g = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
+  const __m256 b = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
+  const __m256 a = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(3, 2, 3, 2));
+  _mm256_storeu2_m128(out[4], out[0], r);
+  _mm256_storeu2_m128(out[5], out[1], g);
+  _mm256_storeu2_m128(out[6], out[2], b);
+  _mm256_storeu2_m128(out[7], out[3], a);
+}
+#endif
 
 // Orders streaming stores before whatever the thread does next.
 inline void streamFence() {

@@ -163,12 +163,23 @@ void fetch2x2Scalar(const TextureView& view, const std::int32_t* lv, const std::
   } else {
     // Whole-texel loads, transposed four lanes at a time (a scalar load per
     // channel cost twice as much).
+#if defined(__AVX__)
+    // Corners 0/1 and 2/3 are the left/right texels of one row: transpose them in pairs.
+    for (int c = 0; c < 4; c += 2)
+      for (int k = 0; k < W; k += 4) {
+        float* const channels[8] = {&texel[c][0][k],     &texel[c][1][k],     &texel[c][2][k],
+                                    &texel[c][3][k],     &texel[c + 1][0][k], &texel[c + 1][1][k],
+                                    &texel[c + 1][2][k], &texel[c + 1][3][k]};
+        simd::transposeTexelPairs(&corner[c][k], &corner[c + 1][k], channels);
+      }
+#else
     for (int c = 0; c < 4; ++c)
       for (int k = 0; k < W; k += 4) {
         float* const channels[4] = {&texel[c][0][k], &texel[c][1][k], &texel[c][2][k],
                                     &texel[c][3][k]};
         simd::transposeToChannels(&corner[c][k], channels);
       }
+#endif
   }
   using F = typename L::F;
   for (int c = 0; c < 4; ++c)
