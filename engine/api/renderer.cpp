@@ -32,9 +32,18 @@ namespace {
 // any number of threads.
 constexpr std::size_t kChunkTriangles = 8192;
 
-Draw makeDraw(const Scene& scene, const Instance& instance, const glm::mat4& view,
-              const glm::mat4& projection, const RenderSettings& settings) {
+// What every draw of a frame shares.
+struct FrameContext {
+  const Scene& scene;
+  const RenderSettings& settings;
+  const Executor& executor;  // builds mip chains on first use
+  glm::mat4 view, projection;
+};
+
+Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   static const Material kDefaultMaterial;
+  const Scene& scene = frame.scene;
+  const RenderSettings& settings = frame.settings;
   const Mesh& mesh = scene.meshes.at(std::size_t(instance.mesh));
   const Material& material =
       mesh.material >= 0 ? scene.materials.at(std::size_t(mesh.material)) : kDefaultMaterial;
@@ -42,8 +51,8 @@ Draw makeDraw(const Scene& scene, const Instance& instance, const glm::mat4& vie
   DrawGeometry& g = draw.geometry;
   ShadeState& s = draw.shade;
   g.mesh = &mesh;
-  g.modelView = view * instance.world;
-  g.projection = projection;
+  g.modelView = frame.view * instance.world;
+  g.projection = frame.projection;
   g.cullBackFaces = !material.doubleSided;
   g.frontIsClockwise = glm::determinant(glm::mat3(instance.world)) < 0.0f;
   g.texcoordSet = std::clamp(material.baseColorTexCoord, 0, 1);
@@ -54,7 +63,7 @@ Draw makeDraw(const Scene& scene, const Instance& instance, const glm::mat4& vie
   s.textured = material.baseColorTexture >= 0 && !mesh.texcoords[g.texcoordSet].empty();
   if (s.textured)
     s.texture = makeTextureView(*scene.textures.at(std::size_t(material.baseColorTexture)),
-                                settings.filter, settings.maxAniso);
+                                settings.filter, settings.maxAniso, &frame.executor);
   s.vertexColor = !mesh.colors.empty();
   s.lit = settings.shading == Shading::Lit;
   if (s.alphaMode == AlphaMode::Blend) {
@@ -97,13 +106,12 @@ float drawDistance(const Draw& draw) {
 }
 
 std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
-                                const RenderSettings& settings) {
-  const glm::mat4 view = viewMatrix(camera);
-  const glm::mat4 projection =
-      projectionMatrix(camera, double(settings.width) / double(settings.height));
+                                const RenderSettings& settings, const Executor& executor) {
+  const FrameContext frame{scene, settings, executor, viewMatrix(camera),
+                           projectionMatrix(camera, double(settings.width) / settings.height)};
   std::vector<Draw> opaque, blended;
   for (const Instance& instance : scene.instances) {
-    Draw draw = makeDraw(scene, instance, view, projection, settings);
+    Draw draw = makeDraw(frame, instance);
     if (draw.geometry.mesh->indices.empty()) continue;
     (draw.shade.blend == BlendMode::Over ? blended : opaque).push_back(std::move(draw));
   }
@@ -148,7 +156,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                             const RenderSettings& settings, Frame& out) {
   checkSettings(settings);
   const Executor& executor = impl_->executor;
-  const std::vector<Draw> draws = buildDrawList(scene, camera, settings);
+  const std::vector<Draw> draws = buildDrawList(scene, camera, settings, executor);
 
   // Vertex stage.
   const Viewport viewport{settings.width, settings.height};

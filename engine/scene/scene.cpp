@@ -15,8 +15,8 @@ Texture::Texture(std::shared_ptr<const Image> image, SamplerState sampler)
 // Out of line: MipChain is only forward-declared in the header.
 Texture::~Texture() = default;
 
-const MipChain& Texture::mips() const {
-  std::call_once(mipsOnce_, [this] { mips_ = std::make_unique<MipChain>(*image_, nullptr); });
+const MipChain& Texture::mips(const Executor* executor) const {
+  std::call_once(mipsOnce_, [&] { mips_ = std::make_unique<MipChain>(*image_, executor); });
   return *mips_;
 }
 

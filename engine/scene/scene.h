@@ -19,6 +19,7 @@
 
 namespace quadra {
 
+class Executor;
 class MipChain;
 
 // A texture as the scene holds it: its level-0 image in linear float and its
@@ -31,8 +32,9 @@ class Texture {
 
   const Image& image() const { return *image_; }
   const SamplerState& sampler() const { return sampler_; }
-  // Thread-safe; builds the chain on the first call.
-  const MipChain& mips() const;
+  // Thread-safe; the first call builds the chain, in parallel on `executor`
+  // when one is given.
+  const MipChain& mips(const Executor* executor = nullptr) const;
 
  private:
   std::shared_ptr<const Image> image_;
@@ -72,11 +74,11 @@ struct Instance {
 struct Camera {
   enum class Type : std::uint8_t { Perspective, Orthographic };
   Type type = Type::Perspective;
-  float yfov = 0.8f;    // radians, perspective only
-  float xmag = 1.0f;    // orthographic half-extents
+  float yfov = 0.8f;  // radians, perspective only
+  float xmag = 1.0f;  // orthographic half-extents
   float ymag = 1.0f;
   float znear = 0.1f;
-  float zfar = 0.0f;    // 0: infinite (perspective only)
+  float zfar = 0.0f;      // 0: infinite (perspective only)
   glm::mat4 world{1.0f};  // camera-to-world; the camera looks down its -Z
 };
 

@@ -8,7 +8,8 @@
 
 namespace quadra {
 
-TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter, int maxAniso) {
+TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter, int maxAniso,
+                            const Executor* executor) {
   TextureView view;
   const SamplerState& sampler = texture.sampler();
   view.wrapU = sampler.wrapU;
@@ -19,7 +20,7 @@ TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
   view.maxAniso = maxAniso;
   if (needsMips(view.minFilter)) {
-    const MipChain& mips = texture.mips();
+    const MipChain& mips = texture.mips(executor);
     view.levelCount = std::min(mips.levelCount(), TextureView::kMaxLevels);
     for (int i = 0; i < view.levelCount; ++i) {
       const Image& level = mips.level(i);

@@ -27,7 +27,9 @@ struct LookupBatch {
 // The view a kernel reads for a texture: its sampler's wrap modes and filter,
 // or `filter` for both minification and magnification when given. Builds the
 // texture's mip chain on first use when the filter needs one.
-TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter, int maxAniso);
+// executor (optional) builds the mip chain in parallel.
+TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter, int maxAniso,
+                            const Executor* executor = nullptr);
 
 class TextureSampler {
  public:
