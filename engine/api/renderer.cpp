@@ -21,8 +21,8 @@ static_assert(kMaxViewportSize == kMaxViewport, "one limit, stated in two header
 
 struct Renderer::Impl {
   Executor executor;
-  const TileKernels* kernels;
-  explicit Impl(int threads, Isa isa) : executor(threads), kernels(&tileKernels(isa)) {}
+  TileKernelSelection kernels;
+  explicit Impl(int threads, Isa isa) : executor(threads), kernels(selectTileKernels(isa)) {}
 };
 
 namespace {
@@ -146,7 +146,7 @@ Renderer::Renderer(const RendererConfig& config) {
 Renderer::~Renderer() = default;
 
 Isa Renderer::isa() const {
-  return impl_->kernels->isa;
+  return impl_->kernels.wide->isa;
 }
 int Renderer::threadCount() const {
   return impl_->executor.threadCount();
@@ -191,7 +191,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   out.height = settings.height;
   out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
   out.depth.resize(std::size_t(out.width) * std::size_t(out.height));
-  renderTiles(grid, draws, chunks, *impl_->kernels, settings.clearColor, executor, out);
+  renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, executor, out);
 
   SetupCounters total;
   for (const FrontEndChunk& chunk : chunks) total.add(chunk.setup.counters);

@@ -19,7 +19,7 @@ void clearTile(TileBuffers& tile, const glm::vec4& clearColor) {
 }
 
 void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& draws,
-                const std::vector<FrontEndChunk>& chunks, const TileKernels& kernels,
+                const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
                 const glm::vec4& clearColor, TileBuffers& tile, Frame& frame) {
   tile.originX = (tileIndex % grid.tilesX) * kTileSize;
   tile.originY = (tileIndex / grid.tilesX) * kTileSize;
@@ -31,7 +31,8 @@ void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& dr
     const std::uint32_t end = chunk.bins.tileStart[tileIndex + 1];
     for (std::uint32_t i = begin; i < end; ++i) {
       const TriangleRecord& t = chunk.setup.triangles[chunk.bins.triangleIndex[i]];
-      kernels.rasterize(t, &chunk.setup.planes[t.firstPlane], draws[t.draw].shade, tile);
+      kernels.forWidth(t.maxX - t.minX + 1)
+          .rasterize(t, &chunk.setup.planes[t.firstPlane], draws[t.draw].shade, tile);
     }
   }
   resolveTile(tile, frame);
@@ -40,7 +41,7 @@ void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& dr
 }  // namespace
 
 void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
-                 const std::vector<FrontEndChunk>& chunks, const TileKernels& kernels,
+                 const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
                  const glm::vec4& clearColor, const Executor& executor, Frame& frame) {
   executor.parallelFor(std::size_t(grid.tileCount()), 1, [&](std::size_t begin, std::size_t end) {
     auto tile = std::make_unique<TileBuffers>();
