@@ -66,33 +66,50 @@ TilePlane rebase(const Plane& p, const TriangleRecord& t, const TileBuffers& til
   return {F(p.dx), F(p.dy), F(float(c))};
 }
 
-// Coverage of an 8x8 block at tile-local (bx, by): bit (row*8 + column).
-// Exact: integer edge functions (see setup/fixed_point.h for the range).
-std::uint64_t blockCoverage(const TriangleRecord& t, int px, int py, std::uint64_t validMask) {
-  std::int64_t corner[3], stepX[3], stepY[3];
+// A triangle's edge functions prepared for 8x8 blocks: per edge, the offsets
+// of the eight columns of a row, and the extremes over a block, so the
+// per-block work is additions only (AVX2 has no 64-bit multiply).
+struct BlockEdges {
+  std::int64_t column[3][kBlockSize];
+  std::int64_t rowStep[3];
+  std::int64_t lowOffset[3], highOffset[3];  // min / max of E - E(corner) over the block
+
+  explicit BlockEdges(const TriangleRecord& t) {
+    const std::int64_t span = kBlockSize - 1;
+    for (int e = 0; e < 3; ++e) {
+      const EdgeFunction& f = t.edges[e];
+      for (int c = 0; c < kBlockSize; ++c) column[e][c] = f.a * c;
+      rowStep[e] = f.b;
+      lowOffset[e] = std::min<std::int64_t>(0, f.a * span) + std::min<std::int64_t>(0, f.b * span);
+      highOffset[e] = std::max<std::int64_t>(0, f.a * span) + std::max<std::int64_t>(0, f.b * span);
+    }
+  }
+};
+
+// Coverage of the 8x8 block whose top-left pixel is (px, py) in the window:
+// bit (row*8 + column), limited to validMask, whose rows lie in
+// [rowBegin, rowEnd). Exact: integer edge functions (setup/fixed_point.h).
+std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, int px, int py,
+                            std::uint64_t validMask, int rowBegin, int rowEnd) {
+  std::int64_t corner[3];
   bool full = true;
   for (int e = 0; e < 3; ++e) {
-    const EdgeFunction& f = t.edges[e];
-    corner[e] = f.at(px, py);
-    stepX[e] = f.a;
-    stepY[e] = f.b;
-    const std::int64_t span = kBlockSize - 1;
-    const std::int64_t lo =
-        corner[e] + std::min<std::int64_t>(0, f.a * span) + std::min<std::int64_t>(0, f.b * span);
-    const std::int64_t hi =
-        corner[e] + std::max<std::int64_t>(0, f.a * span) + std::max<std::int64_t>(0, f.b * span);
-    if (hi <= 0) return 0;
-    full = full && lo > 0;
+    corner[e] = t.edges[e].at(px, py);
+    if (corner[e] + edges.highOffset[e] <= 0) return 0;
+    full = full && corner[e] + edges.lowOffset[e] > 0;
   }
   if (full) return validMask;
   std::uint64_t mask = 0;
-  for (int row = 0; row < kBlockSize; ++row) {
-    for (int column = 0; column < kBlockSize; ++column) {
-      bool inside = true;
-      for (int e = 0; e < 3; ++e)
-        inside = inside && corner[e] + stepX[e] * column + stepY[e] * row > 0;
-      mask |= std::uint64_t(inside) << (row * kBlockSize + column);
+  for (int row = rowBegin; row < rowEnd; ++row) {
+    std::int64_t start[3];
+    for (int e = 0; e < 3; ++e) start[e] = corner[e] + edges.rowStep[e] * row;
+    std::uint64_t bits = 0;
+    for (int c = 0; c < kBlockSize; ++c) {
+      const bool inside = (start[0] + edges.column[0][c] > 0) &
+                          (start[1] + edges.column[1][c] > 0) & (start[2] + edges.column[2][c] > 0);
+      bits |= std::uint64_t(inside) << c;
     }
+    mask |= bits << (row * kBlockSize);
   }
   return mask & validMask;
 }
@@ -214,13 +231,16 @@ void rasterizeWith(const TriangleRecord& t, const Plane* planes, const ShadeStat
   if (xBegin >= xEnd || yBegin >= yEnd) return;
 
   const ShaderT shader(shade, t, planes, tile);
+  const BlockEdges edges(t);
   static const LaneOffsets lane;  // const after construction; per ISA namespace
   constexpr std::uint32_t kRowBits = (1u << kGroupWidth) - 1;
 
   for (int by = yBegin & ~(kBlockSize - 1); by < yEnd; by += kBlockSize) {
     for (int bx = xBegin & ~(kBlockSize - 1); bx < xEnd; bx += kBlockSize) {
       const std::uint64_t valid = blockValidMask(bx, by, xBegin, xEnd, yBegin, yEnd);
-      const std::uint64_t coverage = blockCoverage(t, tile.originX + bx, tile.originY + by, valid);
+      const std::uint64_t coverage =
+          blockCoverage(t, edges, tile.originX + bx, tile.originY + by, valid,
+                        std::max(yBegin - by, 0), std::min(yEnd - by, kBlockSize));
       if (coverage == 0) continue;
       for (int gy = 0; gy < kBlockSize; gy += 2) {
         for (int gx = 0; gx < kBlockSize; gx += kGroupWidth) {
