@@ -65,12 +65,12 @@ EdgeFunction makeEdge(const SetupVertex& p, const SetupVertex& q) {
 // stores it relative to the centre of the record's first bbox pixel.
 struct PlaneSolver {
   double x1, y1, x2, y2, invDet, originDx, originDy;
-  PlaneSolver(const SetupVertex* v, double det, int originX, int originY) {
-    const double x0 = double(v[0].x) / kSubpixelScale, y0 = double(v[0].y) / kSubpixelScale;
-    x1 = double(v[1].x) / kSubpixelScale - x0;
-    y1 = double(v[1].y) / kSubpixelScale - y0;
-    x2 = double(v[2].x) / kSubpixelScale - x0;
-    y2 = double(v[2].y) / kSubpixelScale - y0;
+  PlaneSolver(const SetupVertex* const v[3], double det, int originX, int originY) {
+    const double x0 = double(v[0]->x) / kSubpixelScale, y0 = double(v[0]->y) / kSubpixelScale;
+    x1 = double(v[1]->x) / kSubpixelScale - x0;
+    y1 = double(v[1]->y) / kSubpixelScale - y0;
+    x2 = double(v[2]->x) / kSubpixelScale - x0;
+    y2 = double(v[2]->y) / kSubpixelScale - y0;
     invDet = 1.0 / det;
     originDx = originX + 0.5 - x0;
     originDy = originY + 0.5 - y0;
@@ -122,19 +122,19 @@ void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVer
     ++n.outside;  // covers no pixel centre inside the viewport
     return;
   }
-  const SetupVertex v[3] = {v0, *v1, *v2};
-  t.edges[0] = makeEdge(v[1], v[2]);
-  t.edges[1] = makeEdge(v[2], v[0]);
-  t.edges[2] = makeEdge(v[0], v[1]);
+  const SetupVertex* const v[3] = {&v0, v1, v2};
+  t.edges[0] = makeEdge(*v[1], *v[2]);
+  t.edges[1] = makeEdge(*v[2], *v[0]);
+  t.edges[2] = makeEdge(*v[0], *v[1]);
   t.draw = ctx.drawIndex;
   t.firstPlane = std::uint32_t(ctx.out.planes.size());
 
   const double det = double(std::llabs(area)) / double(kSubpixelScale * kSubpixelScale);
   const PlaneSolver solver(v, det, t.minX, t.minY);
-  ctx.out.planes.push_back(solver.solve(v[0].z, v[1].z, v[2].z));
-  ctx.out.planes.push_back(solver.solve(v[0].invW, v[1].invW, v[2].invW));
+  ctx.out.planes.push_back(solver.solve(v[0]->z, v[1]->z, v[2]->z));
+  ctx.out.planes.push_back(solver.solve(v[0]->invW, v[1]->invW, v[2]->invW));
   for (int k = 0; k < ctx.attributeCount; ++k)
-    ctx.out.planes.push_back(solver.solve(v[0].attr[k], v[1].attr[k], v[2].attr[k]));
+    ctx.out.planes.push_back(solver.solve(v[0]->attr[k], v[1]->attr[k], v[2]->attr[k]));
   ctx.out.triangles.push_back(t);
   ++n.drawn;
 }
