@@ -18,6 +18,11 @@
 
 #include <xsimd/xsimd.hpp>
 
+// For the small lane helpers the kernels call per lane group: GCC otherwise
+// leaves some out of line, and passing lanes through memory to a call sits on
+// the kernels' critical path.
+#define QUADRA_LANE_INLINE inline __attribute__((always_inline))
+
 namespace quadra::simd {
 
 // ---------------------------------------------------------------- scalar path
@@ -296,7 +301,7 @@ inline typename L::M maskFromBits(std::uint32_t laneBits) {
 // Only exactly rounded operations, so every path returns the same bits.
 // Zero, negative and NaN inputs return -126 (the log2 of the smallest normal).
 template <class L>
-inline typename L::F log2(const typename L::F& x) {
+QUADRA_LANE_INLINE typename L::F log2(const typename L::F& x) {
   using F = typename L::F;
   using I = typename L::I;
   const F safe = select(x > F(1.17549435e-38f), x, F(1.17549435e-38f));  // NaN → min normal

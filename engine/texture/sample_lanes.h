@@ -44,7 +44,7 @@ constexpr bool kUseHardwareGather = QUADRA_SAMPLER_GATHER&& L::kWidth >= 8;
 // Brings u into a small range where the wrap mode gives the same answer, and
 // replaces NaN/Inf by 0 so no lane ever forms an out-of-range index.
 template <class L>
-typename L::F reduceCoordinate(typename L::F u, WrapMode mode) {
+QUADRA_LANE_INLINE typename L::F reduceCoordinate(typename L::F u, WrapMode mode) {
   using F = typename L::F;
   if (mode == WrapMode::Repeat) {
     u = u - simd::floor(u);  // exact (Sterbenz): u and floor(u) are close; result in [0, 1]
@@ -61,7 +61,8 @@ typename L::F reduceCoordinate(typename L::F u, WrapMode mode) {
 // coordinate reduced by reduceCoordinate, so x lies in [-1, n] (repeat) or
 // [-1, 2n] (mirrored repeat): one compare-and-shift wraps it, no division.
 template <class L>
-typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode, typename L::M& inside) {
+QUADRA_LANE_INLINE typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode,
+                                           typename L::M& inside) {
   using F = typename L::F;
   switch (mode) {
     case WrapMode::Repeat: {
@@ -85,8 +86,8 @@ typename L::F wrapTexel(typename L::F x, typename L::F n, WrapMode mode, typenam
 
 // Per-lane level sizes, looked up from the view (lanes may sit on different levels).
 template <class L>
-void levelSizes(const TextureView& view, const typename L::I& level, typename L::F& width,
-                typename L::F& height) {
+QUADRA_LANE_INLINE void levelSizes(const TextureView& view, const typename L::I& level,
+                                   typename L::F& width, typename L::F& height) {
   if (view.levelCount == 1) {
     width = typename L::F(float(view.levels[0].width));
     height = typename L::F(float(view.levels[0].height));
@@ -141,9 +142,10 @@ Rgba<L> fetch(const TextureView& view, const typename L::I& level, const typenam
 // loads, then the values are read back as lanes (hardware gathers are slow on
 // AMD Zen and microcode-mitigated on many Intel parts).
 template <class L>
-void fetch2x2Scalar(const TextureView& view, const std::int32_t* lv, const std::int32_t* xs0,
-                    const std::int32_t* xs1, const std::int32_t* ys0, const std::int32_t* ys1,
-                    Rgba<L> out[4]) {
+QUADRA_LANE_INLINE void fetch2x2Scalar(const TextureView& view, const std::int32_t* lv,
+                                       const std::int32_t* xs0, const std::int32_t* xs1,
+                                       const std::int32_t* ys0, const std::int32_t* ys1,
+                                       Rgba<L> out[4]) {
   constexpr int W = L::kWidth;
   alignas(64) float texel[4][4][W];  // [corner][channel][lane]
   const float* corner[4][W];
@@ -189,9 +191,9 @@ void fetch2x2Scalar(const TextureView& view, const std::int32_t* lv, const std::
 
 // The 2x2 texels of a bilinear lookup: corners (x0,y0), (x1,y0), (x0,y1), (x1,y1).
 template <class L>
-void fetch2x2(const TextureView& view, const typename L::I& level, const typename L::F& x0,
-              const typename L::F& x1, const typename L::F& y0, const typename L::F& y1,
-              Rgba<L> out[4]) {
+QUADRA_LANE_INLINE void fetch2x2(const TextureView& view, const typename L::I& level,
+                                 const typename L::F& x0, const typename L::F& x1,
+                                 const typename L::F& y0, const typename L::F& y1, Rgba<L> out[4]) {
   constexpr int W = L::kWidth;
   using I = typename L::I;
   using F = typename L::F;
@@ -225,7 +227,8 @@ void fetch2x2(const TextureView& view, const typename L::I& level, const typenam
 }
 
 template <class L>
-Rgba<L> withBorder(const TextureView& view, const Rgba<L>& c, const typename L::M& inside) {
+QUADRA_LANE_INLINE Rgba<L> withBorder(const TextureView& view, const Rgba<L>& c,
+                                      const typename L::M& inside) {
   using F = typename L::F;
   return {
       simd::select(inside, c.r, F(view.border[0])), simd::select(inside, c.g, F(view.border[1])),
@@ -233,7 +236,7 @@ Rgba<L> withBorder(const TextureView& view, const Rgba<L>& c, const typename L::
 }
 
 template <class L>
-Rgba<L> lerp(const Rgba<L>& p, const Rgba<L>& q, const typename L::F& t) {
+QUADRA_LANE_INLINE Rgba<L> lerp(const Rgba<L>& p, const Rgba<L>& q, const typename L::F& t) {
   return {p.r + (q.r - p.r) * t, p.g + (q.g - p.g) * t, p.b + (q.b - p.b) * t,
           p.a + (q.a - p.a) * t};
 }
@@ -258,8 +261,8 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
 
 // Bilinear reconstruction on the given level(s).
 template <class L>
-Rgba<L> sampleBilinear(const TextureView& view, typename L::F u, typename L::F v,
-                       const typename L::I& level) {
+QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F u, typename L::F v,
+                                          const typename L::I& level) {
   using namespace sampling;
   using F = typename L::F;
   using M = typename L::M;
@@ -290,7 +293,7 @@ Rgba<L> sampleBilinear(const TextureView& view, typename L::F u, typename L::F v
 
 // Footprint size in level-0 texels: the LOD λ of the isotropic filters.
 template <class L>
-typename L::F isotropicLod(const TextureView& view, const UvDerivatives<L>& d) {
+QUADRA_LANE_INLINE typename L::F isotropicLod(const TextureView& view, const UvDerivatives<L>& d) {
   using F = typename L::F;
   const F w = F(float(view.levels[0].width)), h = F(float(view.levels[0].height));
   const F xu = d.dudx * w, xv = d.dvdx * h, yu = d.dudy * w, yv = d.dvdy * h;
@@ -300,8 +303,9 @@ typename L::F isotropicLod(const TextureView& view, const UvDerivatives<L>& d) {
 
 // Trilinear (or nearest-mip) at LOD λ; λ <= 0 is magnification.
 template <class L>
-Rgba<L> sampleMipmapped(const TextureView& view, const typename L::F& u, const typename L::F& v,
-                        typename L::F lod, bool linearBetweenLevels) {
+QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typename L::F& u,
+                                           const typename L::F& v, typename L::F lod,
+                                           bool linearBetweenLevels) {
   using F = typename L::F;
   using I = typename L::I;
   const F lastLevel = F(float(view.levelCount - 1));
