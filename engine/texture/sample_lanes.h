@@ -14,9 +14,6 @@
 #include "simd/lanes.h"
 #include "simd/transpose.h"
 
-#ifndef QUADRA_SAMPLER_GATHER
-#define QUADRA_SAMPLER_GATHER 0
-#endif
 #include "texture/texture_view.h"
 
 namespace quadra {
@@ -34,12 +31,8 @@ struct UvDerivatives {
 
 namespace sampling {
 
-// Hardware gathers on/off per lane type (measured per ISA; see README).
 template <class L>
 constexpr bool kIsScalarLanes = std::is_same_v<L, simd::Lanes<simd::ScalarArch>>;
-
-template <class L>
-constexpr bool kUseHardwareGather = QUADRA_SAMPLER_GATHER&& L::kWidth >= 8;
 
 // Brings u into a small range where the wrap mode gives the same answer, and
 // replaces NaN/Inf by 0 so no lane ever forms an out-of-range index.
@@ -86,12 +79,13 @@ QUADRA_LANE_INLINE typename L::F wrapTexel(typename L::F x, typename L::F n, Wra
 
 // Per-lane level sizes, looked up from the view (lanes may sit on different levels).
 template <class L>
-QUADRA_LANE_INLINE void levelSizes(const TextureView& view, const typename L::I& level,
-                                   typename L::F& width, typename L::F& height) {
+// Returns the level when all lanes share one, else -1.
+QUADRA_LANE_INLINE int levelSizes(const TextureView& view, const typename L::I& level,
+                                  typename L::F& width, typename L::F& height) {
   if (view.levelCount == 1) {
     width = typename L::F(float(view.levels[0].width));
     height = typename L::F(float(view.levels[0].height));
-    return;
+    return 0;
   }
   alignas(64) std::int32_t lv[L::kWidth];
   alignas(64) float w[L::kWidth], h[L::kWidth];
@@ -104,7 +98,7 @@ QUADRA_LANE_INLINE void levelSizes(const TextureView& view, const typename L::I&
   if (uniform) {
     width = typename L::F(float(view.levels[lv[0]].width));
     height = typename L::F(float(view.levels[lv[0]].height));
-    return;
+    return lv[0];
   }
   for (int k = 0; k < L::kWidth; ++k) {
     w[k] = float(view.levels[lv[k]].width);
@@ -112,10 +106,10 @@ QUADRA_LANE_INLINE void levelSizes(const TextureView& view, const typename L::I&
   }
   width = L::F::load_aligned(w);
   height = L::F::load_aligned(h);
+  return -1;
 }
 
-// Gather-free texel fetch: each lane loads its RGBA texel with scalar loads,
-// then the values are read back as lanes (hardware gathers are slow on Zen).
+// One texel per lane (nearest filtering), loaded channel by channel.
 template <class L>
 Rgba<L> fetch(const TextureView& view, const typename L::I& level, const typename L::F& x,
               const typename L::F& y) {
@@ -137,20 +131,21 @@ Rgba<L> fetch(const TextureView& view, const typename L::I& level, const typenam
 }
 
 // The 2x2 texels of a bilinear lookup in one pass over the lanes: corners
-// (x0,y0), (x1,y0), (x0,y1), (x1,y1).
-// Texel fetch, gather-free: each lane loads its RGBA texels with scalar
-// loads, then the values are read back as lanes (hardware gathers are slow on
-// AMD Zen and microcode-mitigated on many Intel parts).
+// (x0,y0), (x1,y0), (x0,y1), (x1,y1). Gather-free: each lane loads its RGBA
+// texels whole and lanes are transposed into channels. Hardware gathers
+// measured slower here (checker plane trilinear 15.0 vs 13.0 ms), and they are
+// slow on AMD Zen and microcode-mitigated on many Intel parts.
+// uniformLevel >= 0: every lane reads that level (no per-lane level lookup).
 template <class L>
-QUADRA_LANE_INLINE void fetch2x2Scalar(const TextureView& view, const std::int32_t* lv,
-                                       const std::int32_t* xs0, const std::int32_t* xs1,
-                                       const std::int32_t* ys0, const std::int32_t* ys1,
-                                       Rgba<L> out[4]) {
+QUADRA_LANE_INLINE void fetch2x2Scalar(const TextureView& view, int uniformLevel,
+                                       const std::int32_t* lv, const std::int32_t* xs0,
+                                       const std::int32_t* xs1, const std::int32_t* ys0,
+                                       const std::int32_t* ys1, Rgba<L> out[4]) {
   constexpr int W = L::kWidth;
   alignas(64) float texel[4][4][W];  // [corner][channel][lane]
   const float* corner[4][W];
   for (int k = 0; k < W; ++k) {
-    const TextureLevel& lev = view.levels[lv[k]];
+    const TextureLevel& lev = view.levels[uniformLevel >= 0 ? uniformLevel : lv[k]];
     const std::size_t row0 = std::size_t(ys0[k]) * std::size_t(lev.width);
     const std::size_t row1 = std::size_t(ys1[k]) * std::size_t(lev.width);
     corner[0][k] = lev.texels + (row0 + xs0[k]) * 4;
@@ -192,38 +187,16 @@ QUADRA_LANE_INLINE void fetch2x2Scalar(const TextureView& view, const std::int32
 // The 2x2 texels of a bilinear lookup: corners (x0,y0), (x1,y0), (x0,y1), (x1,y1).
 template <class L>
 QUADRA_LANE_INLINE void fetch2x2(const TextureView& view, const typename L::I& level,
-                                 const typename L::F& x0, const typename L::F& x1,
+                                 int uniformLevel, const typename L::F& x0, const typename L::F& x1,
                                  const typename L::F& y0, const typename L::F& y1, Rgba<L> out[4]) {
   constexpr int W = L::kWidth;
-  using I = typename L::I;
-  using F = typename L::F;
-  alignas(64) std::int32_t lv[W];
-  level.store_aligned(lv);
-  if constexpr (kUseHardwareGather<L>) {
-    if (view.gatherable) {
-      alignas(64) std::int32_t base[W], width[W];
-      for (int k = 0; k < W; ++k) {
-        base[k] = view.levelOffset[lv[k]];
-        width[k] = view.levels[lv[k]].width;
-      }
-      const I b = I::load_aligned(base), w = I::load_aligned(width);
-      const I ix0 = simd::toInt(x0), ix1 = simd::toInt(x1);
-      const I row0 = b + simd::toInt(y0) * w, row1 = b + simd::toInt(y1) * w;
-      const I index[4] = {(row0 + ix0) << 2, (row0 + ix1) << 2, (row1 + ix0) << 2,
-                          (row1 + ix1) << 2};
-      const float* texels = view.levels[0].texels;
-      for (int c = 0; c < 4; ++c)
-        out[c] = {F::gather(texels, index[c]), F::gather(texels, index[c] + I(1)),
-                  F::gather(texels, index[c] + I(2)), F::gather(texels, index[c] + I(3))};
-      return;
-    }
-  }
-  alignas(64) std::int32_t xs[2][W], ys[2][W];
+  alignas(64) std::int32_t lv[W], xs[2][W], ys[2][W];
+  if (uniformLevel < 0) level.store_aligned(lv);
   simd::toInt(x0).store_aligned(xs[0]);
   simd::toInt(x1).store_aligned(xs[1]);
   simd::toInt(y0).store_aligned(ys[0]);
   simd::toInt(y1).store_aligned(ys[1]);
-  fetch2x2Scalar<L>(view, lv, xs[0], xs[1], ys[0], ys[1], out);
+  fetch2x2Scalar<L>(view, uniformLevel, lv, xs[0], xs[1], ys[0], ys[1], out);
 }
 
 template <class L>
@@ -267,7 +240,7 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F
   using F = typename L::F;
   using M = typename L::M;
   F width, height;
-  levelSizes<L>(view, level, width, height);
+  const int uniformLevel = levelSizes<L>(view, level, width, height);
   u = reduceCoordinate<L>(u, view.wrapU);
   v = reduceCoordinate<L>(v, view.wrapV);
   const F tx = u * width - F(0.5f), ty = v * height - F(0.5f);
@@ -280,7 +253,7 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F
   const F y0 = wrapTexel<L>(fy0, height, view.wrapV, inY0);
   const F y1 = wrapTexel<L>(fy0 + F(1.0f), height, view.wrapV, inY1);
   Rgba<L> c[4];
-  fetch2x2<L>(view, level, x0, x1, y0, y1, c);
+  fetch2x2<L>(view, level, uniformLevel, x0, x1, y0, y1, c);
   if (view.wrapU == WrapMode::ClampToBorder || view.wrapV == WrapMode::ClampToBorder) {
     c[0] = withBorder<L>(view, c[0], inX0 & inY0);
     c[1] = withBorder<L>(view, c[1], inX1 & inY0);

@@ -31,7 +31,6 @@ TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter
     view.levelCount = 1;
     view.levels[0] = {image.rgba.data(), image.width, image.height};
   }
-  view.computeGatherOffsets();
   return view;
 }
 
