@@ -41,6 +41,20 @@ inline void transposeToChannels(const float* const texel[4], float* const out[4]
 // (4 floats) and out[4 + c] of the right ones. One shuffle per texel where two
 // 4-wide transposes take two. Only in files built with AVX (the per-ISA kernels).
 inline void transposeTexelPairs(const float* const left[4], const float* const right[4],
+                                __m256 channel[4]) {
+  __m256 t0 = _mm256_loadu2_m128(right[0], left[0]), t1 = _mm256_loadu2_m128(right[1], left[1]),
+         t2 = _mm256_loadu2_m128(right[2], left[2]), t3 = _mm256_loadu2_m128(right[3], left[3]);
+  const __m256 lo01 = _mm256_unpacklo_ps(t0, t1), hi01 = _mm256_unpackhi_ps(t0, t1);
+  const __m256 lo23 = _mm256_unpacklo_ps(t2, t3), hi23 = _mm256_unpackhi_ps(t2, t3);
+  channel[0] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(1, 0, 1, 0));
+  channel[1] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
+  channel[2] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
+  channel[3] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
+// As above, stored: out[c] receives channel c of the left texels, out[4 + c]
+// of the right ones (4 floats each).
+inline void transposeTexelPairs(const float* const left[4], const float* const right[4],
                                 float* const out[8]) {
   __m256 t0 = _mm256_loadu2_m128(right[0], left[0]), t1 = _mm256_loadu2_m128(right[1], left[1]),
          t2 = _mm256_loadu2_m128(right[2], left[2]), t3 = _mm256_loadu2_m128(right[3], left[3]);
@@ -54,6 +68,20 @@ inline void transposeTexelPairs(const float* const left[4], const float* const r
   _mm256_storeu2_m128(out[5], out[1], g);
   _mm256_storeu2_m128(out[6], out[2], b);
   _mm256_storeu2_m128(out[7], out[3], a);
+}
+#endif
+
+#if defined(__AVX512F__)
+// Sixteen lanes of left and right texel channels straight from four pair
+// transposes (lanes 4g..4g+3 in pair[g]), kept in registers: assembling them
+// through 128-bit stores and a 512-bit load defeats store forwarding.
+inline void assemblePairs16(const __m256 pair[4][4], __m512 left[4], __m512 right[4]) {
+  for (int c = 0; c < 4; ++c) {
+    const __m512 ab = _mm512_insertf32x8(_mm512_castps256_ps512(pair[0][c]), pair[1][c], 1);
+    const __m512 cd = _mm512_insertf32x8(_mm512_castps256_ps512(pair[2][c]), pair[3][c], 1);
+    left[c] = _mm512_shuffle_f32x4(ab, cd, _MM_SHUFFLE(2, 0, 2, 0));
+    right[c] = _mm512_shuffle_f32x4(ab, cd, _MM_SHUFFLE(3, 1, 3, 1));
+  }
 }
 #endif
 

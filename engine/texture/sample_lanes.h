@@ -146,13 +146,29 @@ QUADRA_LANE_INLINE void fetch2x2Scalar(const TextureView& view, int uniformLevel
   const float* corner[4][W];
   for (int k = 0; k < W; ++k) {
     const TextureLevel& lev = view.levels[uniformLevel >= 0 ? uniformLevel : lv[k]];
-    const std::size_t row0 = std::size_t(ys0[k]) * std::size_t(lev.width);
-    const std::size_t row1 = std::size_t(ys1[k]) * std::size_t(lev.width);
+    // y * width < 2^28 (the loader's texel limit): a 32-bit product, which
+    // vectorizes without 64-bit multiplies.
+    const std::size_t row0 = std::uint32_t(ys0[k]) * std::uint32_t(lev.width);
+    const std::size_t row1 = std::uint32_t(ys1[k]) * std::uint32_t(lev.width);
     corner[0][k] = lev.texels + (row0 + xs0[k]) * 4;
     corner[1][k] = lev.texels + (row0 + xs1[k]) * 4;
     corner[2][k] = lev.texels + (row1 + xs0[k]) * 4;
     corner[3][k] = lev.texels + (row1 + xs1[k]) * 4;
   }
+#if defined(__AVX512F__)
+  if constexpr (W == 16) {
+    for (int c = 0; c < 4; c += 2) {
+      __m256 pair[4][4];
+      for (int g = 0; g < 4; ++g)
+        simd::transposeTexelPairs(&corner[c][4 * g], &corner[c + 1][4 * g], pair[g]);
+      __m512 left[4], right[4];
+      simd::assemblePairs16(pair, left, right);
+      out[c] = {left[0], left[1], left[2], left[3]};
+      out[c + 1] = {right[0], right[1], right[2], right[3]};
+    }
+    return;
+  }
+#endif
   if constexpr (kIsScalarLanes<L>) {
     for (int c = 0; c < 4; ++c)
       for (int k = 0; k < W; ++k)
