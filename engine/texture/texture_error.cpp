@@ -1,0 +1,72 @@
+// Comparing a TextureSampler with the ground truth, and timing it.
+#include "texture/texture_error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace quadra {
+
+void ErrorStats::add(const float* got, const double* want) {
+  ++lookups;
+  for (int c = 0; c < 3; ++c) {
+    const double e = double(got[c]) - want[c];
+    sumSquared += e * e;
+    // NaN must count as the worst error, not vanish in max().
+    maxAbs = std::isnan(e) ? e : std::max(maxAbs, std::abs(e));
+  }
+}
+
+double ErrorStats::rmse() const {
+  return lookups ? std::sqrt(sumSquared / (3.0 * lookups)) : 0.0;
+}
+
+FilterError measureFilterError(const TextureSampler& sampler, const FootprintSet& footprints,
+                               const std::vector<double>& truth, const Executor& executor,
+                               std::vector<float>* values) {
+  const std::size_t n = footprints.size();
+  QUADRA_CHECK_OP(truth.size(), ==, n * 4);
+  std::vector<float> local;
+  std::vector<float>& rgba = values ? *values : local;
+  rgba.assign(n * 4, 0.0f);
+  const LookupBatch batch = footprints.batch();
+  executor.parallelFor(n, 1024, [&](std::size_t begin, std::size_t end) {
+    sampler.sample(batch, begin, end, rgba.data());
+  });
+  FilterError error;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* got = &rgba[i * 4];
+    const double* want = &truth[i * 4];
+    error.overall.add(got, want);
+    error.perScale[std::size_t(footprints.scaleBucket[i])].add(got, want);
+    error.perAniso[std::size_t(footprints.anisoBucket[i])].add(got, want);
+  }
+  return error;
+}
+
+double timeLookupsNs(const TextureSampler& sampler, const FootprintSet& footprints, int repeats,
+                     double minSeconds) {
+  const LookupBatch batch = footprints.batch();
+  if (batch.count == 0) return 0.0;
+  std::vector<float> rgba(batch.count * 4);
+  sampler.sample(batch, 0, batch.count, rgba.data());  // warm caches and the mip chain
+  std::vector<double> perLookup;
+  for (int r = 0; r < std::max(1, repeats); ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    std::size_t done = 0;
+    double seconds = 0.0;
+    do {
+      sampler.sample(batch, 0, batch.count, rgba.data());
+      done += batch.count;
+      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    } while (seconds < minSeconds);
+    perLookup.push_back(seconds * 1e9 / double(done));
+  }
+  std::sort(perLookup.begin(), perLookup.end());
+  return perLookup[perLookup.size() / 2];
+}
+
+}  // namespace quadra

@@ -1,0 +1,265 @@
+// Tests for the texture ground truth (analytic cases and convergence), the
+// seeded footprint set, and end-to-end plausibility of the engine filters'
+// error figures against that ground truth.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "core/parallel.h"
+#include "texture/footprints.h"
+#include "texture/ground_truth.h"
+#include "texture/test_textures.h"
+#include "texture/texture_error.h"
+#include "texture/texture_sampler.h"
+
+namespace quadra {
+namespace {
+
+SamplerState samplerWith(WrapMode wrap) {
+  SamplerState state;
+  state.wrapU = state.wrapV = wrap;
+  state.borderColor[0] = 0.25f;
+  state.borderColor[3] = 1.0f;
+  return state;
+}
+
+Image constantImage(int w, int h, float value) {
+  Image image(w, h);
+  for (std::size_t i = 0; i < image.rgba.size(); ++i) image.rgba[i] = (i % 4 == 3) ? 1.0f : value;
+  return image;
+}
+
+TEST(GroundTruth, ConstantTextureIsExactForAnyFootprint) {
+  const Image image = constantImage(16, 8, 0.375f);
+  const BilinearReference reference(image, samplerWith(WrapMode::Repeat));
+  for (const double major : {0.1, 3.0, 700.0}) {
+    const Footprint f = makeFootprint(0.97, -0.2, major, 7.0, 0.3, 1.1, 16, 8);
+    const GroundTruthValue value = groundTruth(reference, f);
+    EXPECT_NEAR(value.rgba[0], 0.375, 1e-12) << major;
+    EXPECT_NEAR(value.rgba[3], 1.0, 1e-12) << major;
+    EXPECT_TRUE(value.converged);
+  }
+}
+
+TEST(GroundTruth, LinearRampAveragesToTheCentreValue) {
+  // Texel values linear in the texel index: the bilinear reconstruction is the
+  // same linear function, and the average over a centrally symmetric footprint
+  // is its value at the centre.
+  Image image(8, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      float* t = image.texel(x, y);
+      t[0] = 0.1f * float(x) + 0.05f * float(y);
+      t[1] = 0.02f * float(y);
+      t[2] = 0.5f;
+      t[3] = 1.0f;
+    }
+  const BilinearReference reference(image, samplerWith(WrapMode::ClampToEdge));
+  const double tx = 3.3, ty = 4.6;  // texel space, inside the bilinear cell [3,4]x[4,5]
+  const Footprint f = makeFootprint((tx + 0.5) / 8, (ty + 0.5) / 8, 0.25, 3.0, 0.7, 0.4, 8, 8);
+  const GroundTruthValue value = groundTruth(reference, f);
+  EXPECT_NEAR(value.rgba[0], 0.1 * tx + 0.05 * ty, 1e-6);
+  EXPECT_NEAR(value.rgba[1], 0.02 * ty, 1e-6);
+  EXPECT_NEAR(value.rgba[2], 0.5, 1e-12);
+}
+
+TEST(GroundTruth, CheckerOverWholePeriodsIsHalf) {
+  const Image image = makeCheckerTexture(32, 32, 2);  // period 4 texels
+  const BilinearReference reference(image, samplerWith(WrapMode::Repeat));
+  // Axis-aligned 8x12 texels (whole periods), centred anywhere, across the seam too.
+  for (const double u : {0.0, 0.31, 0.999}) {
+    Footprint f;
+    f.u = u;
+    f.v = 0.77;
+    f.dudx = 8.0 / 32;
+    f.dvdy = 12.0 / 32;
+    const GroundTruthValue value = groundTruth(reference, f);
+    EXPECT_NEAR(value.rgba[0], 0.5, 1e-9) << u;
+  }
+}
+
+TEST(GroundTruth, DoublingTheSamplesMovesTheResultLessThanTheBound) {
+  const Image image = makeValueNoiseTexture(64, 64, 5);
+  const BilinearReference reference(image, samplerWith(WrapMode::Repeat));
+  const GroundTruthOptions options;
+  const FootprintSet set =
+      makeFootprintSet({.count = 144, .seed = 3, .textureWidth = 64, .textureHeight = 64});
+  int checked = 0;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    if (set.scaleBucket[i] > 3) continue;  // up to 32 texels: keeps the 2x grid cheap
+    const Footprint f = set.footprint(i);
+    const GroundTruthValue value = groundTruth(reference, f, options);
+    ASSERT_TRUE(value.converged) << i << " change " << value.change;
+    double finer[4];
+    integrateFootprintGrid(reference, f, 2 * value.samplesX, 2 * value.samplesY, finer);
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(finer[c], value.rgba[c], options.tolerance) << i;
+    ++checked;
+  }
+  EXPECT_GT(checked, 80);
+}
+
+TEST(GroundTruth, BilinearReferenceMatchesTheEngineBilinearForEveryWrapMode) {
+  const auto image = std::make_shared<Image>(makeValueNoiseTexture(7, 5, 11));
+  const FootprintSet set =
+      makeFootprintSet({.count = 600, .seed = 9, .textureWidth = 7, .textureHeight = 5});
+  for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
+                              WrapMode::ClampToBorder}) {
+    const SamplerState state = samplerWith(wrap);
+    const Texture texture(image, state);
+    const TextureSampler sampler(texture, Filter::Bilinear, 1, Isa::Scalar);
+    std::vector<float> got(set.size() * 4);
+    sampler.sample(set.batch(), 0, set.size(), got.data());
+    const BilinearReference reference(*image, state);
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      double want[4];
+      reference.lookup(set.u[i], set.v[i], want);
+      for (int c = 0; c < 4; ++c)
+        ASSERT_NEAR(got[i * 4 + c], want[c], 2e-5) << wrapName(wrap) << " lookup " << i;
+    }
+  }
+}
+
+TEST(FootprintSet, IsDeterministicForASeed) {
+  const FootprintSetOptions options{
+      .count = 500, .seed = 42, .textureWidth = 128, .textureHeight = 64};
+  const FootprintSet a = makeFootprintSet(options), b = makeFootprintSet(options);
+  EXPECT_EQ(a.u, b.u);
+  EXPECT_EQ(a.v, b.v);
+  EXPECT_EQ(a.dudx, b.dudx);
+  EXPECT_EQ(a.dvdy, b.dvdy);
+  EXPECT_EQ(a.scaleBucket, b.scaleBucket);
+  FootprintSetOptions other = options;
+  other.seed = 43;
+  EXPECT_NE(makeFootprintSet(other).u, a.u);
+}
+
+TEST(FootprintSet, CoversEveryBucketWithTheStatedShape) {
+  const int w = 128, h = 64;
+  const FootprintSet set =
+      makeFootprintSet({.count = 36 * 20, .seed = 7, .textureWidth = w, .textureHeight = h});
+  std::vector<int> pairs(kScaleBuckets * kAnisoBuckets, 0);
+  int nearEdge = 0, outsideUnit = 0;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    ++pairs[set.scaleBucket[i] * kAnisoBuckets + set.anisoBucket[i]];
+    EXPECT_GE(set.scale[i], scaleBucketLow(set.scaleBucket[i]) * 0.999);
+    EXPECT_LE(set.scale[i], scaleBucketLow(set.scaleBucket[i] + 1) * 1.001);
+    EXPECT_GE(set.anisotropy[i], anisoBucketLow(set.anisoBucket[i]) * 0.999);
+    EXPECT_LE(set.anisotropy[i], anisoBucketLow(set.anisoBucket[i] + 1) * 1.001);
+    // The Jacobian's singular values (in texels) are the recorded scale and anisotropy.
+    const double a = double(set.dudx[i]) * w, b = double(set.dudy[i]) * w;
+    const double c = double(set.dvdx[i]) * h, d = double(set.dvdy[i]) * h;
+    const double s = a * a + b * b + c * c + d * d, det = std::abs(a * d - b * c);
+    const double major = std::sqrt(0.5 * (s + std::sqrt(std::max(0.0, s * s - 4 * det * det))));
+    EXPECT_NEAR(major / set.scale[i], 1.0, 1e-4);
+    EXPECT_NEAR(major * major / det / set.anisotropy[i], 1.0, 2e-3);
+    const double pu = set.u[i] - std::floor(set.u[i]), pv = set.v[i] - std::floor(set.v[i]);
+    const double reach = (0.5 * set.scale[i] + 2.0);
+    if (std::min(pu, 1.0 - pu) * w <= reach || std::min(pv, 1.0 - pv) * h <= reach) ++nearEdge;
+    if (set.u[i] < 0.0f || set.u[i] > 1.0f || set.v[i] < 0.0f || set.v[i] > 1.0f) ++outsideUnit;
+  }
+  for (const int count : pairs) EXPECT_GE(count, 15);
+  EXPECT_GT(nearEdge, int(set.size()) / 3);
+  EXPECT_GT(outsideUnit, int(set.size()) / 5);
+}
+
+// The engine's error on a set of footprints, against the ground truth.
+struct Measured {
+  FootprintSet set;
+  std::vector<double> truth;
+};
+
+Measured groundTruthOf(const Image& image, const FootprintSet& set, const Executor& executor) {
+  const BilinearReference reference(image, samplerWith(WrapMode::Repeat));
+  return {set, groundTruthSet(reference, set.footprints(), {}, executor).rgba};
+}
+
+double filterRmse(const std::shared_ptr<Image>& image, const Measured& m, Filter filter,
+                  const Executor& executor, double* maxAbs = nullptr) {
+  const Texture texture(image, samplerWith(WrapMode::Repeat));
+  const TextureSampler sampler(texture, filter, 16, detectBestIsa());
+  const FilterError error = measureFilterError(sampler, m.set, m.truth, executor);
+  if (maxAbs) *maxAbs = error.overall.maxAbs;
+  return error.overall.rmse();
+}
+
+FootprintSet pick(const FootprintSet& all, const std::function<bool(std::size_t)>& keep) {
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (keep(i)) indices.push_back(i);
+  return all.subset(indices);
+}
+
+// Largest difference between neighbouring texels (RGB): the bilinear
+// reconstruction's slope bound, per texel, along either axis.
+double maxNeighbourStep(const Image& image) {
+  double step = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const float t = image.texel(x, y)[c];
+        step = std::max(step, double(std::abs(image.texel((x + 1) % image.width, y)[c] - t)));
+        step = std::max(step, double(std::abs(image.texel(x, (y + 1) % image.height)[c] - t)));
+      }
+  return step;
+}
+
+TEST(TextureError, BilinearAtMagnificationIsOnlyTheBoxVersusPointDifference) {
+  // With slope at most L per texel along each axis, |f(p) - f(c)| <= L (|dx| + |dy|),
+  // and over the footprint |dx| + |dy| = |J d|_1 <= sqrt(2) sigma1 |d|_2 <= sigma1
+  // (|d|_2 <= sqrt(2)/2 on the unit square). So |box average - bilinear(c)|
+  // <= L sigma1, plus the ground truth's tolerance and float rounding.
+  const Executor executor(0);
+  const int size = 64;
+  for (const bool smooth : {false, true}) {
+    const auto image = std::make_shared<Image>(smooth ? makeSmoothNoiseTexture(size, size, 2)
+                                                      : makeValueNoiseTexture(size, size, 2));
+    const FootprintSet all = makeFootprintSet(
+        {.count = 36 * 20, .seed = 4, .textureWidth = size, .textureHeight = size});
+    const FootprintSet magnified = pick(all, [&](std::size_t i) { return all.scale[i] <= 0.25f; });
+    ASSERT_GT(magnified.size(), 60u);
+    const double sigma = *std::max_element(magnified.scale.begin(), magnified.scale.end());
+    const double bound = maxNeighbourStep(*image) * sigma + GroundTruthOptions{}.tolerance + 1e-5;
+    double maxAbs = 0.0;
+    const double rmse = filterRmse(image, groundTruthOf(*image, magnified, executor),
+                                   Filter::Bilinear, executor, &maxAbs);
+    EXPECT_LE(maxAbs, bound) << (smooth ? "smooth" : "noise");
+    EXPECT_LE(rmse, 0.5 * bound) << (smooth ? "smooth" : "noise");
+  }
+}
+
+TEST(TextureError, TrilinearBeatsNearestOnAMinifiedChecker) {
+  const Executor executor(0);
+  const int size = 128;
+  const auto image = std::make_shared<Image>(makeCheckerTexture(size, size, 2));
+  const FootprintSet all =
+      makeFootprintSet({.count = 36 * 12, .seed = 5, .textureWidth = size, .textureHeight = size});
+  const FootprintSet minified = pick(all, [&](std::size_t i) {
+    return all.scale[i] >= 2.0f && all.scale[i] <= 64.0f && all.anisoBucket[i] <= 1;
+  });
+  const Measured m = groundTruthOf(*image, minified, executor);
+  const double nearest = filterRmse(image, m, Filter::Nearest, executor);
+  const double trilinear = filterRmse(image, m, Filter::Trilinear, executor);
+  EXPECT_LT(trilinear, 0.5 * nearest) << "trilinear " << trilinear << " nearest " << nearest;
+}
+
+TEST(TextureError, AnisoBeatsTrilinearOnStronglyAnisotropicFootprints) {
+  const Executor executor(0);
+  const int size = 128;
+  const auto image = std::make_shared<Image>(makeSmoothNoiseTexture(size, size, 8));
+  const FootprintSet all =
+      makeFootprintSet({.count = 36 * 12, .seed = 6, .textureWidth = size, .textureHeight = size});
+  const FootprintSet anisotropic = pick(all, [&](std::size_t i) {
+    return all.anisotropy[i] >= 8.0f && all.scale[i] >= 8.0f && all.scale[i] <= 128.0f;
+  });
+  const Measured m = groundTruthOf(*image, anisotropic, executor);
+  const double trilinear = filterRmse(image, m, Filter::Trilinear, executor);
+  const double aniso = filterRmse(image, m, Filter::Anisotropic, executor);
+  EXPECT_LT(aniso, 0.7 * trilinear) << "aniso " << aniso << " trilinear " << trilinear;
+}
+
+}  // namespace
+}  // namespace quadra
