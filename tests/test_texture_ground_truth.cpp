@@ -3,13 +3,22 @@
 // error figures against that ground truth.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/parallel.h"
+#include "resolve/image_io.h"
 #include "texture/footprints.h"
 #include "texture/ground_truth.h"
 #include "texture/test_textures.h"
@@ -259,6 +268,51 @@ TEST(TextureError, AnisoBeatsTrilinearOnStronglyAnisotropicFootprints) {
   const double trilinear = filterRmse(image, m, Filter::Trilinear, executor);
   const double aniso = filterRmse(image, m, Filter::Anisotropic, executor);
   EXPECT_LT(aniso, 0.7 * trilinear) << "aniso " << aniso << " trilinear " << trilinear;
+}
+
+TEST(TextureError, RealTextureFromTheAssetsMinifiesBetterWithMips) {
+  const std::filesystem::path path =
+      std::filesystem::path(QUADRA_ASSETS_DIR) / "WaterBottle/glTF/WaterBottle_baseColor.png";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " absent";
+  const Executor executor(0);
+  const auto image = std::make_shared<Image>(readImage(path.string()));
+  const FootprintSet all = makeFootprintSet(
+      {.count = 36 * 4, .seed = 8, .textureWidth = image->width, .textureHeight = image->height});
+  const FootprintSet minified =
+      pick(all, [&](std::size_t i) { return all.scale[i] >= 2.0f && all.scale[i] <= 32.0f; });
+  const Measured m = groundTruthOf(*image, minified, executor);
+  double maxAbs = 0.0;
+  const double trilinear = filterRmse(image, m, Filter::Trilinear, executor, &maxAbs);
+  const double bilinear = filterRmse(image, m, Filter::Bilinear, executor);
+  EXPECT_TRUE(std::isfinite(trilinear) && std::isfinite(maxAbs));
+  EXPECT_LT(trilinear, bilinear);
+}
+
+TEST(ReportCommand, WritesTheTableTheCsvAndThePlot) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("quadra_report_test_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  const std::string out = (dir / "stdout.txt").string();
+  const std::string command = std::string(QUADRA_CLI_PATH) +
+                              " report textures --size 32 --lookups 72 --threads 2 --out-dir " +
+                              dir.string() + " >" + out + " 2>&1";
+  std::filesystem::create_directories(dir);
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << command;
+  std::stringstream table, csv, svg;
+  table << std::ifstream(out).rdbuf();
+  csv << std::ifstream(dir / "textures.csv").rdbuf();
+  svg << std::ifstream(dir / "textures.svg").rdbuf();
+  for (const char* filter :
+       {"| nearest |", "| bilinear |", "| nearest-mip |", "| trilinear |", "| aniso-16 |"})
+    EXPECT_NE(table.str().find(filter), std::string::npos) << filter;
+  EXPECT_EQ(
+      csv.str().rfind("texture,filter,bucket_kind,bucket,lookups,rmse,max_abs,ns_per_lookup\n", 0),
+      0u);
+  EXPECT_NE(csv.str().find("all,trilinear,all,all,288,"), std::string::npos);
+  EXPECT_NE(svg.str().find("</svg>"), std::string::npos);
+  EXPECT_NE(svg.str().find("Pareto front"), std::string::npos);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

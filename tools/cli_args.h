@@ -11,5 +11,6 @@ int parseInteger(const std::string& option, const std::string& text, int lo, int
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix);
 
 int runSample(int argc, const char* const* argv);
+int runReport(int argc, const char* const* argv);
 
 }  // namespace quadra

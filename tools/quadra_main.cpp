@@ -25,6 +25,7 @@ namespace {
 
 constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra sample --help
+       quadra report textures --help
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
@@ -225,6 +226,7 @@ int run(int argc, char** argv) {
   }
   if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
   if (args[0] == "sample") return runSample(argc - 1, argv + 1);
+  if (args[0] == "report") return runReport(argc - 1, argv + 1);
   throw Error("unknown command '" + args[0] + "' (commands: render, sample)");
 }
 

@@ -60,7 +60,7 @@ struct GroundTruthOptions {
   double samplesPerTexel = 4.0;
   int minSamplesPerAxis = 8;
   int maxSamplesPerAxis = 4096;
-  std::size_t maxSamples = std::size_t(1) << 20;  // per grid, about 10 ms of work
+  std::size_t maxSamples = std::size_t(1) << 18;  // per grid, a few ms of work
 };
 
 struct GroundTruthValue {
