@@ -345,9 +345,9 @@ int runReport(int argc, const char* const* argv) {
     notes << "- " << texture.name << " (" << texture.image->width << "x" << texture.image->height
           << "): ground truth converged (last doubling moved it <= "
           << format("%g", 0.25 * truthOptions.tolerance) << ") for " << truth.converged << " of "
-          << footprints.size() << " footprints; largest residual "
-          << format("%.2g", truth.maxChange) << ", largest grid " << truth.maxSamples
-          << " samples, " << format("%.1f", truthSeconds) << " s\n";
+          << footprints.size() << " footprints; residual RMS " << format("%.2g", truth.rmsChange)
+          << ", largest " << format("%.2g", truth.maxChange) << ", largest grid "
+          << truth.maxSamples << " samples, " << format("%.1f", truthSeconds) << " s\n";
     const Texture sampled(texture.image, state);
     for (FilterRow& row : rows) {
       const TextureSampler sampler(sampled, row.filter, options.maxAniso, isa);

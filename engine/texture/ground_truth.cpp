@@ -142,9 +142,11 @@ GroundTruthSet groundTruthSet(const BilinearReference& reference,
     std::copy(values[i].rgba, values[i].rgba + 4, &set.rgba[i * 4]);
     set.converged += values[i].converged ? 1 : 0;
     set.maxChange = std::max(set.maxChange, values[i].change);
+    set.rmsChange += values[i].change * values[i].change;
     set.maxSamples =
         std::max(set.maxSamples, std::size_t(values[i].samplesX) * std::size_t(values[i].samplesY));
   }
+  if (!values.empty()) set.rmsChange = std::sqrt(set.rmsChange / double(values.size()));
   return set;
 }
 

@@ -86,6 +86,7 @@ struct GroundTruthSet {
   std::vector<double> rgba;  // 4 per footprint
   std::size_t converged = 0;
   double maxChange = 0.0;      // the largest residual over the set
+  double rmsChange = 0.0;      // root mean square residual over the set
   std::size_t maxSamples = 0;  // the largest grid used
 };
 GroundTruthSet groundTruthSet(const BilinearReference& reference,
