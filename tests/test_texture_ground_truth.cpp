@@ -91,6 +91,28 @@ TEST(GroundTruth, CheckerOverWholePeriodsIsHalf) {
   }
 }
 
+TEST(GroundTruth, RepeatIsPeriodicAcrossTheSeamAndMirrorIsSymmetric) {
+  const Image image = makeValueNoiseTexture(16, 8, 3);
+  const BilinearReference repeat(image, samplerWith(WrapMode::Repeat));
+  const BilinearReference mirror(image, samplerWith(WrapMode::MirroredRepeat));
+  const Footprint seam = makeFootprint(0.01, 0.98, 3.0, 4.0, 0.5, 0.2, 16, 8);
+  for (const double shift : {1.0, -3.0, 17.0}) {
+    Footprint shifted = seam;
+    shifted.u += shift;
+    shifted.v -= shift;
+    const GroundTruthValue a = groundTruth(repeat, seam), b = groundTruth(repeat, shifted);
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(a.rgba[c], b.rgba[c], 1e-9) << shift;
+  }
+  // Mirrored repeat: u and -u read the same texture, so a footprint and its
+  // reflection through u = 0 average to the same value.
+  Footprint reflected = seam;
+  reflected.u = -seam.u;
+  reflected.dudx = -seam.dudx;
+  reflected.dudy = -seam.dudy;
+  const GroundTruthValue a = groundTruth(mirror, seam), b = groundTruth(mirror, reflected);
+  for (int c = 0; c < 4; ++c) EXPECT_NEAR(a.rgba[c], b.rgba[c], 1e-9);
+}
+
 TEST(GroundTruth, DoublingTheSamplesMovesTheResultLessThanTheBound) {
   const Image image = makeValueNoiseTexture(64, 64, 5);
   const BilinearReference reference(image, samplerWith(WrapMode::Repeat));
