@@ -49,24 +49,36 @@ FilterError measureFilterError(const TextureSampler& sampler, const FootprintSet
 
 double timeLookupsNs(const TextureSampler& sampler, const FootprintSet& footprints, int repeats,
                      double minSeconds) {
+  return timeLookupsInterleavedNs({&sampler}, footprints, repeats, minSeconds)[0];
+}
+
+std::vector<double> timeLookupsInterleavedNs(const std::vector<const TextureSampler*>& samplers,
+                                             const FootprintSet& footprints, int rounds,
+                                             double minSeconds) {
   const LookupBatch batch = footprints.batch();
-  if (batch.count == 0) return 0.0;
+  std::vector<double> medians(samplers.size(), 0.0);
+  if (batch.count == 0) return medians;
   std::vector<float> rgba(batch.count * 4);
-  sampler.sample(batch, 0, batch.count, rgba.data());  // warm caches and the mip chain
-  std::vector<double> perLookup;
-  for (int r = 0; r < std::max(1, repeats); ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    std::size_t done = 0;
-    double seconds = 0.0;
-    do {
-      sampler.sample(batch, 0, batch.count, rgba.data());
-      done += batch.count;
-      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    } while (seconds < minSeconds);
-    perLookup.push_back(seconds * 1e9 / double(done));
+  for (const TextureSampler* sampler : samplers)  // warm caches and the mip chains
+    sampler->sample(batch, 0, batch.count, rgba.data());
+  std::vector<std::vector<double>> perLookup(samplers.size());
+  for (int r = 0; r < std::max(1, rounds); ++r)
+    for (std::size_t s = 0; s < samplers.size(); ++s) {
+      const auto start = std::chrono::steady_clock::now();
+      std::size_t done = 0;
+      double seconds = 0.0;
+      do {
+        samplers[s]->sample(batch, 0, batch.count, rgba.data());
+        done += batch.count;
+        seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      } while (seconds < minSeconds);
+      perLookup[s].push_back(seconds * 1e9 / double(done));
+    }
+  for (std::size_t s = 0; s < samplers.size(); ++s) {
+    std::sort(perLookup[s].begin(), perLookup[s].end());
+    medians[s] = perLookup[s][perLookup[s].size() / 2];
   }
-  std::sort(perLookup.begin(), perLookup.end());
-  return perLookup[perLookup.size() / 2];
+  return medians;
 }
 
 }  // namespace quadra

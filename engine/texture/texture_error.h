@@ -42,4 +42,11 @@ FilterError measureFilterError(const TextureSampler& sampler, const FootprintSet
 double timeLookupsNs(const TextureSampler& sampler, const FootprintSet& footprints, int repeats = 5,
                      double minSeconds = 0.02);
 
+// The same for several samplers over the same footprints, in interleaved
+// rounds (one timed run of each per round), so a burst of load from other
+// processes falls on all of them alike rather than on whichever ran then.
+std::vector<double> timeLookupsInterleavedNs(const std::vector<const TextureSampler*>& samplers,
+                                             const FootprintSet& footprints, int rounds = 5,
+                                             double minSeconds = 0.02);
+
 }  // namespace quadra
