@@ -16,14 +16,24 @@ BilinearReference::BilinearReference(const Image& image, const SamplerState& sam
 }
 
 long BilinearReference::wrapIndex(long i, long n, WrapMode mode) const {
+  // lookupTexel hands in indices within a period or two of the texture, so a
+  // compare and a subtraction wrap them; the general remainder (an integer
+  // division, the costliest step of a sample) is only the fallback.
   switch (mode) {
     case WrapMode::Repeat: {
+      if (i >= 0 && i < n) return i;
+      if (i >= n && i < 2 * n) return i - n;
       const long r = i % n;
       return r < 0 ? r + n : r;
     }
     case WrapMode::MirroredRepeat: {
-      long r = i % (2 * n);
-      if (r < 0) r += 2 * n;
+      long r = i;
+      if (r < 0 || r >= 4 * n) {
+        r %= 2 * n;
+        if (r < 0) r += 2 * n;
+      } else if (r >= 2 * n) {
+        r -= 2 * n;
+      }
       return r >= n ? 2 * n - 1 - r : r;
     }
     case WrapMode::ClampToEdge:
@@ -45,6 +55,7 @@ void BilinearReference::lookupTexel(double x, double y, double rgba[4]) const {
   const auto near = [](double t, long n, WrapMode mode) {
     if (mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat) {
       const double period = mode == WrapMode::Repeat ? double(n) : 2.0 * double(n);
+      if (t >= 0.0 && t < period) return long(t);
       return long(t - period * std::floor(t / period));
     }
     return long(std::clamp(t, -2.0, double(n) + 1.0));
