@@ -227,7 +227,7 @@ int run(int argc, char** argv) {
   if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
   if (args[0] == "sample") return runSample(argc - 1, argv + 1);
   if (args[0] == "report") return runReport(argc - 1, argv + 1);
-  throw Error("unknown command '" + args[0] + "' (commands: render, sample)");
+  throw Error("unknown command '" + args[0] + "' (commands: render, sample, report)");
 }
 
 }  // namespace
