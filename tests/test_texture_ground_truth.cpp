@@ -141,7 +141,7 @@ TEST(GroundTruth, BilinearReferenceMatchesTheEngineBilinearForEveryWrapMode) {
                               WrapMode::ClampToBorder}) {
     const SamplerState state = samplerWith(wrap);
     const Texture texture(image, state);
-    const TextureSampler sampler(texture, Filter::Bilinear, 1, Isa::Scalar);
+    const TextureSampler sampler(texture, FilterSettings(Filter::Bilinear, 1), Isa::Scalar);
     std::vector<float> got(set.size() * 4);
     sampler.sample(set.batch(), 0, set.size(), got.data());
     const BilinearReference reference(*image, state);
@@ -211,7 +211,7 @@ Measured groundTruthOf(const Image& image, const FootprintSet& set, const Execut
 double filterRmse(const std::shared_ptr<Image>& image, const Measured& m, Filter filter,
                   const Executor& executor, double* maxAbs = nullptr) {
   const Texture texture(image, samplerWith(WrapMode::Repeat));
-  const TextureSampler sampler(texture, filter, 16, detectBestIsa());
+  const TextureSampler sampler(texture, FilterSettings(filter, 16), detectBestIsa());
   const FilterError error = measureFilterError(sampler, m.set, m.truth, executor);
   if (maxAbs) *maxAbs = error.overall.maxAbs;
   return error.overall.rmse();

@@ -34,6 +34,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --filter nearest|bilinear|nearest-mip|trilinear|aniso
                          texture filter for every texture (default: each glTF sampler's)
   --aniso N              max anisotropy, default 16
+  --lod-bias B           added to every texture lookup's LOD (default 0)
   --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
@@ -118,7 +119,10 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       cmd.settings.filter = f;
     } else if (arg == "--aniso")
       cmd.settings.maxAniso = parseInteger(arg, value, 1, 64);
-    else if (arg == "--shading") {
+    else if (arg == "--lod-bias") {
+      cmd.settings.lodBias = float(parseNumber(arg, value));
+      if (std::fabs(cmd.settings.lodBias) > 32.0f) throw Error(arg + ": must lie in -32..32");
+    } else if (arg == "--shading") {
       if (value == "unlit")
         cmd.settings.shading = Shading::Unlit;
       else if (value == "lit")

@@ -352,8 +352,8 @@ int runReport(int argc, const char* const* argv) {
     std::vector<std::unique_ptr<TextureSampler>> samplers;
     std::vector<const TextureSampler*> timed;
     for (const FilterRow& row : rows) {
-      samplers.push_back(
-          std::make_unique<TextureSampler>(sampled, row.filter, options.maxAniso, isa));
+      samplers.push_back(std::make_unique<TextureSampler>(
+          sampled, FilterSettings(row.filter, options.maxAniso), isa));
       timed.push_back(samplers.back().get());
     }
     const std::vector<double> ns = timeLookupsInterleavedNs(timed, footprints);

@@ -3,6 +3,7 @@
 // lookups, writes the values once (temporary file + rename).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -24,6 +25,7 @@ namespace {
 constexpr const char* kSampleUsage =
     R"(usage: quadra sample --texture FILE.png|FILE.exr --filter F --in LOOKUPS.csv --out VALUES.csv
                      [--aniso N] [--wrap repeat|mirror|clamp|border] [--threads N] [--isa ISA]
+                     [--lod-bias B] [--min-lod L] [--max-lod L]
   --filter nearest|bilinear|nearest-mip|trilinear|aniso
   LOOKUPS.csv: header u,v,dudx,dvdx,dudy,dvdy (normalized units, per-pixel derivatives)
   VALUES.csv:  header r,g,b,a, one row per lookup, linear float
@@ -33,8 +35,7 @@ A PNG is decoded from sRGB to linear; an EXR is read as linear. Prints
 
 struct SampleCommand {
   std::string texturePath, inPath, outPath;
-  std::optional<Filter> filter;
-  int maxAniso = 16;
+  FilterSettings filtering;
   WrapMode wrap = WrapMode::Repeat;
   int threads = 0;
   std::optional<Isa> isa;
@@ -57,9 +58,15 @@ SampleCommand parseSample(const std::vector<std::string>& args) {
       if (!parseFilter(value, f))
         throw Error(arg + ": unknown filter '" + value +
                     "' (nearest, bilinear, nearest-mip, trilinear, aniso)");
-      cmd.filter = f;
+      cmd.filtering.filter = f;
     } else if (arg == "--aniso")
-      cmd.maxAniso = parseInteger(arg, value, 1, 64);
+      cmd.filtering.maxAniso = parseInteger(arg, value, 1, 64);
+    else if (arg == "--lod-bias")
+      cmd.filtering.lodBias = float(parseNumber(arg, value));
+    else if (arg == "--min-lod")
+      cmd.filtering.minLod = float(parseNumber(arg, value));
+    else if (arg == "--max-lod")
+      cmd.filtering.maxLod = float(parseNumber(arg, value));
     else if (arg == "--wrap") {
       if (!parseWrap(value, cmd.wrap))
         throw Error(arg + ": unknown wrap mode '" + value + "' (repeat, mirror, clamp, border)");
@@ -75,7 +82,10 @@ SampleCommand parseSample(const std::vector<std::string>& args) {
       throw Error("sample: unknown option '" + arg + "' (see quadra sample --help)");
   }
   if (cmd.texturePath.empty()) throw Error("sample: --texture is required");
-  if (!cmd.filter) throw Error("sample: --filter is required");
+  if (!cmd.filtering.filter) throw Error("sample: --filter is required");
+  if (std::fabs(cmd.filtering.lodBias) > 32.0f) throw Error("--lod-bias: must lie in -32..32");
+  if (cmd.filtering.minLod < 0.0f || cmd.filtering.minLod > cmd.filtering.maxLod)
+    throw Error("--min-lod/--max-lod: need 0 <= min <= max");
   if (cmd.inPath.empty()) throw Error("sample: --in is required");
   if (cmd.outPath.empty()) throw Error("sample: --out is required");
   if (!endsWithIgnoringCase(cmd.outPath, ".csv"))
@@ -175,7 +185,7 @@ int runSample(int argc, const char* const* argv) {
   state.wrapU = state.wrapV = cmd.wrap;
   auto image = std::make_shared<Image>(readImage(cmd.texturePath));
   const Texture texture(image, state);
-  const TextureSampler sampler(texture, cmd.filter, cmd.maxAniso, isa);
+  const TextureSampler sampler(texture, cmd.filtering, isa);
   const Lookups lookups = readLookups(cmd.inPath);
   const LookupBatch batch = lookups.batch();
   std::vector<float> rgba(batch.count * 4);

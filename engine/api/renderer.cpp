@@ -3,6 +3,7 @@
 #include "api/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "api/camera.h"
@@ -61,9 +62,12 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   s.alphaMode = material.alphaMode;
   s.alphaCutoff = material.alphaCutoff;
   s.textured = material.baseColorTexture >= 0 && !mesh.texcoords[g.texcoordSet].empty();
-  if (s.textured)
+  if (s.textured) {
+    FilterSettings filtering(settings.filter, settings.maxAniso);
+    filtering.lodBias = settings.lodBias;
     s.texture = makeTextureView(*scene.textures.at(std::size_t(material.baseColorTexture)),
-                                settings.filter, settings.maxAniso, &frame.executor);
+                                filtering, &frame.executor);
+  }
   s.vertexColor = !mesh.colors.empty();
   s.lit = settings.shading == Shading::Lit;
   if (s.alphaMode == AlphaMode::Blend) {
@@ -128,6 +132,8 @@ void checkSettings(const RenderSettings& s) {
   if (s.width < 1 || s.height < 1 || s.width > kMaxViewport || s.height > kMaxViewport)
     throw Error("render: size " + std::to_string(s.width) + "x" + std::to_string(s.height) +
                 " is out of range (1.." + std::to_string(kMaxViewport) + " per side)");
+  if (!(std::fabs(s.lodBias) <= 32.0f))
+    throw Error("render: LOD bias " + std::to_string(s.lodBias) + " is out of range (-32..32)");
   if (s.maxAniso < 1 || s.maxAniso > 64)
     throw Error("render: max anisotropy " + std::to_string(s.maxAniso) +
                 " is out of range (1..64)");

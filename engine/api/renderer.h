@@ -43,6 +43,7 @@ struct RenderSettings {
   int height = 1080;
   std::optional<Filter> filter;  // unset: each texture's glTF sampler decides
   int maxAniso = 16;
+  float lodBias = 0.0f;  // added to every texture lookup's LOD
   Shading shading = Shading::Unlit;
   glm::vec4 clearColor{0.0f};  // premultiplied linear
   DebugView debugView = DebugView::None;

@@ -290,6 +290,13 @@ QUADRA_LANE_INLINE typename L::F isotropicLod(const TextureView& view, const UvD
   return F(0.5f) * simd::log2<L>(lengthSq);
 }
 
+// The view's LOD controls: clamp(λ + bias, minLod, maxLod); NaN becomes minLod.
+template <class L>
+QUADRA_LANE_INLINE typename L::F controlledLod(const TextureView& view, const typename L::F& lod) {
+  using F = typename L::F;
+  return simd::min(simd::max(lod + F(view.lodBias), F(view.minLod)), F(view.maxLod));
+}
+
 // Trilinear (or nearest-mip) at LOD λ; λ <= 0 is magnification.
 template <class L>
 QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typename L::F& u,
@@ -347,7 +354,7 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
   F probes = simd::floor(ratio);
   probes = simd::select(ratio > probes, probes + F(1.0f), probes);
   probes = simd::max(simd::min(probes, maxAniso), F(1.0f));
-  const F lod = simd::log2<L>(major / probes);
+  const F lod = controlledLod<L>(view, simd::log2<L>(major / probes));
 
   alignas(64) float probeCount[L::kWidth];
   probes.store_aligned(probeCount);
@@ -377,7 +384,7 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
   const Filter filter = view.minFilter;
   if (filter == Filter::Nearest) return sampleNearest<L>(view, u, v, level0);
   if (filter == Filter::Bilinear) return sampleBilinear<L>(view, u, v, level0);
-  const F lod = isotropicLod<L>(view, d);
+  const F lod = controlledLod<L>(view, isotropicLod<L>(view, d));
   const auto magnified = ~(lod > F(0.0f));
   if (!view.magLinear && simd::all(magnified)) return sampleNearest<L>(view, u, v, level0);
   Rgba<L> c = filter == Filter::Anisotropic

@@ -8,8 +8,9 @@
 
 namespace quadra {
 
-TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter, int maxAniso,
+TextureView makeTextureView(const Texture& texture, const FilterSettings& settings,
                             const Executor* executor) {
+  const std::optional<Filter>& filter = settings.filter;
   TextureView view;
   const SamplerState& sampler = texture.sampler();
   view.wrapU = sampler.wrapU;
@@ -18,7 +19,10 @@ TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter
   view.minFilter = filter.value_or(sampler.minFilter);
   // An explicit filter decides magnification too: nearest stays nearest.
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
-  view.maxAniso = maxAniso;
+  view.maxAniso = settings.maxAniso;
+  view.lodBias = settings.lodBias;
+  view.minLod = settings.minLod;
+  view.maxLod = settings.maxLod;
   if (needsMips(view.minFilter)) {
     const MipChain& mips = texture.mips(executor);
     view.levelCount = std::min(mips.levelCount(), TextureView::kMaxLevels);
@@ -52,9 +56,8 @@ SampleBatchKernel kernelFor(Isa isa) {
 
 }  // namespace
 
-TextureSampler::TextureSampler(const Texture& texture, std::optional<Filter> filter, int maxAniso,
-                               Isa isa)
-    : view_(makeTextureView(texture, filter, maxAniso)), isa_(isa), kernel_(kernelFor(isa)) {}
+TextureSampler::TextureSampler(const Texture& texture, const FilterSettings& settings, Isa isa)
+    : view_(makeTextureView(texture, settings)), isa_(isa), kernel_(kernelFor(isa)) {}
 
 void TextureSampler::sample(const LookupBatch& lookups, std::size_t begin, std::size_t end,
                             float* rgba) const {

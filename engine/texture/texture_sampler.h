@@ -24,17 +24,28 @@ struct LookupBatch {
   std::size_t count = 0;
 };
 
+// How a draw or a batch filters a texture, beyond the texture's own sampler.
+struct FilterSettings {
+  std::optional<Filter> filter;  // set: this filter for minification and magnification
+  int maxAniso = 16;
+  float lodBias = 0.0f;
+  float minLod = 0.0f;
+  float maxLod = 1000.0f;
+
+  FilterSettings(std::optional<Filter> f = std::nullopt, int aniso = 16)
+      : filter(f), maxAniso(aniso) {}
+};
+
 // The view a kernel reads for a texture: its sampler's wrap modes and filter,
-// or `filter` for both minification and magnification when given. Builds the
-// texture's mip chain on first use when the filter needs one.
-// executor (optional) builds the mip chain in parallel.
-TextureView makeTextureView(const Texture& texture, std::optional<Filter> filter, int maxAniso,
+// overridden by `settings`. Builds the texture's mip chain on first use when
+// the filter needs one (in parallel on `executor` when given).
+TextureView makeTextureView(const Texture& texture, const FilterSettings& settings,
                             const Executor* executor = nullptr);
 
 class TextureSampler {
  public:
-  // isa must be supported (isaSupported); filter as for makeTextureView.
-  TextureSampler(const Texture& texture, std::optional<Filter> filter, int maxAniso, Isa isa);
+  // isa must be supported (isaSupported); settings as for makeTextureView.
+  TextureSampler(const Texture& texture, const FilterSettings& settings, Isa isa);
 
   Isa isa() const { return isa_; }
   const TextureView& view() const { return view_; }

@@ -23,6 +23,11 @@ struct TextureView {
   Filter minFilter = Filter::Trilinear;  // used when the footprint is minified (LOD > 0)
   bool magLinear = true;                 // used when magnified (LOD <= 0)
   int maxAniso = 16;
+  // LOD controls, as in OpenGL: λ' = clamp(λ + lodBias, minLod, maxLod),
+  // magnified when λ' <= 0.
+  float lodBias = 0.0f;
+  float minLod = 0.0f;
+  float maxLod = 1000.0f;
 };
 
 }  // namespace quadra
