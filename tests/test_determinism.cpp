@@ -117,9 +117,9 @@ TEST(Determinism, RepeatedFramesFromOneRendererAreIdentical) {
 // Every filter, on scenes with textures, blending and dense geometry, so each
 // kernel specialization meets its scalar twin.
 TEST(Determinism, EveryIsaMatchesScalar) {
-  const std::vector<std::optional<Filter>> filters = {std::nullopt,      Filter::Nearest,
-                                                      Filter::Bilinear,  Filter::NearestMip,
-                                                      Filter::Trilinear, Filter::Anisotropic};
+  const std::vector<std::optional<Filter>> filters = {
+      std::nullopt,      Filter::Nearest,     Filter::Bilinear, Filter::NearestMip,
+      Filter::Trilinear, Filter::Anisotropic, Filter::Ewa};
   int compared = 0;
   for (const std::string name : {"showcase", "checker-plane", "alpha-quads"}) {
     const Scene scene = makeBuiltinScene(name);

@@ -316,8 +316,8 @@ int runReport(int argc, const char* const* argv) {
 
   const Executor executor(options.threads);
   const std::vector<TestTexture> textures = makeTestTextures(options);
-  const Filter filters[] = {Filter::Nearest, Filter::Bilinear, Filter::NearestMip,
-                            Filter::Trilinear, Filter::Anisotropic};
+  const Filter filters[] = {Filter::Nearest,   Filter::Bilinear,    Filter::NearestMip,
+                            Filter::Trilinear, Filter::Anisotropic, Filter::Ewa};
   std::vector<FilterRow> rows;
   for (const Filter f : filters) {
     FilterRow row;

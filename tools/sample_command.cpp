@@ -26,7 +26,7 @@ constexpr const char* kSampleUsage =
     R"(usage: quadra sample --texture FILE.png|FILE.exr --filter F --in LOOKUPS.csv --out VALUES.csv
                      [--aniso N] [--wrap repeat|mirror|clamp|border] [--threads N] [--isa ISA]
                      [--lod-bias B] [--min-lod L] [--max-lod L]
-  --filter nearest|bilinear|nearest-mip|trilinear|aniso
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa
   LOOKUPS.csv: header u,v,dudx,dvdx,dudy,dvdy (normalized units, per-pixel derivatives)
   VALUES.csv:  header r,g,b,a, one row per lookup, linear float
 A PNG is decoded from sRGB to linear; an EXR is read as linear. Prints
@@ -57,7 +57,7 @@ SampleCommand parseSample(const std::vector<std::string>& args) {
       Filter f;
       if (!parseFilter(value, f))
         throw Error(arg + ": unknown filter '" + value +
-                    "' (nearest, bilinear, nearest-mip, trilinear, aniso)");
+                    "' (nearest, bilinear, nearest-mip, trilinear, aniso, ewa)");
       cmd.filtering.filter = f;
     } else if (arg == "--aniso")
       cmd.filtering.maxAniso = parseInteger(arg, value, 1, 64);

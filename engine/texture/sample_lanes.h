@@ -14,6 +14,7 @@
 #include "simd/lanes.h"
 #include "simd/transpose.h"
 
+#include "texture/ewa.h"
 #include "texture/texture_view.h"
 
 namespace quadra {
@@ -374,6 +375,29 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
   return {sum.r / probes, sum.g / probes, sum.b / probes, sum.a / probes};
 }
 
+// EWA, lane by lane through the scalar ewaLookup (its per-lookup texel count
+// varies with the footprint, so lanes would mostly wait on each other).
+template <class L>
+Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                  const UvDerivatives<L>& d) {
+  constexpr int W = L::kWidth;
+  alignas(64) float in[6][W], out[4][W];
+  u.store_aligned(in[0]);
+  v.store_aligned(in[1]);
+  d.dudx.store_aligned(in[2]);
+  d.dvdx.store_aligned(in[3]);
+  d.dudy.store_aligned(in[4]);
+  d.dvdy.store_aligned(in[5]);
+  for (int k = 0; k < W; ++k) {
+    float rgba[4];
+    ewaLookup(view, in[0][k], in[1][k], in[2][k], in[3][k], in[4][k], in[5][k], rgba);
+    for (int c = 0; c < 4; ++c) out[c][k] = rgba[c];
+  }
+  using F = typename L::F;
+  return {F::load_aligned(out[0]), F::load_aligned(out[1]), F::load_aligned(out[2]),
+          F::load_aligned(out[3])};
+}
+
 // The view's filter at the footprint given by the derivatives.
 template <class L>
 Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typename L::F& v,
@@ -384,6 +408,7 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
   const Filter filter = view.minFilter;
   if (filter == Filter::Nearest) return sampleNearest<L>(view, u, v, level0);
   if (filter == Filter::Bilinear) return sampleBilinear<L>(view, u, v, level0);
+  if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
   const F lod = controlledLod<L>(view, isotropicLod<L>(view, d));
   const auto magnified = ~(lod > F(0.0f));
   if (!view.magLinear && simd::all(magnified)) return sampleNearest<L>(view, u, v, level0);

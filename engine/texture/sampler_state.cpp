@@ -15,13 +15,14 @@ struct FilterSpelling {
 };
 
 // The first entry for each filter is its canonical name; later ones are aliases.
-constexpr std::array<FilterSpelling, 6> kFilterSpellings = {{
+constexpr std::array<FilterSpelling, 7> kFilterSpellings = {{
     {Filter::Nearest, "nearest"},
     {Filter::Bilinear, "bilinear"},
     {Filter::NearestMip, "nearest-mip"},
     {Filter::Trilinear, "trilinear"},
     {Filter::Anisotropic, "aniso"},
     {Filter::Anisotropic, "anisotropic"},
+    {Filter::Ewa, "ewa"},
 }};
 
 struct WrapSpelling {

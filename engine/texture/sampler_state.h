@@ -10,10 +10,11 @@ namespace quadra {
 enum class WrapMode : std::uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
 
 // The filter a lookup actually runs. Mip-based ones need the texture's MipChain.
-enum class Filter : std::uint8_t { Nearest, Bilinear, NearestMip, Trilinear, Anisotropic };
+enum class Filter : std::uint8_t { Nearest, Bilinear, NearestMip, Trilinear, Anisotropic, Ewa };
 
 inline bool needsMips(Filter f) {
-  return f == Filter::NearestMip || f == Filter::Trilinear || f == Filter::Anisotropic;
+  return f == Filter::NearestMip || f == Filter::Trilinear || f == Filter::Anisotropic ||
+         f == Filter::Ewa;
 }
 
 // glTF sampler state (the minification filter decides mip use; magnification
@@ -27,7 +28,7 @@ struct SamplerState {
 };
 
 const char* filterName(Filter f);
-// Parses nearest|bilinear|nearest-mip|trilinear|aniso; false when unknown.
+// Parses nearest|bilinear|nearest-mip|trilinear|aniso|ewa; false when unknown.
 bool parseFilter(const std::string& name, Filter& out);
 const char* wrapName(WrapMode w);
 bool parseWrap(const std::string& name, WrapMode& out);
