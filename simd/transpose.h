@@ -9,11 +9,18 @@
 #include <immintrin.h>
 #endif
 
+// Always inlined: these are compiled into baseline files and into every
+// per-ISA kernel file. An out-of-line copy would be a weak symbol shared
+// between them (GCC leaves one at -O1, e.g. in the sanitizer builds), and the
+// linker could hand the AVX-encoded copy to an SSE2-only caller.
+#define QUADRA_TRANSPOSE_INLINE inline __attribute__((always_inline))
+
 namespace quadra::simd {
 
 // in[c] points to 4 floats of channel c (16-byte aligned); out[p] (16-byte
 // aligned) receives pixel p's 4 channels; null out[p] are skipped.
-inline void transposeToPixelsStreaming(const float* const in[4], float* const out[4]) {
+QUADRA_TRANSPOSE_INLINE void transposeToPixelsStreaming(const float* const in[4],
+                                                        float* const out[4]) {
   __m128 r = _mm_load_ps(in[0]), g = _mm_load_ps(in[1]), b = _mm_load_ps(in[2]),
          a = _mm_load_ps(in[3]);
   _MM_TRANSPOSE4_PS(r, g, b, a);
@@ -25,7 +32,7 @@ inline void transposeToPixelsStreaming(const float* const in[4], float* const ou
 
 // Four RGBA texels (unaligned) → four channel runs of 4 floats each (aligned):
 // out[c][k] = channel c of texel k.
-inline void transposeToChannels(const float* const texel[4], float* const out[4]) {
+QUADRA_TRANSPOSE_INLINE void transposeToChannels(const float* const texel[4], float* const out[4]) {
   __m128 t0 = _mm_loadu_ps(texel[0]), t1 = _mm_loadu_ps(texel[1]), t2 = _mm_loadu_ps(texel[2]),
          t3 = _mm_loadu_ps(texel[3]);
   _MM_TRANSPOSE4_PS(t0, t1, t2, t3);
@@ -40,8 +47,8 @@ inline void transposeToChannels(const float* const texel[4], float* const out[4]
 // right[k] are lane k's texels; out[c] receives channel c of the left texels
 // (4 floats) and out[4 + c] of the right ones. One shuffle per texel where two
 // 4-wide transposes take two. Only in files built with AVX (the per-ISA kernels).
-inline void transposeTexelPairs(const float* const left[4], const float* const right[4],
-                                __m256 channel[4]) {
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const float* const left[4],
+                                                 const float* const right[4], __m256 channel[4]) {
   __m256 t0 = _mm256_loadu2_m128(right[0], left[0]), t1 = _mm256_loadu2_m128(right[1], left[1]),
          t2 = _mm256_loadu2_m128(right[2], left[2]), t3 = _mm256_loadu2_m128(right[3], left[3]);
   const __m256 lo01 = _mm256_unpacklo_ps(t0, t1), hi01 = _mm256_unpackhi_ps(t0, t1);
@@ -54,8 +61,8 @@ inline void transposeTexelPairs(const float* const left[4], const float* const r
 
 // As above, stored: out[c] receives channel c of the left texels, out[4 + c]
 // of the right ones (4 floats each).
-inline void transposeTexelPairs(const float* const left[4], const float* const right[4],
-                                float* const out[8]) {
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const float* const left[4],
+                                                 const float* const right[4], float* const out[8]) {
   __m256 t0 = _mm256_loadu2_m128(right[0], left[0]), t1 = _mm256_loadu2_m128(right[1], left[1]),
          t2 = _mm256_loadu2_m128(right[2], left[2]), t3 = _mm256_loadu2_m128(right[3], left[3]);
   const __m256 lo01 = _mm256_unpacklo_ps(t0, t1), hi01 = _mm256_unpackhi_ps(t0, t1);
@@ -75,7 +82,8 @@ inline void transposeTexelPairs(const float* const left[4], const float* const r
 // Sixteen lanes of left and right texel channels straight from four pair
 // transposes (lanes 4g..4g+3 in pair[g]), kept in registers: assembling them
 // through 128-bit stores and a 512-bit load defeats store forwarding.
-inline void assemblePairs16(const __m256 pair[4][4], __m512 left[4], __m512 right[4]) {
+QUADRA_TRANSPOSE_INLINE void assemblePairs16(const __m256 pair[4][4], __m512 left[4],
+                                             __m512 right[4]) {
   for (int c = 0; c < 4; ++c) {
     const __m512 ab = _mm512_insertf32x8(_mm512_castps256_ps512(pair[0][c]), pair[1][c], 1);
     const __m512 cd = _mm512_insertf32x8(_mm512_castps256_ps512(pair[2][c]), pair[3][c], 1);
@@ -86,7 +94,7 @@ inline void assemblePairs16(const __m256 pair[4][4], __m512 left[4], __m512 righ
 #endif
 
 // Orders streaming stores before whatever the thread does next.
-inline void streamFence() {
+QUADRA_TRANSPOSE_INLINE void streamFence() {
   _mm_sfence();
 }
 
