@@ -1,7 +1,8 @@
-// 4x4 float transposes between interleaved RGBA and planar channels, in the
-// SSE2 baseline every x86-64 has: resolve's planes → pixels (with streaming
-// stores: the frame is not read again, so skipping the read-for-ownership
-// halves its memory traffic) and the sampler's texels → channel lanes.
+// Transposes between interleaved RGBA and planar channels: resolve's planes →
+// pixels (SSE2, with streaming stores: the frame is not read again, so skipping
+// the read-for-ownership halves its memory traffic) and the sampler's texel
+// pairs → channel lanes (one helper per register width; the wider ones only
+// in files built with AVX / AVX-512, i.e. the per-ISA kernels).
 #pragma once
 
 #include <emmintrin.h>
@@ -30,65 +31,78 @@ QUADRA_TRANSPOSE_INLINE void transposeToPixelsStreaming(const float* const in[4]
   if (out[3]) _mm_stream_ps(out[3], a);
 }
 
-// Four RGBA texels (unaligned) → four channel runs of 4 floats each (aligned):
-// out[c][k] = channel c of texel k.
-QUADRA_TRANSPOSE_INLINE void transposeToChannels(const float* const texel[4], float* const out[4]) {
-  __m128 t0 = _mm_loadu_ps(texel[0]), t1 = _mm_loadu_ps(texel[1]), t2 = _mm_loadu_ps(texel[2]),
-         t3 = _mm_loadu_ps(texel[3]);
-  _MM_TRANSPOSE4_PS(t0, t1, t2, t3);
-  _mm_store_ps(out[0], t0);
-  _mm_store_ps(out[1], t1);
-  _mm_store_ps(out[2], t2);
-  _mm_store_ps(out[3], t3);
+// Texel pairs → channel lanes, for bilinear rows: pair[k] points to lane k's
+// left and right RGBA texels, 8 contiguous floats (texture/padded_level.h);
+// left[c] and right[c] receive channel c of every lane's left and right texel.
+// One helper per register width; each loads a pair whole where the register
+// allows and transposes in registers.
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const float* const pair[4], __m128 left[4],
+                                                 __m128 right[4]) {
+  __m128 l0 = _mm_loadu_ps(pair[0]), l1 = _mm_loadu_ps(pair[1]), l2 = _mm_loadu_ps(pair[2]),
+         l3 = _mm_loadu_ps(pair[3]);
+  __m128 r0 = _mm_loadu_ps(pair[0] + 4), r1 = _mm_loadu_ps(pair[1] + 4),
+         r2 = _mm_loadu_ps(pair[2] + 4), r3 = _mm_loadu_ps(pair[3] + 4);
+  _MM_TRANSPOSE4_PS(l0, l1, l2, l3);
+  _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+  left[0] = l0, left[1] = l1, left[2] = l2, left[3] = l3;
+  right[0] = r0, right[1] = r1, right[2] = r2, right[3] = r3;
 }
 
 #if defined(__AVX__)
-// Two texels per lane for four lanes in one 8-wide transpose: left[k] and
-// right[k] are lane k's texels; out[c] receives channel c of the left texels
-// (4 floats) and out[4 + c] of the right ones. One shuffle per texel where two
-// 4-wide transposes take two. Only in files built with AVX (the per-ISA kernels).
-QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const float* const left[4],
-                                                 const float* const right[4], __m256 channel[4]) {
-  __m256 t0 = _mm256_loadu2_m128(right[0], left[0]), t1 = _mm256_loadu2_m128(right[1], left[1]),
-         t2 = _mm256_loadu2_m128(right[2], left[2]), t3 = _mm256_loadu2_m128(right[3], left[3]);
-  const __m256 lo01 = _mm256_unpacklo_ps(t0, t1), hi01 = _mm256_unpackhi_ps(t0, t1);
-  const __m256 lo23 = _mm256_unpacklo_ps(t2, t3), hi23 = _mm256_unpackhi_ps(t2, t3);
-  channel[0] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(1, 0, 1, 0));
-  channel[1] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
-  channel[2] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
-  channel[3] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(3, 2, 3, 2));
+// The 4x4 transpose inside each 128-bit block of four registers: block b of
+// out[c] holds channel c of block b of in[0..3] (unpack and shuffle never
+// cross blocks).
+QUADRA_TRANSPOSE_INLINE void transposeBlocks(const __m256 in[4], __m256 out[4]) {
+  const __m256 lo01 = _mm256_unpacklo_ps(in[0], in[1]), hi01 = _mm256_unpackhi_ps(in[0], in[1]);
+  const __m256 lo23 = _mm256_unpacklo_ps(in[2], in[3]), hi23 = _mm256_unpackhi_ps(in[2], in[3]);
+  out[0] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(1, 0, 1, 0));
+  out[1] = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
+  out[2] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
+  out[3] = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(3, 2, 3, 2));
 }
 
-// As above, stored: out[c] receives channel c of the left texels, out[4 + c]
-// of the right ones (4 floats each).
-QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const float* const left[4],
-                                                 const float* const right[4], float* const out[8]) {
-  __m256 t0 = _mm256_loadu2_m128(right[0], left[0]), t1 = _mm256_loadu2_m128(right[1], left[1]),
-         t2 = _mm256_loadu2_m128(right[2], left[2]), t3 = _mm256_loadu2_m128(right[3], left[3]);
-  const __m256 lo01 = _mm256_unpacklo_ps(t0, t1), hi01 = _mm256_unpackhi_ps(t0, t1);
-  const __m256 lo23 = _mm256_unpacklo_ps(t2, t3), hi23 = _mm256_unpackhi_ps(t2, t3);
-  const __m256 r = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(1, 0, 1, 0));
-  const __m256 g = _mm256_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
-  const __m256 b = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
-  const __m256 a = _mm256_shuffle_ps(hi01, hi23, _MM_SHUFFLE(3, 2, 3, 2));
-  _mm256_storeu2_m128(out[4], out[0], r);
-  _mm256_storeu2_m128(out[5], out[1], g);
-  _mm256_storeu2_m128(out[6], out[2], b);
-  _mm256_storeu2_m128(out[7], out[3], a);
+// Eight lanes: a register per lane holds its pair (left texel in the low
+// block); the block transpose of lanes 0-3 and of 4-7 leaves left channels in
+// the low blocks and right ones in the high blocks, which one permute splits.
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const float* const pair[8], __m256 left[4],
+                                                 __m256 right[4]) {
+  __m256 in[2][4], out[2][4];
+  for (int k = 0; k < 8; ++k) in[k / 4][k % 4] = _mm256_loadu_ps(pair[k]);
+  transposeBlocks(in[0], out[0]);
+  transposeBlocks(in[1], out[1]);
+  for (int c = 0; c < 4; ++c) {
+    left[c] = _mm256_permute2f128_ps(out[0][c], out[1][c], 0x20);
+    right[c] = _mm256_permute2f128_ps(out[0][c], out[1][c], 0x31);
+  }
 }
 #endif
 
 #if defined(__AVX512F__)
-// Sixteen lanes of left and right texel channels straight from four pair
-// transposes (lanes 4g..4g+3 in pair[g]), kept in registers: assembling them
-// through 128-bit stores and a 512-bit load defeats store forwarding.
-QUADRA_TRANSPOSE_INLINE void assemblePairs16(const __m256 pair[4][4], __m512 left[4],
-                                             __m512 right[4]) {
+QUADRA_TRANSPOSE_INLINE void transposeBlocks(const __m512 in[4], __m512 out[4]) {
+  const __m512 lo01 = _mm512_unpacklo_ps(in[0], in[1]), hi01 = _mm512_unpackhi_ps(in[0], in[1]);
+  const __m512 lo23 = _mm512_unpacklo_ps(in[2], in[3]), hi23 = _mm512_unpackhi_ps(in[2], in[3]);
+  out[0] = _mm512_shuffle_ps(lo01, lo23, _MM_SHUFFLE(1, 0, 1, 0));
+  out[1] = _mm512_shuffle_ps(lo01, lo23, _MM_SHUFFLE(3, 2, 3, 2));
+  out[2] = _mm512_shuffle_ps(hi01, hi23, _MM_SHUFFLE(1, 0, 1, 0));
+  out[3] = _mm512_shuffle_ps(hi01, hi23, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
+// Sixteen lanes: register j of group g holds the pairs of lanes 8g + j and
+// 8g + j + 4, so after the block transposes group g's blocks are the left,
+// right, left, right channels of lanes 8g..8g+3 and 8g+4..8g+7; one 128-bit
+// shuffle per channel and side puts the four runs in lane order.
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const float* const pair[16], __m512 left[4],
+                                                 __m512 right[4]) {
+  __m512 in[2][4], out[2][4];
+  for (int g = 0; g < 2; ++g)
+    for (int j = 0; j < 4; ++j)
+      in[g][j] = _mm512_insertf32x8(_mm512_castps256_ps512(_mm256_loadu_ps(pair[8 * g + j])),
+                                    _mm256_loadu_ps(pair[8 * g + j + 4]), 1);
+  transposeBlocks(in[0], out[0]);
+  transposeBlocks(in[1], out[1]);
   for (int c = 0; c < 4; ++c) {
-    const __m512 ab = _mm512_insertf32x8(_mm512_castps256_ps512(pair[0][c]), pair[1][c], 1);
-    const __m512 cd = _mm512_insertf32x8(_mm512_castps256_ps512(pair[2][c]), pair[3][c], 1);
-    left[c] = _mm512_shuffle_f32x4(ab, cd, _MM_SHUFFLE(2, 0, 2, 0));
-    right[c] = _mm512_shuffle_f32x4(ab, cd, _MM_SHUFFLE(3, 1, 3, 1));
+    left[c] = _mm512_shuffle_f32x4(out[0][c], out[1][c], _MM_SHUFFLE(2, 0, 2, 0));
+    right[c] = _mm512_shuffle_f32x4(out[0][c], out[1][c], _MM_SHUFFLE(3, 1, 3, 1));
   }
 }
 #endif

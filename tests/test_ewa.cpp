@@ -12,39 +12,13 @@
 #include <random>
 #include <vector>
 
+#include "sampler_helpers.h"
 #include "texture/ground_truth.h"
 #include "texture/test_textures.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {
 namespace {
-
-std::vector<float> sampleAll(const Texture& texture, Filter filter, Isa isa,
-                             const std::vector<std::array<float, 6>>& lookups) {
-  std::vector<float> column[6];
-  for (const auto& l : lookups)
-    for (int i = 0; i < 6; ++i) column[i].push_back(l[i]);
-  const LookupBatch batch{column[0].data(), column[1].data(), column[2].data(), column[3].data(),
-                          column[4].data(), column[5].data(), lookups.size()};
-  std::vector<float> rgba(lookups.size() * 4);
-  TextureSampler(texture, FilterSettings(filter, 16), isa)
-      .sample(batch, 0, lookups.size(), rgba.data());
-  return rgba;
-}
-
-std::vector<std::array<float, 6>> randomLookups(int count, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> position(-2.0f, 3.0f), logScale(-10.0f, 1.0f),
-      angle(0.0f, 6.2831853f), stretch(0.0f, 6.0f);
-  std::vector<std::array<float, 6>> lookups;
-  for (int i = 0; i < count; ++i) {
-    const float a = angle(rng), major = std::exp2(logScale(rng)),
-                minor = major / std::exp2(stretch(rng));
-    lookups.push_back({position(rng), position(rng), major * std::cos(a), major * std::sin(a),
-                       -minor * std::sin(a), minor * std::cos(a)});
-  }
-  return lookups;
-}
 
 TEST(Ewa, ConstantTextureIsReproducedExactly) {
   auto image = std::make_shared<Image>(64, 64);
@@ -69,13 +43,13 @@ TEST(Ewa, HostileInputsStayFiniteAndInRange) {
     state.wrapU = state.wrapV = wrap;
     const Texture texture(image, state);
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = INFINITY;
-    const std::vector<std::array<float, 6>> lookups = {{nan, 0.5f, 0.01f, 0, 0, 0.01f},
-                                                       {0.5f, inf, 0.01f, 0, 0, 0.01f},
-                                                       {0.5f, 0.5f, nan, nan, nan, nan},
-                                                       {0.5f, 0.5f, inf, 0, 0, inf},
-                                                       {0.5f, 0.5f, 0, 0, 0, 0},
-                                                       {1e4f, -1e4f, 1e3f, 0, 0, 1e-3f},
-                                                       {0.3f, 0.7f, 1e6f, 1e6f, -1e6f, 1e6f}};
+    const std::vector<Lookup> lookups = {{nan, 0.5f, 0.01f, 0, 0, 0.01f},
+                                         {0.5f, inf, 0.01f, 0, 0, 0.01f},
+                                         {0.5f, 0.5f, nan, nan, nan, nan},
+                                         {0.5f, 0.5f, inf, 0, 0, inf},
+                                         {0.5f, 0.5f, 0, 0, 0, 0},
+                                         {1e4f, -1e4f, 1e3f, 0, 0, 1e-3f},
+                                         {0.3f, 0.7f, 1e6f, 1e6f, -1e6f, 1e6f}};
     for (const float value : sampleAll(texture, Filter::Ewa, Isa::Scalar, lookups)) {
       EXPECT_TRUE(std::isfinite(value)) << wrapName(wrap);
       EXPECT_GE(value, -1e-6f);
@@ -100,7 +74,7 @@ TEST(Ewa, BeatsBilinearOnMinifiedFootprints) {
   const auto image = std::make_shared<Image>(makeCheckerTexture(128, 128, 2));
   const Texture texture(image, SamplerState{});
   const BilinearReference reference(*image, SamplerState{});
-  std::vector<std::array<float, 6>> lookups;
+  std::vector<Lookup> lookups;
   std::mt19937 rng(8);
   std::uniform_real_distribution<float> position(0.0f, 1.0f), angle(0.0f, 6.2831853f);
   for (int i = 0; i < 150; ++i) {  // isotropic footprints of 8 texels

@@ -117,5 +117,38 @@ TEST_F(LodControls, MinLodTwoReadsLevelTwoUnderMagnification) {
   }
 }
 
+// GL's magnification rule, λ + bias <= 0, decided at the footprint length
+// 2^-bias: just inside it a nearest-magnifying sampler returns exactly the
+// nearest texels; just outside it minifies (trilinear, nearly level 0).
+TEST_F(LodControls, MagnificationEndsWhereTheBiasedFootprintReachesOneTexel) {
+  SamplerState nearestMagnification;
+  nearestMagnification.magLinear = false;
+  const Texture texture(image_, nearestMagnification);
+  for (const float bias : {-1.0f, 0.0f, 1.5f}) {
+    const double limit = std::exp2(-double(bias));
+    const Batch inside = makeBatch(300, limit * 0.999), outside = makeBatch(300, limit * 1.001);
+    for (Isa isa : supportedIsas()) {
+      FilterSettings biased;
+      biased.lodBias = bias;
+      EXPECT_EQ(sample(texture, biased, isa, inside),
+                sample(texture, FilterSettings(Filter::Nearest), isa, inside))
+          << isaName(isa) << " bias " << bias;
+      const std::vector<float> minified = sample(texture, biased, isa, outside);
+      const std::vector<float> bilinear =
+          sample(texture, FilterSettings(Filter::Bilinear), isa, outside);
+      const std::vector<float> nearest =
+          sample(texture, FilterSettings(Filter::Nearest), isa, outside);
+      double fromBilinear = 0.0, fromNearest = 0.0;
+      for (std::size_t i = 0; i < minified.size(); ++i) {
+        fromBilinear = std::max(fromBilinear, double(std::fabs(minified[i] - bilinear[i])));
+        fromNearest = std::max(fromNearest, double(std::fabs(minified[i] - nearest[i])));
+      }
+      // λ' = log2(1.001) ≈ 0.0014: level 1 weighs in by that much at most.
+      EXPECT_LT(fromBilinear, 2e-3) << isaName(isa) << " bias " << bias;
+      EXPECT_GT(fromNearest, 0.05) << isaName(isa) << " bias " << bias;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace quadra

@@ -1,4 +1,4 @@
-// Scene and Texture members: the lazily built mip chain, triangle counts and
+// Scene and Texture members: the lazily built mip chain and sampled levels, triangle counts and
 // world-space bounds.
 #include "scene/scene.h"
 
@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "texture/mip_chain.h"
+#include "texture/padded_level.h"
 
 namespace quadra {
 
@@ -18,6 +19,19 @@ Texture::~Texture() = default;
 const MipChain& Texture::mips(const Executor* executor) const {
   std::call_once(mipsOnce_, [&] { mips_ = std::make_unique<MipChain>(*image_, executor); });
   return *mips_;
+}
+
+const PaddedLevel& Texture::sampledLevel0() const {
+  std::call_once(level0Once_, [&] { level0_ = std::make_unique<PaddedLevel>(*image_); });
+  return *level0_;
+}
+
+const std::vector<PaddedLevel>& Texture::sampledMipLevels(const Executor* executor) const {
+  std::call_once(mipLevelsOnce_, [&] {
+    const MipChain& chain = mips(executor);
+    for (int i = 1; i < chain.levelCount(); ++i) mipLevels_.emplace_back(chain.level(i));
+  });
+  return mipLevels_;
 }
 
 std::size_t Scene::triangleCount() const {

@@ -21,6 +21,7 @@ namespace quadra {
 
 class Executor;
 class MipChain;
+struct PaddedLevel;
 
 // A texture as the scene holds it: its level-0 image in linear float and its
 // sampler. The mip chain is built on first use, once, and only for textures
@@ -35,12 +36,18 @@ class Texture {
   // Thread-safe; the first call builds the chain, in parallel on `executor`
   // when one is given.
   const MipChain& mips(const Executor* executor = nullptr) const;
+  // The levels as the sampling kernels read them (texture/padded_level.h),
+  // each built once on first use: level 0, and levels 1.. of the chain.
+  const PaddedLevel& sampledLevel0() const;
+  const std::vector<PaddedLevel>& sampledMipLevels(const Executor* executor = nullptr) const;
 
  private:
   std::shared_ptr<const Image> image_;
   SamplerState sampler_;
-  mutable std::once_flag mipsOnce_;
+  mutable std::once_flag mipsOnce_, level0Once_, mipLevelsOnce_;
   mutable std::unique_ptr<MipChain> mips_;
+  mutable std::unique_ptr<PaddedLevel> level0_;
+  mutable std::vector<PaddedLevel> mipLevels_;
 };
 
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };

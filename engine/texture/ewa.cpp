@@ -66,7 +66,7 @@ void ellipseAverage(const TextureView& view, int level, double s, double t, cons
       const float* texel =
           row < 0 || column < 0
               ? view.border
-              : lev.texels + (std::size_t(row) * std::size_t(lev.width) + std::size_t(column)) * 4;
+              : lev.texels + (std::size_t(row) * std::size_t(lev.stride) + std::size_t(column)) * 4;
       for (int c = 0; c < 4; ++c) sum[c] += w * texel[c];
       weights += w;
     }

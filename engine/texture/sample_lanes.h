@@ -78,142 +78,106 @@ QUADRA_LANE_INLINE typename L::F wrapTexel(typename L::F x, typename L::F n, Wra
   return x;
 }
 
-// Per-lane level sizes, looked up from the view (lanes may sit on different levels).
+// The size of the level each lane reads. Usually every lane of a group sits on
+// one level: then `uniform` names it and the sizes are broadcast (assembling
+// lanes from narrow stores defeats store forwarding); otherwise uniform is -1.
 template <class L>
-// Returns the level when all lanes share one, else -1.
-QUADRA_LANE_INLINE int levelSizes(const TextureView& view, const typename L::I& level,
-                                  typename L::F& width, typename L::F& height) {
-  if (view.levelCount == 1) {
-    width = typename L::F(float(view.levels[0].width));
-    height = typename L::F(float(view.levels[0].height));
-    return 0;
+struct LevelGeometry {
+  typename L::F width, height;
+  typename L::I stride;  // texels per row (padded_level.h)
+  int uniform;
+};
+
+template <class L>
+QUADRA_LANE_INLINE LevelGeometry<L> levelGeometry(const TextureView& view,
+                                                  const typename L::I& level) {
+  using F = typename L::F;
+  using I = typename L::I;
+  const int first = view.levelCount == 1 ? 0 : int(level.get(0));
+  if (view.levelCount == 1 || simd::all(simd::toFloat(level) == F(float(first)))) {
+    const TextureLevel& lev = view.levels[first];
+    return {F(float(lev.width)), F(float(lev.height)), I(lev.stride), first};
   }
-  alignas(64) std::int32_t lv[L::kWidth];
+  alignas(64) std::int32_t lv[L::kWidth], stride[L::kWidth];
   alignas(64) float w[L::kWidth], h[L::kWidth];
   level.store_aligned(lv);
-  // Usually every lane of a group sits on one level: broadcast its size rather
-  // than assemble lanes from scalar stores (a wide load of narrow stores
-  // cannot be store-forwarded and stalls).
-  bool uniform = true;
-  for (int k = 1; k < L::kWidth; ++k) uniform = uniform && lv[k] == lv[0];
-  if (uniform) {
-    width = typename L::F(float(view.levels[lv[0]].width));
-    height = typename L::F(float(view.levels[lv[0]].height));
-    return lv[0];
-  }
   for (int k = 0; k < L::kWidth; ++k) {
     w[k] = float(view.levels[lv[k]].width);
     h[k] = float(view.levels[lv[k]].height);
+    stride[k] = view.levels[lv[k]].stride;
   }
-  width = L::F::load_aligned(w);
-  height = L::F::load_aligned(h);
-  return -1;
+  return {F::load_aligned(w), F::load_aligned(h), I::load_aligned(stride), -1};
+}
+
+// Texel offset (row * stride + column) of integer-valued coordinates; below
+// 2^28 (the loader's texel limit, padding included), so int32 arithmetic.
+template <class L>
+QUADRA_LANE_INLINE typename L::I texelOffset(const LevelGeometry<L>& g, const typename L::F& x,
+                                             const typename L::F& y) {
+  return simd::toInt(y) * g.stride + simd::toInt(x);
+}
+
+// Per-lane pointers to the texels at the given offsets.
+template <class L>
+QUADRA_LANE_INLINE void texelPointers(const TextureView& view, const LevelGeometry<L>& g,
+                                      const typename L::I& level, const typename L::I& offset,
+                                      const float* out[L::kWidth]) {
+  alignas(64) std::int32_t off[L::kWidth], lv[L::kWidth];
+  offset.store_aligned(off);
+  if (g.uniform >= 0) {
+    const float* const base = view.levels[g.uniform].texels;
+    for (int k = 0; k < L::kWidth; ++k) out[k] = base + std::ptrdiff_t(off[k]) * 4;
+    return;
+  }
+  level.store_aligned(lv);
+  for (int k = 0; k < L::kWidth; ++k)
+    out[k] = view.levels[lv[k]].texels + std::ptrdiff_t(off[k]) * 4;
 }
 
 // One texel per lane (nearest filtering), loaded channel by channel.
 template <class L>
-Rgba<L> fetch(const TextureView& view, const typename L::I& level, const typename L::F& x,
-              const typename L::F& y) {
-  alignas(64) std::int32_t lv[L::kWidth], xi[L::kWidth], yi[L::kWidth];
-  alignas(64) float r[L::kWidth], g[L::kWidth], b[L::kWidth], a[L::kWidth];
-  level.store_aligned(lv);
-  simd::toInt(x).store_aligned(xi);
-  simd::toInt(y).store_aligned(yi);
+Rgba<L> fetch(const TextureView& view, const LevelGeometry<L>& g, const typename L::I& level,
+              const typename L::F& x, const typename L::F& y) {
+  const float* texel[L::kWidth];
+  texelPointers<L>(view, g, level, texelOffset<L>(g, x, y), texel);
+  alignas(64) float r[L::kWidth], gr[L::kWidth], b[L::kWidth], a[L::kWidth];
   for (int k = 0; k < L::kWidth; ++k) {
-    const TextureLevel& lev = view.levels[lv[k]];
-    const float* t = lev.texels + (std::size_t(yi[k]) * std::size_t(lev.width) + xi[k]) * 4;
-    r[k] = t[0];
-    g[k] = t[1];
-    b[k] = t[2];
-    a[k] = t[3];
+    r[k] = texel[k][0];
+    gr[k] = texel[k][1];
+    b[k] = texel[k][2];
+    a[k] = texel[k][3];
   }
   using F = typename L::F;
-  return {F::load_aligned(r), F::load_aligned(g), F::load_aligned(b), F::load_aligned(a)};
+  return {F::load_aligned(r), F::load_aligned(gr), F::load_aligned(b), F::load_aligned(a)};
 }
 
-// The 2x2 texels of a bilinear lookup in one pass over the lanes: corners
-// (x0,y0), (x1,y0), (x0,y1), (x1,y1). Gather-free: each lane loads its RGBA
-// texels whole and lanes are transposed into channels. Hardware gathers
-// measured slower here (checker plane trilinear 15.0 vs 13.0 ms), and they are
-// slow on AMD Zen and microcode-mitigated on many Intel parts.
-// uniformLevel >= 0: every lane reads that level (no per-lane level lookup).
+// The left and right texels of one bilinear row per lane, as channel lanes:
+// each lane reads its pair (texels x and x + 1, contiguous in a padded level)
+// whole, and the pairs are transposed in registers. Gather-free: hardware
+// gathers measured slower here on both an Intel Xeon and an AMD EPYC (Zen 5)
+// VM (alpha-quads 34.8 vs 24.8 ms on the latter), and are microcode-mitigated
+// on many Intel parts.
 template <class L>
-QUADRA_LANE_INLINE void fetch2x2Scalar(const TextureView& view, int uniformLevel,
-                                       const std::int32_t* lv, const std::int32_t* xs0,
-                                       const std::int32_t* xs1, const std::int32_t* ys0,
-                                       const std::int32_t* ys1, Rgba<L> out[4]) {
+QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeometry<L>& g,
+                                      const typename L::I& level, const typename L::I& offset,
+                                      Rgba<L>& left, Rgba<L>& right) {
   constexpr int W = L::kWidth;
-  alignas(64) float texel[4][4][W];  // [corner][channel][lane]
-  const float* corner[4][W];
-  for (int k = 0; k < W; ++k) {
-    const TextureLevel& lev = view.levels[uniformLevel >= 0 ? uniformLevel : lv[k]];
-    // y * width < 2^28 (the loader's texel limit): a 32-bit product, which
-    // vectorizes without 64-bit multiplies.
-    const std::size_t row0 = std::uint32_t(ys0[k]) * std::uint32_t(lev.width);
-    const std::size_t row1 = std::uint32_t(ys1[k]) * std::uint32_t(lev.width);
-    corner[0][k] = lev.texels + (row0 + xs0[k]) * 4;
-    corner[1][k] = lev.texels + (row0 + xs1[k]) * 4;
-    corner[2][k] = lev.texels + (row1 + xs0[k]) * 4;
-    corner[3][k] = lev.texels + (row1 + xs1[k]) * 4;
-  }
-#if defined(__AVX512F__)
-  if constexpr (W == 16) {
-    for (int c = 0; c < 4; c += 2) {
-      __m256 pair[4][4];
-      for (int g = 0; g < 4; ++g)
-        simd::transposeTexelPairs(&corner[c][4 * g], &corner[c + 1][4 * g], pair[g]);
-      __m512 left[4], right[4];
-      simd::assemblePairs16(pair, left, right);
-      out[c] = {left[0], left[1], left[2], left[3]};
-      out[c + 1] = {right[0], right[1], right[2], right[3]};
-    }
-    return;
-  }
-#endif
+  const float* pair[W];
+  texelPointers<L>(view, g, level, offset, pair);
   if constexpr (kIsScalarLanes<L>) {
-    for (int c = 0; c < 4; ++c)
-      for (int k = 0; k < W; ++k)
-        for (int ch = 0; ch < 4; ++ch) texel[c][ch][k] = corner[c][k][ch];
+    for (int k = 0; k < W; ++k) {
+      left.r.v[k] = pair[k][0], left.g.v[k] = pair[k][1], left.b.v[k] = pair[k][2],
+      left.a.v[k] = pair[k][3];
+      right.r.v[k] = pair[k][4], right.g.v[k] = pair[k][5], right.b.v[k] = pair[k][6],
+      right.a.v[k] = pair[k][7];
+    }
   } else {
-    // Whole-texel loads, transposed four lanes at a time (a scalar load per
-    // channel cost twice as much).
-#if defined(__AVX__)
-    // Corners 0/1 and 2/3 are the left/right texels of one row: transpose them in pairs.
-    for (int c = 0; c < 4; c += 2)
-      for (int k = 0; k < W; k += 4) {
-        float* const channels[8] = {&texel[c][0][k],     &texel[c][1][k],     &texel[c][2][k],
-                                    &texel[c][3][k],     &texel[c + 1][0][k], &texel[c + 1][1][k],
-                                    &texel[c + 1][2][k], &texel[c + 1][3][k]};
-        simd::transposeTexelPairs(&corner[c][k], &corner[c + 1][k], channels);
-      }
-#else
-    for (int c = 0; c < 4; ++c)
-      for (int k = 0; k < W; k += 4) {
-        float* const channels[4] = {&texel[c][0][k], &texel[c][1][k], &texel[c][2][k],
-                                    &texel[c][3][k]};
-        simd::transposeToChannels(&corner[c][k], channels);
-      }
-#endif
+    using Native = typename L::F::register_type;
+    Native l[4], r[4];
+    simd::transposeTexelPairs(pair, l, r);
+    left = {l[0], l[1], l[2], l[3]};
+    right = {r[0], r[1], r[2], r[3]};
   }
-  using F = typename L::F;
-  for (int c = 0; c < 4; ++c)
-    out[c] = {F::load_aligned(texel[c][0]), F::load_aligned(texel[c][1]),
-              F::load_aligned(texel[c][2]), F::load_aligned(texel[c][3])};
-}
-
-// The 2x2 texels of a bilinear lookup: corners (x0,y0), (x1,y0), (x0,y1), (x1,y1).
-template <class L>
-QUADRA_LANE_INLINE void fetch2x2(const TextureView& view, const typename L::I& level,
-                                 int uniformLevel, const typename L::F& x0, const typename L::F& x1,
-                                 const typename L::F& y0, const typename L::F& y1, Rgba<L> out[4]) {
-  constexpr int W = L::kWidth;
-  alignas(64) std::int32_t lv[W], xs[2][W], ys[2][W];
-  if (uniformLevel < 0) level.store_aligned(lv);
-  simd::toInt(x0).store_aligned(xs[0]);
-  simd::toInt(x1).store_aligned(xs[1]);
-  simd::toInt(y0).store_aligned(ys[0]);
-  simd::toInt(y1).store_aligned(ys[1]);
-  fetch2x2Scalar<L>(view, uniformLevel, lv, xs[0], xs[1], ys[0], ys[1], out);
 }
 
 template <class L>
@@ -239,56 +203,81 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
                       const typename L::I& level) {
   using namespace sampling;
   using F = typename L::F;
-  F width, height;
-  levelSizes<L>(view, level, width, height);
+  const LevelGeometry<L> g = levelGeometry<L>(view, level);
   u = reduceCoordinate<L>(u, view.wrapU);
   v = reduceCoordinate<L>(v, view.wrapV);
   typename L::M inside = F(0.0f) == F(0.0f);
-  const F x = wrapTexel<L>(simd::floor(u * width), width, view.wrapU, inside);
-  const F y = wrapTexel<L>(simd::floor(v * height), height, view.wrapV, inside);
-  return withBorder<L>(view, fetch<L>(view, level, x, y), inside);
+  const F x = wrapTexel<L>(simd::floor(u * g.width), g.width, view.wrapU, inside);
+  const F y = wrapTexel<L>(simd::floor(v * g.height), g.height, view.wrapV, inside);
+  return withBorder<L>(view, fetch<L>(view, g, level, x, y), inside);
 }
 
-// Bilinear reconstruction on the given level(s).
+// Bilinear reconstruction on the given level(s). Columns are read as pairs
+// (x0, x0 + 1) of a padded level, so x0 is brought into [0, width - 1]:
+// repeat wraps it (x0 + 1 = width reads the padding copy of column 0); clamp
+// clamps the coordinate to [0, width - 1] (at the edge the right texel gets
+// weight 0, which equals reading the edge texel twice); mirrored repeat is
+// clamp on the folded coordinate (the bilinear reconstruction of a mirrored
+// row is symmetric about each fold); border reads the pair at the clamped
+// column and substitutes the border colour where a texel lies outside.
 template <class L>
 QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F u, typename L::F v,
                                           const typename L::I& level) {
   using namespace sampling;
   using F = typename L::F;
   using M = typename L::M;
-  F width, height;
-  const int uniformLevel = levelSizes<L>(view, level, width, height);
+  const LevelGeometry<L> g = levelGeometry<L>(view, level);
   u = reduceCoordinate<L>(u, view.wrapU);
   v = reduceCoordinate<L>(v, view.wrapV);
-  const F tx = u * width - F(0.5f), ty = v * height - F(0.5f);
+  if (view.wrapU == WrapMode::MirroredRepeat) u = simd::select(u > F(1.0f), F(2.0f) - u, u);
+  F tx = u * g.width - F(0.5f);
+  const F lastColumn = g.width - F(1.0f);
+  if (view.wrapU == WrapMode::ClampToEdge || view.wrapU == WrapMode::MirroredRepeat)
+    tx = simd::max(simd::min(tx, lastColumn), F(0.0f));
+  const F ty = v * g.height - F(0.5f);
   const F fx0 = simd::floor(tx), fy0 = simd::floor(ty);
   const F fx = tx - fx0, fy = ty - fy0;
+
+  F x0 = fx0;
+  if (view.wrapU == WrapMode::Repeat) x0 = simd::select(fx0 < F(0.0f), fx0 + g.width, fx0);
+  if (view.wrapU == WrapMode::ClampToBorder) x0 = simd::max(simd::min(fx0, lastColumn), F(0.0f));
   const M all = F(0.0f) == F(0.0f);
-  M inX0 = all, inX1 = all, inY0 = all, inY1 = all;
-  const F x0 = wrapTexel<L>(fx0, width, view.wrapU, inX0);
-  const F x1 = wrapTexel<L>(fx0 + F(1.0f), width, view.wrapU, inX1);
-  const F y0 = wrapTexel<L>(fy0, height, view.wrapV, inY0);
-  const F y1 = wrapTexel<L>(fy0 + F(1.0f), height, view.wrapV, inY1);
-  Rgba<L> c[4];
-  fetch2x2<L>(view, level, uniformLevel, x0, x1, y0, y1, c);
+  M inY0 = all, inY1 = all;
+  const F y0 = wrapTexel<L>(fy0, g.height, view.wrapV, inY0);
+  const F y1 = wrapTexel<L>(fy0 + F(1.0f), g.height, view.wrapV, inY1);
+  Rgba<L> c00, c10, c01, c11;
+  fetchRowPairs<L>(view, g, level, texelOffset<L>(g, x0, y0), c00, c10);
+  fetchRowPairs<L>(view, g, level, texelOffset<L>(g, x0, y1), c01, c11);
+
   if (view.wrapU == WrapMode::ClampToBorder || view.wrapV == WrapMode::ClampToBorder) {
-    c[0] = withBorder<L>(view, c[0], inX0 & inY0);
-    c[1] = withBorder<L>(view, c[1], inX1 & inY0);
-    c[2] = withBorder<L>(view, c[2], inX0 & inY1);
-    c[3] = withBorder<L>(view, c[3], inX1 & inY1);
+    M inX0 = all, inX1 = all;
+    if (view.wrapU == WrapMode::ClampToBorder) {
+      inX0 = (fx0 >= F(0.0f)) & (fx0 <= lastColumn);
+      inX1 = (fx0 >= F(-1.0f)) & (fx0 < lastColumn);
+      // fx0 = -1 read the pair at column 0: its right texel is that left one.
+      const M beforeFirst = fx0 < F(0.0f);
+      c10 = {simd::select(beforeFirst, c00.r, c10.r), simd::select(beforeFirst, c00.g, c10.g),
+             simd::select(beforeFirst, c00.b, c10.b), simd::select(beforeFirst, c00.a, c10.a)};
+      c11 = {simd::select(beforeFirst, c01.r, c11.r), simd::select(beforeFirst, c01.g, c11.g),
+             simd::select(beforeFirst, c01.b, c11.b), simd::select(beforeFirst, c01.a, c11.a)};
+    }
+    c00 = withBorder<L>(view, c00, inX0 & inY0);
+    c10 = withBorder<L>(view, c10, inX1 & inY0);
+    c01 = withBorder<L>(view, c01, inX0 & inY1);
+    c11 = withBorder<L>(view, c11, inX1 & inY1);
   }
-  const Rgba<L>&c00 = c[0], &c10 = c[1], &c01 = c[2], &c11 = c[3];
   return lerp<L>(lerp<L>(c00, c10, fx), lerp<L>(c01, c11, fx), fy);
 }
 
-// Footprint size in level-0 texels: the LOD λ of the isotropic filters.
+// Squared length of the footprint's longer side in level-0 texels: the LOD
+// of the isotropic filters is half its log2.
 template <class L>
-QUADRA_LANE_INLINE typename L::F isotropicLod(const TextureView& view, const UvDerivatives<L>& d) {
+QUADRA_LANE_INLINE typename L::F isotropicLengthSq(const TextureView& view,
+                                                   const UvDerivatives<L>& d) {
   using F = typename L::F;
   const F w = F(float(view.levels[0].width)), h = F(float(view.levels[0].height));
   const F xu = d.dudx * w, xv = d.dvdx * h, yu = d.dudy * w, yv = d.dvdy * h;
-  const F lengthSq = simd::max(xu * xu + xv * xv, yu * yu + yv * yv);
-  return F(0.5f) * simd::log2<L>(lengthSq);
+  return simd::max(xu * xu + xv * xv, yu * yu + yv * yv);
 }
 
 // The view's LOD controls: clamp(λ + bias, minLod, maxLod); NaN becomes minLod.
@@ -409,7 +398,16 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
   if (filter == Filter::Nearest) return sampleNearest<L>(view, u, v, level0);
   if (filter == Filter::Bilinear) return sampleBilinear<L>(view, u, v, level0);
   if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
-  const F lod = controlledLod<L>(view, isotropicLod<L>(view, d));
+  // Magnification decided exactly on the squared footprint length: a group
+  // that is magnified throughout (the common case up close) skips the log2
+  // and the level selection, and reads level 0 as trilinear would there.
+  const F lengthSq = isotropicLengthSq<L>(view, d);
+  const auto surelyMagnified = lengthSq <= F(view.magnifiedLengthSq);
+  if (filter != Filter::Anisotropic && simd::all(surelyMagnified))
+    return view.magLinear ? sampleBilinear<L>(view, u, v, level0)
+                          : sampleNearest<L>(view, u, v, level0);
+  F lod = controlledLod<L>(view, F(0.5f) * simd::log2<L>(lengthSq));
+  lod = simd::select(surelyMagnified, simd::min(lod, F(0.0f)), lod);
   const auto magnified = ~(lod > F(0.0f));
   if (!view.magLinear && simd::all(magnified)) return sampleNearest<L>(view, u, v, level0);
   Rgba<L> c = filter == Filter::Anisotropic

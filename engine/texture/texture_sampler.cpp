@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "texture/mip_chain.h"
+#include "texture/padded_level.h"
 
 namespace quadra {
 
@@ -20,20 +20,13 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   // An explicit filter decides magnification too: nearest stays nearest.
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
   view.maxAniso = settings.maxAniso;
-  view.lodBias = settings.lodBias;
-  view.minLod = settings.minLod;
-  view.maxLod = settings.maxLod;
+  view.setLodControls(settings.lodBias, settings.minLod, settings.maxLod);
+  view.levels[0] = texture.sampledLevel0().view();
+  view.levelCount = 1;
   if (needsMips(view.minFilter)) {
-    const MipChain& mips = texture.mips(executor);
-    view.levelCount = std::min(mips.levelCount(), TextureView::kMaxLevels);
-    for (int i = 0; i < view.levelCount; ++i) {
-      const Image& level = mips.level(i);
-      view.levels[i] = {level.rgba.data(), level.width, level.height};
-    }
-  } else {
-    const Image& image = texture.image();
-    view.levelCount = 1;
-    view.levels[0] = {image.rgba.data(), image.width, image.height};
+    const std::vector<PaddedLevel>& mips = texture.sampledMipLevels(executor);
+    view.levelCount = std::min(int(mips.size()) + 1, TextureView::kMaxLevels);
+    for (int i = 1; i < view.levelCount; ++i) view.levels[i] = mips[std::size_t(i - 1)].view();
   }
   return view;
 }

@@ -2,6 +2,9 @@
 // draw: the levels it may touch, the wrap modes, and the filter to run.
 #pragma once
 
+#include <cmath>
+#include <limits>
+
 #include "texture/sampler_state.h"
 
 namespace quadra {
@@ -10,6 +13,7 @@ struct TextureLevel {
   const float* texels = nullptr;  // linear RGBA float, row-major
   int width = 0;
   int height = 0;
+  int stride = 0;  // texels from one row to the next: width + 1 (texture/padded_level.h)
 };
 
 struct TextureView {
@@ -28,6 +32,17 @@ struct TextureView {
   float lodBias = 0.0f;
   float minLod = 0.0f;
   float maxLod = 1000.0f;
+  // The squared footprint length (level-0 texels) at or below which those
+  // controls give λ' <= 0: 2^(-2 lodBias), +inf when maxLod <= 0, -1 when
+  // minLod > 0. Set with the controls (setLodControls).
+  float magnifiedLengthSq = 1.0f;
+
+  void setLodControls(float bias, float min, float max) {
+    lodBias = bias, minLod = min, maxLod = max;
+    magnifiedLengthSq = max <= 0.0f  ? std::numeric_limits<float>::infinity()
+                        : min > 0.0f ? -1.0f
+                                     : float(std::exp2(-2.0 * double(bias)));
+  }
 };
 
 }  // namespace quadra

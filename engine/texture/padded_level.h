@@ -1,0 +1,27 @@
+// PaddedLevel: one texture level as the sampling kernels read it. Rows are
+// width + 1 texels long; the extra texel repeats the row's first one. A
+// bilinear lookup then always reads its left and right texels of a row as one
+// contiguous pair (x, x + 1), under every wrap mode: repeat wraps x = width - 1
+// onto the copy of texel 0, and clamp and mirror clamp the coordinate so the
+// right texel of the last column has weight 0 (sample_lanes.h). One pair load
+// per row replaces two texel loads, and its transpose is half the shuffles.
+#pragma once
+
+#include <vector>
+
+#include "texture/image.h"
+#include "texture/texture_view.h"
+
+namespace quadra {
+
+struct PaddedLevel {
+  std::vector<float> texels;  // height rows of stride RGBA texels
+  int width = 0;
+  int height = 0;
+  int stride = 0;  // texels per row: width + 1
+
+  explicit PaddedLevel(const Image& image);
+  TextureLevel view() const { return {texels.data(), width, height, stride}; }
+};
+
+}  // namespace quadra
