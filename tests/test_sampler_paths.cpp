@@ -4,6 +4,9 @@
 // strong minification), and a padded level repeats each row's first texel.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -15,41 +18,80 @@
 namespace quadra {
 namespace {
 
-TEST(PaddedLevel, EachRowEndsWithACopyOfItsFirstTexel) {
+TEST(PaddedLevel, EachRowEndsWithACopyOfItsFirstTexelInEveryFormat) {
   const Image image = makeValueNoiseTexture(5, 3, 2);
-  const PaddedLevel padded(image);
-  ASSERT_EQ(padded.stride, 6);
-  ASSERT_EQ(padded.texels.size(), std::size_t(6 * 3 * 4));
-  for (int y = 0; y < 3; ++y)
-    for (int x = 0; x <= 5; ++x)
-      for (int c = 0; c < 4; ++c)
-        EXPECT_EQ(padded.texels[(std::size_t(y) * 6 + std::size_t(x)) * 4 + std::size_t(c)],
-                  image.texel(x % 5, y)[c])
-            << x << "," << y;
+  for (const TexelFormat format :
+       {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm}) {
+    const PaddedLevel padded(image, format);
+    const std::size_t texelBytes = std::size_t(bytesPerTexel(format));
+    ASSERT_EQ(padded.stride, 6);
+    ASSERT_EQ(padded.texels.size(), 6 * 3 * texelBytes);
+    for (int y = 0; y < 3; ++y) {
+      for (int x = 0; x <= 5; ++x) {
+        float stored[4], expected[4];
+        decodeTexel(format, padded.texels.data() + (std::size_t(y) * 6 + std::size_t(x)) * texelBytes,
+                    stored);
+        std::uint8_t encoded[16];
+        encodeTexel(format, image.texel(x % 5, y), encoded);
+        decodeTexel(format, encoded, expected);
+        for (int c = 0; c < 4; ++c) EXPECT_EQ(stored[c], expected[c]) << formatName(format) << x;
+      }
+    }
+  }
 }
 
-TEST(SamplerPaths, EveryIsaMatchesScalarForEveryFilterAndWrapMode) {
+TEST(SamplerPaths, EveryIsaMatchesScalarForEveryFilterWrapModeAndFormat) {
   const auto image = std::make_shared<Image>(makeValueNoiseTexture(37, 23, 5));
   const std::vector<Lookup> lookups = randomLookups(400, 17);
   int compared = 0;
-  for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
-                              WrapMode::ClampToBorder}) {
-    SamplerState state;
-    state.wrapU = state.wrapV = wrap;
-    state.borderColor[0] = 0.25f, state.borderColor[3] = 1.0f;
-    const Texture texture(image, state);
-    for (const Filter filter : {Filter::Nearest, Filter::Bilinear, Filter::NearestMip,
-                                Filter::Trilinear, Filter::Anisotropic}) {
-      const std::vector<float> scalar = sampleAll(texture, filter, Isa::Scalar, lookups);
-      for (const Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
-        if (!isaSupported(isa)) continue;
-        EXPECT_EQ(sampleAll(texture, filter, isa, lookups), scalar)
-            << isaName(isa) << " " << filterName(filter) << " " << wrapName(wrap);
-        ++compared;
+  for (const TexelFormat format :
+       {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm}) {
+    for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat,
+                                WrapMode::ClampToEdge, WrapMode::ClampToBorder}) {
+      SamplerState state;
+      state.wrapU = state.wrapV = wrap;
+      state.borderColor[0] = 0.25f, state.borderColor[3] = 1.0f;
+      const Texture texture(image, state, format);
+      for (const Filter filter : {Filter::Nearest, Filter::Bilinear, Filter::NearestMip,
+                                  Filter::Trilinear, Filter::Anisotropic}) {
+        const std::vector<float> scalar = sampleAll(texture, filter, Isa::Scalar, lookups);
+        for (const Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+          if (!isaSupported(isa)) continue;
+          EXPECT_EQ(sampleAll(texture, filter, isa, lookups), scalar)
+              << isaName(isa) << " " << filterName(filter) << " " << wrapName(wrap) << " "
+              << formatName(format);
+          ++compared;
+        }
       }
     }
   }
   if (compared == 0) GTEST_SKIP() << "this CPU has no SIMD path to compare";
+}
+
+// Each narrow format against float storage, bilinear on every path: within
+// the format's stated rounding (texel_format.h) of values in [0, 1].
+TEST(SamplerPaths, NarrowFormatsStayWithinTheirRoundingOfFloat) {
+  const auto image = std::make_shared<Image>(makeValueNoiseTexture(64, 48, 3));
+  const std::vector<Lookup> lookups = randomLookups(500, 23);
+  const Texture exact(image, SamplerState{}, TexelFormat::Rgba32F);
+  const struct {
+    TexelFormat format;
+    double bound;
+  } cases[] = {{TexelFormat::Rgba16F, std::ldexp(1.0, -11) + 1e-7},
+               {TexelFormat::Rgba8Unorm, 1.0 / 510.0 + 1e-7}};
+  for (const auto& c : cases) {
+    const Texture narrow(image, SamplerState{}, c.format);
+    for (const Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+      if (!isaSupported(isa)) continue;
+      const std::vector<float> want = sampleAll(exact, Filter::Bilinear, isa, lookups);
+      const std::vector<float> got = sampleAll(narrow, Filter::Bilinear, isa, lookups);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < got.size(); ++i)
+        worst = std::max(worst, std::fabs(double(got[i]) - double(want[i])));
+      EXPECT_LE(worst, c.bound) << formatName(c.format) << " " << isaName(isa);
+      EXPECT_GT(worst, 0.0) << formatName(c.format) << " is not narrower than float";
+    }
+  }
 }
 
 // The pair reads of the last column (repeat: the padding copy of column 0;

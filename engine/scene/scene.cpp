@@ -10,8 +10,8 @@
 
 namespace quadra {
 
-Texture::Texture(std::shared_ptr<const Image> image, SamplerState sampler)
-    : image_(std::move(image)), sampler_(sampler) {}
+Texture::Texture(std::shared_ptr<const Image> image, SamplerState sampler, TexelFormat storage)
+    : image_(std::move(image)), sampler_(sampler), storage_(storage) {}
 
 // Out of line: MipChain is only forward-declared in the header.
 Texture::~Texture() = default;
@@ -22,14 +22,14 @@ const MipChain& Texture::mips(const Executor* executor) const {
 }
 
 const PaddedLevel& Texture::sampledLevel0() const {
-  std::call_once(level0Once_, [&] { level0_ = std::make_unique<PaddedLevel>(*image_); });
+  std::call_once(level0Once_, [&] { level0_ = std::make_unique<PaddedLevel>(*image_, storage_); });
   return *level0_;
 }
 
 const std::vector<PaddedLevel>& Texture::sampledMipLevels(const Executor* executor) const {
   std::call_once(mipLevelsOnce_, [&] {
     const MipChain& chain = mips(executor);
-    for (int i = 1; i < chain.levelCount(); ++i) mipLevels_.emplace_back(chain.level(i));
+    for (int i = 1; i < chain.levelCount(); ++i) mipLevels_.emplace_back(chain.level(i), storage_);
   });
   return mipLevels_;
 }

@@ -16,6 +16,7 @@
 
 #include "texture/image.h"
 #include "texture/sampler_state.h"
+#include "texture/texel_format.h"
 
 namespace quadra {
 
@@ -28,11 +29,14 @@ struct PaddedLevel;
 // that a mip filter reads ("model only what a scene needs").
 class Texture {
  public:
-  Texture(std::shared_ptr<const Image> image, SamplerState sampler);
+  // storage: the format the sampling kernels read (texture/texel_format.h).
+  Texture(std::shared_ptr<const Image> image, SamplerState sampler,
+          TexelFormat storage = TexelFormat::Rgba32F);
   ~Texture();
 
   const Image& image() const { return *image_; }
   const SamplerState& sampler() const { return sampler_; }
+  TexelFormat storage() const { return storage_; }
   // Thread-safe; the first call builds the chain, in parallel on `executor`
   // when one is given.
   const MipChain& mips(const Executor* executor = nullptr) const;
@@ -44,6 +48,7 @@ class Texture {
  private:
   std::shared_ptr<const Image> image_;
   SamplerState sampler_;
+  TexelFormat storage_;
   mutable std::once_flag mipsOnce_, level0Once_, mipLevelsOnce_;
   mutable std::unique_ptr<MipChain> mips_;
   mutable std::unique_ptr<PaddedLevel> level0_;

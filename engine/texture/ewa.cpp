@@ -63,10 +63,14 @@ void ellipseAverage(const TextureView& view, int level, double s, double t, cons
       if (r2 >= 1.0) continue;
       const double w = std::exp(-double(kAlpha) * r2);
       const long column = wrapIndex(is, lev.width, view.wrapU);
-      const float* texel =
-          row < 0 || column < 0
-              ? view.border
-              : lev.texels + (std::size_t(row) * std::size_t(lev.stride) + std::size_t(column)) * 4;
+      float texel[4];
+      if (row < 0 || column < 0) {
+        std::copy(view.border, view.border + 4, texel);
+      } else {
+        const std::size_t index = std::size_t(row) * std::size_t(lev.stride) + std::size_t(column);
+        decodeTexel(view.format, lev.texels + index * std::size_t(bytesPerTexel(view.format)),
+                    texel);
+      }
       for (int c = 0; c < 4; ++c) sum[c] += w * texel[c];
       weights += w;
     }

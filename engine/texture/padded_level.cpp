@@ -6,16 +6,18 @@
 
 namespace quadra {
 
-PaddedLevel::PaddedLevel(const Image& image)
-    : texels(std::size_t(image.width + 1) * std::size_t(image.height) * 4),
+PaddedLevel::PaddedLevel(const Image& image, TexelFormat storage)
+    : texels(std::size_t(image.width + 1) * std::size_t(image.height) *
+             std::size_t(bytesPerTexel(storage))),
+      format(storage),
       width(image.width),
       height(image.height),
       stride(image.width + 1) {
+  const std::size_t texelBytes = std::size_t(bytesPerTexel(format));
   for (int y = 0; y < height; ++y) {
-    const float* source = image.texel(0, y);
-    float* row = texels.data() + std::size_t(y) * std::size_t(stride) * 4;
-    std::copy(source, source + std::size_t(width) * 4, row);
-    std::copy(source, source + 4, row + std::size_t(width) * 4);
+    std::uint8_t* row = texels.data() + std::size_t(y) * std::size_t(stride) * texelBytes;
+    for (int x = 0; x < width; ++x) encodeTexel(format, image.texel(x, y), row + x * texelBytes);
+    std::copy(row, row + texelBytes, row + std::size_t(width) * texelBytes);
   }
 }
 

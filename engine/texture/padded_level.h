@@ -1,4 +1,5 @@
-// PaddedLevel: one texture level as the sampling kernels read it. Rows are
+// PaddedLevel: one texture level as the sampling kernels read it, in its
+// storage format (texel_format.h). Rows are
 // width + 1 texels long; the extra texel repeats the row's first one. A
 // bilinear lookup then always reads its left and right texels of a row as one
 // contiguous pair (x, x + 1), under every wrap mode: repeat wraps x = width - 1
@@ -7,20 +8,23 @@
 // per row replaces two texel loads, and its transpose is half the shuffles.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "texture/image.h"
+#include "texture/texel_format.h"
 #include "texture/texture_view.h"
 
 namespace quadra {
 
 struct PaddedLevel {
-  std::vector<float> texels;  // height rows of stride RGBA texels
+  std::vector<std::uint8_t> texels;  // height rows of stride texels, encoded
+  TexelFormat format = TexelFormat::Rgba32F;
   int width = 0;
   int height = 0;
   int stride = 0;  // texels per row: width + 1
 
-  explicit PaddedLevel(const Image& image);
+  PaddedLevel(const Image& image, TexelFormat format);
   TextureLevel view() const { return {texels.data(), width, height, stride}; }
 };
 

@@ -12,7 +12,7 @@
 #include <type_traits>
 
 #include "simd/lanes.h"
-#include "simd/transpose.h"
+#include "simd/texel_pairs.h"
 
 #include "texture/ewa.h"
 #include "texture/texture_view.h"
@@ -121,62 +121,77 @@ QUADRA_LANE_INLINE typename L::I texelOffset(const LevelGeometry<L>& g, const ty
 template <class L>
 QUADRA_LANE_INLINE void texelPointers(const TextureView& view, const LevelGeometry<L>& g,
                                       const typename L::I& level, const typename L::I& offset,
-                                      const float* out[L::kWidth]) {
+                                      const std::uint8_t* out[L::kWidth]) {
   alignas(64) std::int32_t off[L::kWidth], lv[L::kWidth];
   offset.store_aligned(off);
+  const std::ptrdiff_t texelBytes = bytesPerTexel(view.format);
   if (g.uniform >= 0) {
-    const float* const base = view.levels[g.uniform].texels;
-    for (int k = 0; k < L::kWidth; ++k) out[k] = base + std::ptrdiff_t(off[k]) * 4;
+    const std::uint8_t* const base = view.levels[g.uniform].texels;
+    for (int k = 0; k < L::kWidth; ++k) out[k] = base + std::ptrdiff_t(off[k]) * texelBytes;
     return;
   }
   level.store_aligned(lv);
   for (int k = 0; k < L::kWidth; ++k)
-    out[k] = view.levels[lv[k]].texels + std::ptrdiff_t(off[k]) * 4;
+    out[k] = view.levels[lv[k]].texels + std::ptrdiff_t(off[k]) * texelBytes;
 }
 
-// One texel per lane (nearest filtering), loaded channel by channel.
+// One texel per lane (nearest filtering), decoded lane by lane.
 template <class L>
 Rgba<L> fetch(const TextureView& view, const LevelGeometry<L>& g, const typename L::I& level,
               const typename L::F& x, const typename L::F& y) {
-  const float* texel[L::kWidth];
+  const std::uint8_t* texel[L::kWidth];
   texelPointers<L>(view, g, level, texelOffset<L>(g, x, y), texel);
-  alignas(64) float r[L::kWidth], gr[L::kWidth], b[L::kWidth], a[L::kWidth];
+  alignas(64) float channel[4][L::kWidth];
   for (int k = 0; k < L::kWidth; ++k) {
-    r[k] = texel[k][0];
-    gr[k] = texel[k][1];
-    b[k] = texel[k][2];
-    a[k] = texel[k][3];
+    float rgba[4];
+    decodeTexel(view.format, texel[k], rgba);
+    for (int c = 0; c < 4; ++c) channel[c][k] = rgba[c];
   }
   using F = typename L::F;
-  return {F::load_aligned(r), F::load_aligned(gr), F::load_aligned(b), F::load_aligned(a)};
+  return {F::load_aligned(channel[0]), F::load_aligned(channel[1]), F::load_aligned(channel[2]),
+          F::load_aligned(channel[3])};
+}
+
+template <class L, simd::PairEncoding kEncoding>
+QUADRA_LANE_INLINE void transposeRowPairs(const std::uint8_t* const pair[L::kWidth],
+                                          Rgba<L>& left, Rgba<L>& right) {
+  typename L::F::register_type l[4], r[4];
+  simd::transposeTexelPairs<kEncoding>(pair, l, r);
+  left = {l[0], l[1], l[2], l[3]};
+  right = {r[0], r[1], r[2], r[3]};
 }
 
 // The left and right texels of one bilinear row per lane, as channel lanes:
 // each lane reads its pair (texels x and x + 1, contiguous in a padded level)
-// whole, and the pairs are transposed in registers. Gather-free: hardware
-// gathers measured slower here on both an Intel Xeon and an AMD EPYC (Zen 5)
-// VM (alpha-quads 34.8 vs 24.8 ms on the latter), and are microcode-mitigated
-// on many Intel parts.
+// whole, decoded and transposed in registers (simd/texel_pairs.h).
+// Gather-free: hardware gathers measured slower here on both an Intel Xeon
+// and an AMD EPYC (Zen 5) VM (alpha-quads 34.8 vs 24.8 ms on the latter), and
+// are microcode-mitigated on many Intel parts.
 template <class L>
 QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeometry<L>& g,
                                       const typename L::I& level, const typename L::I& offset,
                                       Rgba<L>& left, Rgba<L>& right) {
   constexpr int W = L::kWidth;
-  const float* pair[W];
+  const std::uint8_t* pair[W];
   texelPointers<L>(view, g, level, offset, pair);
   if constexpr (kIsScalarLanes<L>) {
+    const int texelBytes = bytesPerTexel(view.format);
     for (int k = 0; k < W; ++k) {
-      left.r.v[k] = pair[k][0], left.g.v[k] = pair[k][1], left.b.v[k] = pair[k][2],
-      left.a.v[k] = pair[k][3];
-      right.r.v[k] = pair[k][4], right.g.v[k] = pair[k][5], right.b.v[k] = pair[k][6],
-      right.a.v[k] = pair[k][7];
+      float l[4], r[4];
+      decodeTexel(view.format, pair[k], l);
+      decodeTexel(view.format, pair[k] + texelBytes, r);
+      left.r.v[k] = l[0], left.g.v[k] = l[1], left.b.v[k] = l[2], left.a.v[k] = l[3];
+      right.r.v[k] = r[0], right.g.v[k] = r[1], right.b.v[k] = r[2], right.a.v[k] = r[3];
     }
   } else {
-    using Native = typename L::F::register_type;
-    Native l[4], r[4];
-    simd::transposeTexelPairs(pair, l, r);
-    left = {l[0], l[1], l[2], l[3]};
-    right = {r[0], r[1], r[2], r[3]};
+    switch (view.format) {
+      case TexelFormat::Rgba32F:
+        return transposeRowPairs<L, simd::PairEncoding::Float32>(pair, left, right);
+      case TexelFormat::Rgba16F:
+        return transposeRowPairs<L, simd::PairEncoding::Half>(pair, left, right);
+      case TexelFormat::Rgba8Unorm:
+        return transposeRowPairs<L, simd::PairEncoding::Unorm8>(pair, left, right);
+    }
   }
 }
 

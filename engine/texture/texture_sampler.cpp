@@ -21,6 +21,7 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
   view.maxAniso = settings.maxAniso;
   view.setLodControls(settings.lodBias, settings.minLod, settings.maxLod);
+  view.format = texture.storage();
   view.levels[0] = texture.sampledLevel0().view();
   view.levelCount = 1;
   if (needsMips(view.minFilter)) {

@@ -5,12 +5,15 @@
 #include <cmath>
 #include <limits>
 
+#include <cstdint>
+
 #include "texture/sampler_state.h"
+#include "texture/texel_format.h"
 
 namespace quadra {
 
 struct TextureLevel {
-  const float* texels = nullptr;  // linear RGBA float, row-major
+  const std::uint8_t* texels = nullptr;  // row-major, in the view's format
   int width = 0;
   int height = 0;
   int stride = 0;  // texels from one row to the next: width + 1 (texture/padded_level.h)
@@ -21,6 +24,7 @@ struct TextureView {
 
   TextureLevel levels[kMaxLevels];
   int levelCount = 0;  // 1 when the filter does not use mips
+  TexelFormat format = TexelFormat::Rgba32F;  // of every level
   WrapMode wrapU = WrapMode::Repeat;
   WrapMode wrapV = WrapMode::Repeat;
   float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};

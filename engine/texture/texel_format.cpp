@@ -1,0 +1,129 @@
+// Texel formats: names, sizes and the scalar encode/decode that storage
+// conversion and the scalar kernel path use (texel_format.h).
+#include "texture/texel_format.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+
+namespace quadra {
+
+namespace {
+
+struct FormatSpelling {
+  TexelFormat format;
+  const char* name;
+  int bytes;
+};
+
+constexpr std::array<FormatSpelling, 3> kFormats = {{
+    {TexelFormat::Rgba32F, "rgba32f", 16},
+    {TexelFormat::Rgba16F, "rgba16f", 8},
+    {TexelFormat::Rgba8Unorm, "rgba8", 4},
+}};
+
+const FormatSpelling& spelling(TexelFormat format) {
+  for (const FormatSpelling& s : kFormats)
+    if (s.format == format) return s;
+  return kFormats[0];
+}
+
+std::uint32_t bitsOf(float value) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+float floatOf(std::uint32_t bits) {
+  float value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+}  // namespace
+
+int bytesPerTexel(TexelFormat format) {
+  return spelling(format).bytes;
+}
+
+const char* formatName(TexelFormat format) {
+  return spelling(format).name;
+}
+
+bool parseFormat(const std::string& name, TexelFormat& out) {
+  for (const FormatSpelling& s : kFormats) {
+    if (name == s.name) {
+      out = s.format;
+      return true;
+    }
+  }
+  return false;
+}
+
+float halfToFloat(std::uint16_t half) {
+  // The magnitude's bits shifted into a float's place are the value times
+  // 2^-112 (denormal halves land on float denormals); one exact multiply
+  // rescales. Infinity and NaN come out >= 2^16 and get the full exponent.
+  const std::uint32_t magnitude = std::uint32_t(half & 0x7FFF) << 13;
+  float value = floatOf(magnitude) * floatOf(std::uint32_t(254 - 15) << 23);
+  if (value >= 65536.0f) value = floatOf(bitsOf(value) | 0x7F800000u);
+  return floatOf(bitsOf(value) | (std::uint32_t(half & 0x8000) << 16));
+}
+
+std::uint16_t floatToHalf(float value) {
+  const std::uint32_t bits = bitsOf(value);
+  const std::uint16_t sign = std::uint16_t((bits >> 16) & 0x8000);
+  const float magnitude = std::fabs(value);
+  if (std::isnan(value)) return 0x7E00;
+  if (magnitude >= 65520.0f) return sign | 0x7C00;  // rounds to infinity
+  if (magnitude < 6.103515625e-05f) {
+    // Denormal half: a multiple of 2^-24; the scaling is exact and
+    // nearbyint rounds to nearest even (the default rounding mode).
+    return sign | std::uint16_t(std::nearbyint(magnitude * 16777216.0f));
+  }
+  // Normal: drop 13 mantissa bits with round-to-nearest-even.
+  const std::uint32_t m = bitsOf(magnitude);
+  const std::uint32_t rounded = m + 0x0FFFu + ((m >> 13) & 1u);
+  return sign | std::uint16_t((rounded >> 13) - ((127u - 15u) << 10));
+}
+
+void encodeTexel(TexelFormat format, const float rgba[4], std::uint8_t* out) {
+  float clean[4];
+  for (int c = 0; c < 4; ++c) clean[c] = std::isnan(rgba[c]) ? 0.0f : rgba[c];
+  switch (format) {
+    case TexelFormat::Rgba32F:
+      std::memcpy(out, clean, 16);
+      return;
+    case TexelFormat::Rgba16F:
+      for (int c = 0; c < 4; ++c) {
+        const std::uint16_t h = floatToHalf(clean[c]);
+        std::memcpy(out + 2 * c, &h, 2);
+      }
+      return;
+    case TexelFormat::Rgba8Unorm:
+      for (int c = 0; c < 4; ++c)
+        out[c] = std::uint8_t(std::nearbyint(std::clamp(clean[c], 0.0f, 1.0f) * 255.0f));
+      return;
+  }
+}
+
+void decodeTexel(TexelFormat format, const std::uint8_t* in, float rgba[4]) {
+  switch (format) {
+    case TexelFormat::Rgba32F:
+      std::memcpy(rgba, in, 16);
+      return;
+    case TexelFormat::Rgba16F:
+      for (int c = 0; c < 4; ++c) {
+        std::uint16_t h;
+        std::memcpy(&h, in + 2 * c, 2);
+        rgba[c] = halfToFloat(h);
+      }
+      return;
+    case TexelFormat::Rgba8Unorm:
+      for (int c = 0; c < 4; ++c) rgba[c] = float(in[c]) * kUnorm8Scale;
+      return;
+  }
+}
+
+}  // namespace quadra

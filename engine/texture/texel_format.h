@@ -1,0 +1,39 @@
+// How a texture's texels are stored for sampling. Every format decodes to
+// linear float RGBA before filtering; the narrower ones trade precision for
+// memory and bandwidth:
+//   rgba32f    16 bytes, exact
+//   rgba16f     8 bytes, IEEE half: relative error <= 2^-11 (|x| < 65504)
+//   rgba8       4 bytes, UNORM: absolute error <= 1/510, for data in [0, 1]
+// sRGB sources are decoded to linear when loaded, so they are stored in any of
+// these (rgba16f keeps an 8-bit sRGB source's steps: its coarsest half step,
+// 2^-11 near 1, is 18x finer than the source's 0.0089 there).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace quadra {
+
+enum class TexelFormat : std::uint8_t { Rgba32F, Rgba16F, Rgba8Unorm };
+
+int bytesPerTexel(TexelFormat format);
+const char* formatName(TexelFormat format);
+// Parses rgba32f|rgba16f|rgba8; false when unknown.
+bool parseFormat(const std::string& name, TexelFormat& out);
+
+// One texel in and out of storage. Encoding rounds to nearest (ties to even
+// for halves) and maps NaN to 0, so stored texels are always numbers;
+// decoding is what every kernel path computes, bit for bit.
+void encodeTexel(TexelFormat format, const float rgba[4], std::uint8_t* out);
+void decodeTexel(TexelFormat format, const std::uint8_t* in, float rgba[4]);
+
+// The UNORM8 decode factor: code * kUnorm8Scale (the kernels multiply by
+// the same float, so every path rounds alike).
+constexpr float kUnorm8Scale = 1.0f / 255.0f;
+
+// IEEE half <-> float. halfToFloat is exact; floatToHalf rounds to nearest
+// even, overflows to infinity, and flushes nothing (halves keep denormals).
+float halfToFloat(std::uint16_t half);
+std::uint16_t floatToHalf(float value);
+
+}  // namespace quadra
