@@ -30,7 +30,8 @@ enum class PairEncoding { Float32, Half, Unorm8 };
 // exact multiply rescales, infinity/NaN get the full exponent back.
 QUADRA_TRANSPOSE_INLINE __m128 halfToFloat4(__m128i half32) {
   const __m128i magnitude = _mm_slli_epi32(_mm_and_si128(half32, _mm_set1_epi32(0x7FFF)), 13);
-  __m128 value = _mm_mul_ps(_mm_castsi128_ps(magnitude), _mm_castsi128_ps(_mm_set1_epi32(239 << 23)));
+  __m128 value =
+      _mm_mul_ps(_mm_castsi128_ps(magnitude), _mm_castsi128_ps(_mm_set1_epi32(239 << 23)));
   const __m128 infOrNan = _mm_cmpge_ps(value, _mm_set1_ps(65536.0f));
   value = _mm_or_ps(value, _mm_and_ps(infOrNan, _mm_castsi128_ps(_mm_set1_epi32(0x7F800000))));
   const __m128i sign = _mm_slli_epi32(_mm_and_si128(half32, _mm_set1_epi32(0x8000)), 16);
@@ -58,8 +59,8 @@ QUADRA_TRANSPOSE_INLINE void loadPair(const std::uint8_t* pair, __m128& left, __
 }
 
 template <PairEncoding kEncoding>
-QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[4],
-                                                 __m128 left[4], __m128 right[4]) {
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[4], __m128 left[4],
+                                                 __m128 right[4]) {
   __m128 l[4], r[4];
   for (int k = 0; k < 4; ++k) loadPair<kEncoding>(pair[k], l[k], r[k]);
   _MM_TRANSPOSE4_PS(l[0], l[1], l[2], l[3]);
@@ -98,8 +99,8 @@ QUADRA_TRANSPOSE_INLINE void transposeBlocks(const __m256 in[4], __m256 out[4]) 
 // lanes 0-3 and 4-7 leave left channels in the low blocks and right ones in
 // the high blocks, which one permute splits.
 template <PairEncoding kEncoding>
-QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[8],
-                                                 __m256 left[4], __m256 right[4]) {
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[8], __m256 left[4],
+                                                 __m256 right[4]) {
   __m256 in[2][4], out[2][4];
   for (int k = 0; k < 8; ++k) in[k / 4][k % 4] = loadPair256<kEncoding>(pair[k]);
   transposeBlocks(in[0], out[0]);
@@ -144,8 +145,8 @@ QUADRA_TRANSPOSE_INLINE void transposeBlocks(const __m512 in[4], __m512 out[4]) 
 // right, left, right channels of lanes 8g..8g+3 and 8g+4..8g+7; one 128-bit
 // shuffle per channel and side puts the four runs in lane order.
 template <PairEncoding kEncoding>
-QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[16],
-                                                 __m512 left[4], __m512 right[4]) {
+QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[16], __m512 left[4],
+                                                 __m512 right[4]) {
   __m512 in[2][4], out[2][4];
   for (int g = 0; g < 2; ++g)
     for (int j = 0; j < 4; ++j)

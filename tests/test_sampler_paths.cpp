@@ -29,7 +29,8 @@ TEST(PaddedLevel, EachRowEndsWithACopyOfItsFirstTexelInEveryFormat) {
     for (int y = 0; y < 3; ++y) {
       for (int x = 0; x <= 5; ++x) {
         float stored[4], expected[4];
-        decodeTexel(format, padded.texels.data() + (std::size_t(y) * 6 + std::size_t(x)) * texelBytes,
+        decodeTexel(format,
+                    padded.texels.data() + (std::size_t(y) * 6 + std::size_t(x)) * texelBytes,
                     stored);
         std::uint8_t encoded[16];
         encodeTexel(format, image.texel(x % 5, y), encoded);
@@ -46,8 +47,8 @@ TEST(SamplerPaths, EveryIsaMatchesScalarForEveryFilterWrapModeAndFormat) {
   int compared = 0;
   for (const TexelFormat format :
        {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm}) {
-    for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat,
-                                WrapMode::ClampToEdge, WrapMode::ClampToBorder}) {
+    for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
+                                WrapMode::ClampToBorder}) {
       SamplerState state;
       state.wrapU = state.wrapV = wrap;
       state.borderColor[0] = 0.25f, state.borderColor[3] = 1.0f;

@@ -14,13 +14,12 @@ namespace {
 struct FormatSpelling {
   TexelFormat format;
   const char* name;
-  int bytes;
 };
 
 constexpr std::array<FormatSpelling, 3> kFormats = {{
-    {TexelFormat::Rgba32F, "rgba32f", 16},
-    {TexelFormat::Rgba16F, "rgba16f", 8},
-    {TexelFormat::Rgba8Unorm, "rgba8", 4},
+    {TexelFormat::Rgba32F, "rgba32f"},
+    {TexelFormat::Rgba16F, "rgba16f"},
+    {TexelFormat::Rgba8Unorm, "rgba8"},
 }};
 
 const FormatSpelling& spelling(TexelFormat format) {
@@ -42,10 +41,6 @@ float floatOf(std::uint32_t bits) {
 }
 
 }  // namespace
-
-int bytesPerTexel(TexelFormat format) {
-  return spelling(format).bytes;
-}
 
 const char* formatName(TexelFormat format) {
   return spelling(format).name;

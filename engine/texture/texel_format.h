@@ -16,7 +16,9 @@ namespace quadra {
 
 enum class TexelFormat : std::uint8_t { Rgba32F, Rgba16F, Rgba8Unorm };
 
-int bytesPerTexel(TexelFormat format);
+constexpr int bytesPerTexel(TexelFormat format) {
+  return format == TexelFormat::Rgba32F ? 16 : format == TexelFormat::Rgba16F ? 8 : 4;
+}
 const char* formatName(TexelFormat format);
 // Parses rgba32f|rgba16f|rgba8; false when unknown.
 bool parseFormat(const std::string& name, TexelFormat& out);

@@ -23,7 +23,7 @@ struct TextureView {
   static constexpr int kMaxLevels = 16;  // 32768^2 at most; textures are capped below that
 
   TextureLevel levels[kMaxLevels];
-  int levelCount = 0;  // 1 when the filter does not use mips
+  int levelCount = 0;                         // 1 when the filter does not use mips
   TexelFormat format = TexelFormat::Rgba32F;  // of every level
   WrapMode wrapU = WrapMode::Repeat;
   WrapMode wrapV = WrapMode::Repeat;
