@@ -125,6 +125,9 @@ TEST(Cli, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(run("render /nonexistent/model.gltf --out " + out.string()),
                      "/nonexistent/model.gltf");
   expectOneLineError(run("render builtin:checker-plane --frobnicate 1"), "--frobnicate");
+  expectOneLineError(
+      run("render builtin:checker-plane --texture-format rgba4 --out " + out.string()),
+      "--texture-format");
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -170,6 +173,25 @@ TEST(Cli, SampleReadsLookupsAndWritesValuesInOrder) {
     ASSERT_TRUE(std::getline(values, row));
     EXPECT_NEAR(std::stod(row.substr(0, row.find(','))), e, 1e-6) << row;
   }
+
+  // The same lookups from each narrow storage format (0 and 1 are exact in
+  // both, so the midpoint is too); an unknown format is a one-line error.
+  for (const char* format : {"rgba16f", "rgba8"}) {
+    ASSERT_EQ(run("sample --texture " + tex.string() + " --filter bilinear --wrap clamp --in " +
+                  in.string() + " --out " + out.string() + " --format " + format)
+                  .exitCode,
+              0)
+        << format;
+    std::ifstream narrow(out);
+    std::getline(narrow, header);
+    for (double e : expected) {
+      ASSERT_TRUE(std::getline(narrow, row));
+      EXPECT_NEAR(std::stod(row.substr(0, row.find(','))), e, 1e-6) << format << " " << row;
+    }
+  }
+  expectOneLineError(run("sample --texture " + tex.string() + " --filter bilinear --in " +
+                         in.string() + " --out " + out.string() + " --format rgba4"),
+                     "--format");
 }
 
 TEST(Cli, SampleRejectsMalformedCsv) {

@@ -838,6 +838,9 @@ TEST(GltfLoader, ImagesFromFilesDataUrisAnd16BitPngs) {
       EXPECT_NEAR(a.texel(0, y)[c], c == 3 ? code : srgbReference(code), 1e-6);
     }
   }
+  // Storage keeps each source's precision: float for 16-bit, half for 8-bit.
+  EXPECT_EQ(scene.textures[0]->storage(), TexelFormat::Rgba32F);
+  EXPECT_EQ(scene.textures[1]->storage(), TexelFormat::Rgba16F);
   const Image& b = scene.textures[1]->image();
   ASSERT_EQ(b.width, 1);
   for (int c = 0; c < 4; ++c) {

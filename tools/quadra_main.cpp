@@ -35,6 +35,8 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          texture filter for every texture (default: each glTF sampler's)
   --aniso N              max anisotropy, default 16
   --lod-bias B           added to every texture lookup's LOD (default 0)
+  --texture-format auto|rgba32f|rgba16f|rgba8
+                         texel storage (default auto: rgba16f for 8-bit images, else rgba32f)
   --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
@@ -74,6 +76,7 @@ struct RenderCommand {
   std::vector<std::string> outputs;
   std::optional<glm::vec3> eye, target, up;
   std::optional<float> fovyDegrees, znear, zfar;
+  std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
 
 RenderCommand parseRender(const std::vector<std::string>& args) {
@@ -122,6 +125,11 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     else if (arg == "--lod-bias") {
       cmd.settings.lodBias = float(parseNumber(arg, value));
       if (std::fabs(cmd.settings.lodBias) > 32.0f) throw Error(arg + ": must lie in -32..32");
+    } else if (arg == "--texture-format") {
+      TexelFormat format;
+      if (value != "auto" && !parseFormat(value, format))
+        throw Error(arg + ": unknown texel format '" + value + "' (auto, rgba32f, rgba16f, rgba8)");
+      if (value != "auto") cmd.textureFormat = format;
     } else if (arg == "--shading") {
       if (value == "unlit")
         cmd.settings.shading = Shading::Unlit;
@@ -152,11 +160,15 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
 
 Scene loadScene(const RenderCommand& cmd) {
   const std::string prefix = "builtin:";
-  if (cmd.scenePath.rfind(prefix, 0) == 0)
-    return makeBuiltinScene(cmd.scenePath.substr(prefix.size()));
-  std::vector<std::string> notes;
-  Scene scene = loadGltf(cmd.scenePath, cmd.load, &notes);
-  for (const std::string& note : notes) std::cerr << "quadra: note: " << note << "\n";
+  Scene scene;
+  if (cmd.scenePath.rfind(prefix, 0) == 0) {
+    scene = makeBuiltinScene(cmd.scenePath.substr(prefix.size()));
+  } else {
+    std::vector<std::string> notes;
+    scene = loadGltf(cmd.scenePath, cmd.load, &notes);
+    for (const std::string& note : notes) std::cerr << "quadra: note: " << note << "\n";
+  }
+  if (cmd.textureFormat) setTextureStorage(scene, *cmd.textureFormat);
   return scene;
 }
 

@@ -25,8 +25,9 @@ namespace {
 constexpr const char* kSampleUsage =
     R"(usage: quadra sample --texture FILE.png|FILE.exr --filter F --in LOOKUPS.csv --out VALUES.csv
                      [--aniso N] [--wrap repeat|mirror|clamp|border] [--threads N] [--isa ISA]
-                     [--lod-bias B] [--min-lod L] [--max-lod L]
+                     [--lod-bias B] [--min-lod L] [--max-lod L] [--format F]
   --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa
+  --format rgba32f|rgba16f|rgba8   texel storage the sampler reads (default rgba32f)
   LOOKUPS.csv: header u,v,dudx,dvdx,dudy,dvdy (normalized units, per-pixel derivatives)
   VALUES.csv:  header r,g,b,a, one row per lookup, linear float
 A PNG is decoded from sRGB to linear; an EXR is read as linear. Prints
@@ -37,6 +38,7 @@ struct SampleCommand {
   std::string texturePath, inPath, outPath;
   FilterSettings filtering;
   WrapMode wrap = WrapMode::Repeat;
+  TexelFormat format = TexelFormat::Rgba32F;
   int threads = 0;
   std::optional<Isa> isa;
 };
@@ -70,6 +72,9 @@ SampleCommand parseSample(const std::vector<std::string>& args) {
     else if (arg == "--wrap") {
       if (!parseWrap(value, cmd.wrap))
         throw Error(arg + ": unknown wrap mode '" + value + "' (repeat, mirror, clamp, border)");
+    } else if (arg == "--format") {
+      if (!parseFormat(value, cmd.format))
+        throw Error(arg + ": unknown texel format '" + value + "' (rgba32f, rgba16f, rgba8)");
     } else if (arg == "--threads")
       cmd.threads = parseInteger(arg, value, 1, 1024);
     else if (arg == "--isa") {
@@ -184,7 +189,7 @@ int runSample(int argc, const char* const* argv) {
   SamplerState state;
   state.wrapU = state.wrapV = cmd.wrap;
   auto image = std::make_shared<Image>(readImage(cmd.texturePath));
-  const Texture texture(image, state);
+  const Texture texture(image, state, cmd.format);
   const TextureSampler sampler(texture, cmd.filtering, isa);
   const Lookups lookups = readLookups(cmd.inPath);
   const LookupBatch batch = lookups.batch();

@@ -104,7 +104,9 @@ class MaterialTable {
 
  private:
   int sceneTexture(int gltfTexture, const std::string& what);
-  std::shared_ptr<const Image> decodeImage(int imageIndex) const;
+  // Linear float pixels, and the storage format that keeps the source's
+  // precision: RGBA16F for 8-bit images, RGBA32F for 16-bit ones.
+  std::shared_ptr<const Image> decodeImage(int imageIndex, TexelFormat& storage) const;
 
   struct PendingTexture {
     int image = -1;  // glTF image index

@@ -193,7 +193,8 @@ int MaterialTable::sceneTexture(int gltfTexture, const std::string& what) {
   return int(textures_.size()) - 1;
 }
 
-std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex) const {
+std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex,
+                                                        TexelFormat& storage) const {
   const tinygltf::Image& source = ref_.model.images[std::size_t(imageIndex)];
   const std::string what = "image " + std::to_string(imageIndex) +
                            (source.uri.empty() ? "" : " ('" + percentDecode(source.uri) + "')");
@@ -222,6 +223,9 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex) const {
                         decoded.image.size() == std::size_t(decoded.width) *
                                                     std::size_t(decoded.height) * 4 * bytesPerValue;
   if (!layoutOk) throw ref_.fail(what + " decoded to an unexpected pixel layout");
+  // Half floats keep every step of an 8-bit sRGB source (texel_format.h) at
+  // half the memory of float; a 16-bit source's steps need float.
+  storage = decoded.bits == 8 ? TexelFormat::Rgba16F : TexelFormat::Rgba32F;
   return std::make_shared<const Image>(toLinear(decoded));
 }
 
@@ -235,12 +239,13 @@ void MaterialTable::finish(Scene& scene) {
   // image. Errors are kept per image and the first in index order is thrown,
   // so the message does not depend on scheduling.
   std::vector<std::shared_ptr<const Image>> images(imageIndices.size());
+  std::vector<TexelFormat> storage(imageIndices.size(), TexelFormat::Rgba32F);
   std::vector<std::string> errors(imageIndices.size());
   const Executor executor(imageIndices.size() > 1 ? 0 : 1);
   executor.parallelFor(imageIndices.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       try {
-        images[i] = decodeImage(imageIndices[i]);
+        images[i] = decodeImage(imageIndices[i], storage[i]);
       } catch (const Error& e) {
         errors[i] = e.what();
       } catch (const std::exception& e) {  // e.g. bad_alloc for a huge image
@@ -252,12 +257,13 @@ void MaterialTable::finish(Scene& scene) {
     if (!error.empty()) throw Error(error);
   }
 
-  std::map<int, std::shared_ptr<const Image>> imageOf;
-  for (std::size_t i = 0; i < imageIndices.size(); ++i) imageOf[imageIndices[i]] = images[i];
+  std::map<int, std::size_t> slotOf;
+  for (std::size_t i = 0; i < imageIndices.size(); ++i) slotOf[imageIndices[i]] = i;
   scene.textures.clear();
   for (const PendingTexture& texture : textures_) {
+    const std::size_t slot = slotOf.at(texture.image);
     scene.textures.push_back(
-        std::make_shared<const Texture>(imageOf[texture.image], texture.sampler));
+        std::make_shared<const Texture>(images[slot], texture.sampler, storage[slot]));
   }
   scene.materials = std::move(materials_);
 }

@@ -34,6 +34,11 @@ const std::vector<PaddedLevel>& Texture::sampledMipLevels(const Executor* execut
   return mipLevels_;
 }
 
+void setTextureStorage(Scene& scene, TexelFormat format) {
+  for (std::shared_ptr<const Texture>& texture : scene.textures)
+    texture = std::make_shared<const Texture>(texture->sharedImage(), texture->sampler(), format);
+}
+
 std::size_t Scene::triangleCount() const {
   std::size_t count = 0;
   for (const Instance& instance : instances) {

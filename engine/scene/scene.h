@@ -35,6 +35,7 @@ class Texture {
   ~Texture();
 
   const Image& image() const { return *image_; }
+  const std::shared_ptr<const Image>& sharedImage() const { return image_; }
   const SamplerState& sampler() const { return sampler_; }
   TexelFormat storage() const { return storage_; }
   // Thread-safe; the first call builds the chain, in parallel on `executor`
@@ -106,5 +107,9 @@ struct Scene {
   // World-space bounds of all instances; min > max when the scene is empty.
   void bounds(glm::vec3& lo, glm::vec3& hi) const;
 };
+
+// Re-stores every texture of the scene in `format` (sharing the images), for
+// comparing storage formats on one scene.
+void setTextureStorage(Scene& scene, TexelFormat format);
 
 }  // namespace quadra
