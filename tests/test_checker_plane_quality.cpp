@@ -59,22 +59,26 @@ TEST(CheckerPlaneQuality, MipFiltersBeatBilinearAndNearest) {
   const Frame trilinear = renderFiltered(scene, camera, Filter::Trilinear);
   const Frame anisotropic = renderFiltered(scene, camera, Filter::Anisotropic);
   const Frame ewa = renderFiltered(scene, camera, Filter::Ewa);
+  const Frame area = renderFiltered(scene, camera, Filter::Area);
   ASSERT_EQ(trilinear.rgba.size(), reference.rgba.size());
   const double eNearest = rmse(nearest, reference);
   const double eBilinear = rmse(bilinear, reference);
   const double eTrilinear = rmse(trilinear, reference);
   const double eAnisotropic = rmse(anisotropic, reference);
   const double eEwa = rmse(ewa, reference);
+  const double eArea = rmse(area, reference);
   std::printf(
       "[ checker-plane %dx%d, reference %dx%d spp in %.1f s ] RMSE nearest %.5f "
-      "bilinear %.5f trilinear %.5f aniso16 %.5f ewa %.5f\n",
+      "bilinear %.5f trilinear %.5f aniso16 %.5f ewa %.5f area %.5f\n",
       kWidth, kHeight, kSamplesPerAxis, kSamplesPerAxis, referenceSeconds, eNearest, eBilinear,
-      eTrilinear, eAnisotropic, eEwa);
+      eTrilinear, eAnisotropic, eEwa, eArea);
   EXPECT_LT(eTrilinear, eBilinear);
   // Trilinear over-blurs the receding plane; probing along the footprint's
   // major axis recovers detail.
   EXPECT_LT(eAnisotropic, eTrilinear);
   EXPECT_LT(eEwa, eTrilinear);
+  // The area filter averages the footprint itself, as the reference does.
+  EXPECT_LT(eArea, eAnisotropic);
   EXPECT_LT(eTrilinear, eNearest);
   // The comparison means something: an empty frame scores far worse.
   Frame empty = trilinear;

@@ -31,7 +31,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
   --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
                          override the scene's first camera (far 0 = infinite)
-  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area
                          texture filter for every texture (default: each glTF sampler's)
   --aniso N              max anisotropy, default 16
   --lod-bias B           added to every texture lookup's LOD (default 0)
@@ -118,7 +118,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       Filter f;
       if (!parseFilter(value, f))
         throw Error(arg + ": unknown filter '" + value +
-                    "' (nearest, bilinear, nearest-mip, trilinear, aniso, ewa)");
+                    "' (nearest, bilinear, nearest-mip, trilinear, aniso, ewa, area)");
       cmd.settings.filter = f;
     } else if (arg == "--aniso")
       cmd.settings.maxAniso = parseInteger(arg, value, 1, 64);

@@ -317,7 +317,8 @@ int runReport(int argc, const char* const* argv) {
   const Executor executor(options.threads);
   const std::vector<TestTexture> textures = makeTestTextures(options);
   const Filter filters[] = {Filter::Nearest,   Filter::Bilinear,    Filter::NearestMip,
-                            Filter::Trilinear, Filter::Anisotropic, Filter::Ewa};
+                            Filter::Trilinear, Filter::Anisotropic, Filter::Ewa,
+                            Filter::Area};
   std::vector<FilterRow> rows;
   for (const Filter f : filters) {
     FilterRow row;

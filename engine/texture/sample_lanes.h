@@ -14,6 +14,7 @@
 #include "simd/lanes.h"
 #include "simd/texel_pairs.h"
 
+#include "texture/area_filter.h"
 #include "texture/ewa.h"
 #include "texture/texture_view.h"
 
@@ -399,6 +400,57 @@ Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typenam
           F::load_aligned(out[3])};
 }
 
+// The area filter (texture/area_filter.h), lookup by lane: each lane's grid
+// is spread over the SIMD lanes, W samples per bilinear call on the level the
+// plan chose. Sums run in double in sample order, so every ISA path adds the
+// same values in the same order and returns the same bits.
+template <class L, TexelFormat kFormat>
+Rgba<L> sampleArea(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                   const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  using I = typename L::I;
+  constexpr int W = L::kWidth;
+  alignas(64) float in[6][W], out[4][W], laneIndex[W];
+  u.store_aligned(in[0]);
+  v.store_aligned(in[1]);
+  d.dudx.store_aligned(in[2]);
+  d.dvdx.store_aligned(in[3]);
+  d.dudy.store_aligned(in[4]);
+  d.dvdy.store_aligned(in[5]);
+  for (int k = 0; k < W; ++k) laneIndex[k] = float(k);
+  const F lanes = F::load_aligned(laneIndex);
+  for (int k = 0; k < W; ++k) {
+    const AreaGrid grid = planAreaGrid(view, in[2][k], in[3][k], in[4][k], in[5][k]);
+    const int samples = grid.columns * grid.rows;
+    const F columns = F(float(grid.columns)), rows = F(float(grid.rows));
+    const F dudx(in[2][k]), dvdx(in[3][k]), dudy(in[4][k]), dvdy(in[5][k]);
+    double sum[4] = {0.0, 0.0, 0.0, 0.0};
+    for (int first = 0; first < samples; first += W) {
+      // Sample n of the grid: column n mod columns, row n div columns, at the
+      // cell midpoints of the parallelogram's screen square [-1/2, 1/2]^2.
+      const F n = lanes + F(float(first));
+      const F row = simd::floor((n + F(0.5f)) / columns);
+      const F column = n - row * columns;
+      const F s = (column + F(0.5f)) / columns - F(0.5f);
+      const F t = (row + F(0.5f)) / rows - F(0.5f);
+      const Rgba<L> c =
+          sampleBilinear<L, kFormat>(view, F(in[0][k]) + dudx * s + dudy * t,
+                                     F(in[1][k]) + dvdx * s + dvdy * t, I(grid.level));
+      alignas(64) float value[4][W];
+      c.r.store_aligned(value[0]);
+      c.g.store_aligned(value[1]);
+      c.b.store_aligned(value[2]);
+      c.a.store_aligned(value[3]);
+      const int count = std::min(W, samples - first);
+      for (int j = 0; j < count; ++j)
+        for (int ch = 0; ch < 4; ++ch) sum[ch] += double(value[ch][j]);
+    }
+    for (int ch = 0; ch < 4; ++ch) out[ch][k] = float(sum[ch] / double(samples));
+  }
+  return {F::load_aligned(out[0]), F::load_aligned(out[1]), F::load_aligned(out[2]),
+          F::load_aligned(out[3])};
+}
+
 // The view's filter at the footprint given by the derivatives, for texels
 // stored in kFormat (the view's format).
 template <class L, TexelFormat kFormat>
@@ -411,6 +463,7 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
   if (filter == Filter::Nearest) return sampleNearest<L, kFormat>(view, u, v, level0);
   if (filter == Filter::Bilinear) return sampleBilinear<L, kFormat>(view, u, v, level0);
   if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
+  if (filter == Filter::Area) return sampleArea<L, kFormat>(view, u, v, d);
   // Magnification decided exactly on the squared footprint length: a group
   // that is magnified throughout (the common case up close) skips the log2
   // and the level selection, and reads level 0 as trilinear would there.

@@ -15,7 +15,7 @@ struct FilterSpelling {
 };
 
 // The first entry for each filter is its canonical name; later ones are aliases.
-constexpr std::array<FilterSpelling, 7> kFilterSpellings = {{
+constexpr std::array<FilterSpelling, 8> kFilterSpellings = {{
     {Filter::Nearest, "nearest"},
     {Filter::Bilinear, "bilinear"},
     {Filter::NearestMip, "nearest-mip"},
@@ -23,6 +23,7 @@ constexpr std::array<FilterSpelling, 7> kFilterSpellings = {{
     {Filter::Anisotropic, "aniso"},
     {Filter::Anisotropic, "anisotropic"},
     {Filter::Ewa, "ewa"},
+    {Filter::Area, "area"},
 }};
 
 struct WrapSpelling {

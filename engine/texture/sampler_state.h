@@ -10,11 +10,22 @@ namespace quadra {
 enum class WrapMode : std::uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampToBorder };
 
 // The filter a lookup actually runs. Mip-based ones need the texture's MipChain.
-enum class Filter : std::uint8_t { Nearest, Bilinear, NearestMip, Trilinear, Anisotropic, Ewa };
+// Area: the bilinear reconstruction averaged over the pixel's footprint
+// parallelogram on a midpoint grid, on the finest level whose grid fits the
+// sample budget (sample_lanes.h sampleArea): the offline-quality filter.
+enum class Filter : std::uint8_t {
+  Nearest,
+  Bilinear,
+  NearestMip,
+  Trilinear,
+  Anisotropic,
+  Ewa,
+  Area
+};
 
 inline bool needsMips(Filter f) {
   return f == Filter::NearestMip || f == Filter::Trilinear || f == Filter::Anisotropic ||
-         f == Filter::Ewa;
+         f == Filter::Ewa || f == Filter::Area;
 }
 
 // glTF sampler state (the minification filter decides mip use; magnification
@@ -28,7 +39,7 @@ struct SamplerState {
 };
 
 const char* filterName(Filter f);
-// Parses nearest|bilinear|nearest-mip|trilinear|aniso|ewa; false when unknown.
+// Parses nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area; false when unknown.
 bool parseFilter(const std::string& name, Filter& out);
 const char* wrapName(WrapMode w);
 bool parseWrap(const std::string& name, WrapMode& out);
