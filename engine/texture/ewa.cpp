@@ -89,10 +89,16 @@ void ewaLookup(const TextureView& view, float uIn, float vIn, float dudx, float 
   // Positions far beyond the texture keep their wrap phase but not their
   // magnitude (repeat and mirror are periodic in 1 and 2).
   double u = finiteOr(uIn, 0.0), v = finiteOr(vIn, 0.0);
-  if (view.wrapU == WrapMode::Repeat || view.wrapU == WrapMode::MirroredRepeat)
-    u -= 2.0 * std::floor(u * 0.5);
-  if (view.wrapV == WrapMode::Repeat || view.wrapV == WrapMode::MirroredRepeat)
-    v -= 2.0 * std::floor(v * 0.5);
+  // Under clamp and border, positions beyond [-2, 3] see only the edge or the
+  // border colour (the ellipse below is capped at one texture width), so they
+  // are clamped there, which also keeps texel indices far inside `long`.
+  const auto reduce = [](double x, WrapMode mode) {
+    if (mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat)
+      return x - 2.0 * std::floor(x * 0.5);
+    return std::clamp(x, -2.0, 3.0);
+  };
+  u = reduce(u, view.wrapU);
+  v = reduce(v, view.wrapV);
   const double width = view.levels[0].width, height = view.levels[0].height;
   // Jacobian in level-0 texels; columns are the images of screen x and y.
   const double xu = finiteOr(dudx, 0.0) * width, xv = finiteOr(dvdx, 0.0) * height;

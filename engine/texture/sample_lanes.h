@@ -110,8 +110,9 @@ QUADRA_LANE_INLINE LevelGeometry<L> levelGeometry(const TextureView& view,
   return {F::load_aligned(w), F::load_aligned(h), I::load_aligned(stride), -1};
 }
 
-// Texel offset (row * stride + column) of integer-valued coordinates; below
-// 2^28 (the loader's texel limit, padding included), so int32 arithmetic.
+// Texel offset (row * stride + column) of integer-valued coordinates, in
+// int32: the loader caps textures at 2^28 texels and padding adds one per
+// row, far below 2^31.
 template <class L>
 QUADRA_LANE_INLINE typename L::I texelOffset(const LevelGeometry<L>& g, const typename L::F& x,
                                              const typename L::F& y) {
