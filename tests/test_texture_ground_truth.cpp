@@ -354,9 +354,20 @@ TEST(ReportCommand, WritesTheTableTheCsvAndThePlot) {
   table << std::ifstream(out).rdbuf();
   csv << std::ifstream(dir / "textures.csv").rdbuf();
   svg << std::ifstream(dir / "textures.svg").rdbuf();
-  for (const char* filter :
-       {"| nearest |", "| bilinear |", "| nearest-mip |", "| trilinear |", "| aniso-16 |"})
+  for (const char* filter : {"| nearest |", "| bilinear |", "| nearest-mip |", "| trilinear |",
+                             "| aniso-16 |", "| ewa |", "| area |"})
     EXPECT_NE(table.str().find(filter), std::string::npos) << filter;
+  // OpenImageIO beside them when the build found it, and a note saying so when not.
+#if defined(QUADRA_HAVE_OIIO)
+  EXPECT_NE(table.str().find("| oiio-trilinear |"), std::string::npos);
+  EXPECT_NE(table.str().find("| oiio-aniso-16 |"), std::string::npos);
+#else
+  EXPECT_NE(table.str().find("OpenImageIO: not built in"), std::string::npos);
+#endif
+  // The scratch texture files OIIO read are gone.
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename().string().rfind("oiio-", 0), std::string::npos)
+        << entry.path();
   EXPECT_EQ(
       csv.str().rfind("texture,filter,bucket_kind,bucket,lookups,rmse,max_abs,ns_per_lookup\n", 0),
       0u);

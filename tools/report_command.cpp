@@ -26,6 +26,10 @@
 #include "texture/texture_error.h"
 #include "texture/texture_sampler.h"
 
+#if defined(QUADRA_HAVE_OIIO)
+#include "oiio_reference.h"
+#endif
+
 namespace quadra {
 namespace {
 
@@ -110,7 +114,8 @@ std::vector<TestTexture> makeTestTextures(const ReportOptions& options) {
 }
 
 struct FilterRow {
-  Filter filter;
+  Filter filter;          // quadra's filter, unless external
+  bool external = false;  // another library's lookups (OpenImageIO), same footprints
   std::string label;
   std::vector<FilterError> perTexture;
   std::vector<double> nsPerTexture;
@@ -329,6 +334,23 @@ int runReport(int argc, const char* const* argv) {
     rows.push_back(row);
   }
 
+#if defined(QUADRA_HAVE_OIIO)
+  for (const char* label : {"oiio-trilinear", "oiio-aniso-"}) {
+    FilterRow row;
+    row.external = true;
+    row.label = label;
+    if (row.label == "oiio-aniso-") row.label += std::to_string(options.maxAniso);
+    rows.push_back(row);
+  }
+  const std::string externalNote =
+      "OpenImageIO " + oiioVersion() +
+      " TextureSystem: the same footprints, one texture() call per lookup, a float texture "
+      "made by make_texture (64x64 tiles, box mips, periodic), bilinear interpolation.\n";
+#else
+  const std::string externalNote =
+      "OpenImageIO: not built in (install libopenimageio-dev and rebuild to compare).\n";
+#endif
+
   SamplerState state;  // repeat: footprints cross the wrap seams
   const GroundTruthOptions truthOptions;
   std::ostringstream notes;
@@ -351,16 +373,29 @@ int runReport(int argc, const char* const* argv) {
           << truth.maxSamples << " samples, " << format("%.1f", truthSeconds) << " s\n";
     const Texture sampled(texture.image, state);
     std::vector<std::unique_ptr<TextureSampler>> samplers;
-    std::vector<const TextureSampler*> timed;
+    std::vector<BatchLookup> timed;
     for (const FilterRow& row : rows) {
+      if (row.external) continue;
       samplers.push_back(std::make_unique<TextureSampler>(
           sampled, FilterSettings(row.filter, options.maxAniso), isa));
-      timed.push_back(samplers.back().get());
+      timed.push_back(batchLookupOf(*samplers.back()));
     }
+#if defined(QUADRA_HAVE_OIIO)
+    const OiioTexture oiio(*texture.image, outDir / ("oiio-" + texture.name + ".exr"),
+                           options.maxAniso);
+    for (const NamedLookup& lookup : oiio.lookups()) timed.push_back(lookup.lookup);
+#endif
     const std::vector<double> ns = timeLookupsInterleavedNs(timed, footprints);
     for (std::size_t f = 0; f < rows.size(); ++f) {
       FilterRow& row = rows[f];
-      const FilterError error = measureFilterError(*samplers[f], footprints, truth.rgba, executor);
+      FilterError error;
+      if (row.external) {
+        std::vector<float> values(footprints.size() * 4);
+        timed[f](footprints.batch(), 0, footprints.size(), values.data());
+        error = errorOfValues(values, footprints, truth.rgba);
+      } else {
+        error = measureFilterError(*samplers[f], footprints, truth.rgba, executor);
+      }
       row.perTexture.push_back(error);
       row.nsPerTexture.push_back(ns[f]);
       merge(row.pooled, error.overall);
@@ -413,7 +448,7 @@ int runReport(int argc, const char* const* argv) {
     for (const ErrorStats& s : row.pooledAniso) out << ' ' << format("%.4f", s.rmse()) << " |";
     out << '\n';
   }
-  out << "\nGround truth:\n" << notes.str();
+  out << "\n" << externalNote << "\nGround truth:\n" << notes.str();
 
   const std::filesystem::path csvPath = outDir / "textures.csv", svgPath = outDir / "textures.svg";
   writeText(csvPath, csvText(textures, rows));

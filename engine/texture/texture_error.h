@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "texture/footprints.h"
@@ -30,6 +31,15 @@ struct FilterError {
   std::array<ErrorStats, kAnisoBuckets> perAniso;
 };
 
+// Lookups [begin, end) of a batch into rgba: a TextureSampler, or another
+// library's texture lookups measured the same way (the report's comparison).
+using BatchLookup =
+    std::function<void(const LookupBatch&, std::size_t begin, std::size_t end, float* rgba)>;
+
+// Compares RGBA values (4 floats per footprint) with truth (4 doubles each).
+FilterError errorOfValues(const std::vector<float>& rgba, const FootprintSet& footprints,
+                          const std::vector<double>& truth);
+
 // Samples every footprint (in parallel; the values do not depend on the
 // split) and compares with truth (4 doubles per footprint). `values`, when
 // given, receives the sampler's RGBA.
@@ -37,16 +47,14 @@ FilterError measureFilterError(const TextureSampler& sampler, const FootprintSet
                                const std::vector<double>& truth, const Executor& executor,
                                std::vector<float>* values = nullptr);
 
-// Time of the lookups alone on the calling thread, ns per lookup: the batch is
-// run repeatedly until minSeconds pass, `repeats` times; the median is returned.
-double timeLookupsNs(const TextureSampler& sampler, const FootprintSet& footprints, int repeats = 5,
-                     double minSeconds = 0.02);
-
-// The same for several samplers over the same footprints, in interleaved
-// rounds (one timed run of each per round), so a burst of load from other
-// processes falls on all of them alike rather than on whichever ran then.
-std::vector<double> timeLookupsInterleavedNs(const std::vector<const TextureSampler*>& samplers,
+// Time of the lookups alone on the calling thread, ns per lookup, for several
+// lookup functions over the same footprints: each batch is run repeatedly
+// until minSeconds pass, in interleaved rounds (one timed run of each per
+// round), so a burst of load from other processes falls on all of them alike
+// rather than on whichever ran then; the median of the rounds is returned.
+std::vector<double> timeLookupsInterleavedNs(const std::vector<BatchLookup>& lookups,
                                              const FootprintSet& footprints, int rounds = 5,
                                              double minSeconds = 0.02);
+BatchLookup batchLookupOf(const TextureSampler& sampler);
 
 }  // namespace quadra
