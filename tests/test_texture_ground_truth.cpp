@@ -357,7 +357,7 @@ TEST(ReportCommand, WritesTheTableTheCsvAndThePlot) {
   for (const char* filter : {"| nearest |", "| bilinear |", "| nearest-mip |", "| trilinear |",
                              "| aniso-16 |", "| ewa |", "| area |"})
     EXPECT_NE(table.str().find(filter), std::string::npos) << filter;
-  // OpenImageIO beside them when the build found it, and a note saying so when not.
+    // OpenImageIO beside them when the build found it, and a note saying so when not.
 #if defined(QUADRA_HAVE_OIIO)
   EXPECT_NE(table.str().find("| oiio-trilinear |"), std::string::npos);
   EXPECT_NE(table.str().find("| oiio-aniso-16 |"), std::string::npos);

@@ -378,22 +378,34 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
   return {sum.r / probes, sum.g / probes, sum.b / probes, sum.a / probes};
 }
 
+// A lane group's lookups in memory, for the filters that work lookup by
+// lookup (EWA, area).
+template <class L>
+struct LaneLookups {
+  alignas(64) float u[L::kWidth], v[L::kWidth], dudx[L::kWidth], dvdx[L::kWidth], dudy[L::kWidth],
+      dvdy[L::kWidth];
+
+  LaneLookups(const typename L::F& us, const typename L::F& vs, const UvDerivatives<L>& d) {
+    us.store_aligned(u);
+    vs.store_aligned(v);
+    d.dudx.store_aligned(dudx);
+    d.dvdx.store_aligned(dvdx);
+    d.dudy.store_aligned(dudy);
+    d.dvdy.store_aligned(dvdy);
+  }
+};
+
 // EWA, lane by lane through the scalar ewaLookup (its per-lookup texel count
 // varies with the footprint, so lanes would mostly wait on each other).
 template <class L>
 Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typename L::F& v,
                   const UvDerivatives<L>& d) {
   constexpr int W = L::kWidth;
-  alignas(64) float in[6][W], out[4][W];
-  u.store_aligned(in[0]);
-  v.store_aligned(in[1]);
-  d.dudx.store_aligned(in[2]);
-  d.dvdx.store_aligned(in[3]);
-  d.dudy.store_aligned(in[4]);
-  d.dvdy.store_aligned(in[5]);
+  const LaneLookups<L> in(u, v, d);
+  alignas(64) float out[4][W];
   for (int k = 0; k < W; ++k) {
     float rgba[4];
-    ewaLookup(view, in[0][k], in[1][k], in[2][k], in[3][k], in[4][k], in[5][k], rgba);
+    ewaLookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k], rgba);
     for (int c = 0; c < 4; ++c) out[c][k] = rgba[c];
   }
   using F = typename L::F;
@@ -411,20 +423,15 @@ Rgba<L> sampleArea(const TextureView& view, const typename L::F& u, const typena
   using F = typename L::F;
   using I = typename L::I;
   constexpr int W = L::kWidth;
-  alignas(64) float in[6][W], out[4][W], laneIndex[W];
-  u.store_aligned(in[0]);
-  v.store_aligned(in[1]);
-  d.dudx.store_aligned(in[2]);
-  d.dvdx.store_aligned(in[3]);
-  d.dudy.store_aligned(in[4]);
-  d.dvdy.store_aligned(in[5]);
+  const LaneLookups<L> in(u, v, d);
+  alignas(64) float out[4][W], laneIndex[W];
   for (int k = 0; k < W; ++k) laneIndex[k] = float(k);
   const F lanes = F::load_aligned(laneIndex);
   for (int k = 0; k < W; ++k) {
-    const AreaGrid grid = planAreaGrid(view, in[2][k], in[3][k], in[4][k], in[5][k]);
+    const AreaGrid grid = planAreaGrid(view, in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k]);
     const int samples = grid.columns * grid.rows;
     const F columns = F(float(grid.columns)), rows = F(float(grid.rows));
-    const F dudx(in[2][k]), dvdx(in[3][k]), dudy(in[4][k]), dvdy(in[5][k]);
+    const F dudx(in.dudx[k]), dvdx(in.dvdx[k]), dudy(in.dudy[k]), dvdy(in.dvdy[k]);
     double sum[4] = {0.0, 0.0, 0.0, 0.0};
     for (int first = 0; first < samples; first += W) {
       // Sample n of the grid: column n mod columns, row n div columns, at the
@@ -434,9 +441,8 @@ Rgba<L> sampleArea(const TextureView& view, const typename L::F& u, const typena
       const F column = n - row * columns;
       const F s = (column + F(0.5f)) / columns - F(0.5f);
       const F t = (row + F(0.5f)) / rows - F(0.5f);
-      const Rgba<L> c =
-          sampleBilinear<L, kFormat>(view, F(in[0][k]) + dudx * s + dudy * t,
-                                     F(in[1][k]) + dvdx * s + dvdy * t, I(grid.level));
+      const Rgba<L> c = sampleBilinear<L, kFormat>(view, F(in.u[k]) + dudx * s + dudy * t,
+                                                   F(in.v[k]) + dvdx * s + dvdy * t, I(grid.level));
       alignas(64) float value[4][W];
       c.r.store_aligned(value[0]);
       c.g.store_aligned(value[1]);
