@@ -65,19 +65,22 @@ void runBatches(benchmark::State& state, const Executor& executor,
       benchmark::Counter(double(kLookups), benchmark::Counter::kIsIterationInvariantRate);
 }
 
-// args: filter, format, isa, texture side, threads.
+// args: filter, format, isa, texture side, threads[, gather].
 void lookups(benchmark::State& state) {
   const Filter filter = Filter(state.range(0));
   const TexelFormat format = TexelFormat(state.range(1));
   const Isa isa = Isa(state.range(2));
   const int side = int(state.range(3));
+  const bool gather = state.range(5) != 0;
   if (!isaSupported(isa)) {
     state.SkipWithError("ISA not supported by this CPU");
     return;
   }
   const Workload& w = workload(side);
   const Texture texture(w.image, SamplerState{}, format);
-  const TextureSampler sampler(texture, FilterSettings(filter, 16), isa);
+  FilterSettings settings(filter, 16);
+  settings.gatherTexels = gather;
+  const TextureSampler sampler(texture, settings, isa);
   const LookupBatch batch = w.footprints.batch();
   std::vector<float> rgba(kLookups * 4);
   const Executor executor(int(state.range(4)));
@@ -102,7 +105,7 @@ void baseline(benchmark::State& state) {
 }
 
 void lookupArguments(benchmark::internal::Benchmark* b) {
-  b->ArgNames({"filter", "format", "isa", "side", "threads"});
+  b->ArgNames({"filter", "format", "isa", "side", "threads", "gather"});
   for (const Filter filter : {Filter::Nearest, Filter::Bilinear, Filter::NearestMip,
                               Filter::Trilinear, Filter::Anisotropic})
     for (const TexelFormat format :
@@ -110,7 +113,13 @@ void lookupArguments(benchmark::internal::Benchmark* b) {
       for (const Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
         for (const int side : {kSideL1, kSideL2, kSideDram})
           for (const int threads : {1, 2})
-            b->Args({int(filter), int(format), int(isa), side, threads});
+            b->Args({int(filter), int(format), int(isa), side, threads, 0});
+  // The gather alternative of the float fetch, where the ISA has gathers.
+  for (const Filter filter : {Filter::Bilinear, Filter::Trilinear, Filter::Anisotropic})
+    for (const Isa isa : {Isa::Avx2, Isa::Avx512})
+      for (const int side : {kSideL1, kSideL2, kSideDram})
+        for (const int gather : {0, 1})
+          b->Args({int(filter), int(TexelFormat::Rgba32F), int(isa), side, 1, gather});
 }
 
 BENCHMARK(baseline)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime();

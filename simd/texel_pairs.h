@@ -4,7 +4,8 @@
 // lane's left and right texel, decoded to float. One helper per register
 // width, templated on the storage encoding: each loads a pair whole, decodes
 // it in registers (F16C and byte widening where the ISA has them) and
-// transposes. The decodes are exact or round exactly as the scalar decode in
+// transposes (or, for float pairs, gathers: the benchmarked alternative).
+// The decodes are exact or round exactly as the scalar decode in
 // texture/texel_format.cpp, so every path returns the same bits.
 //
 // Include only from per-ISA kernel translation units; the 256- and 512-bit
@@ -68,6 +69,18 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   for (int c = 0; c < 4; ++c) left[c] = l[c], right[c] = r[c];
 }
 
+// SSE2 has no gather instruction: lane-by-lane loads, for the interface only
+// (the sampler reaches its gather variant from AVX2 on).
+QUADRA_TRANSPOSE_INLINE void gatherTexelPairs(const float* base, __m128i offset, __m128 left[4],
+                                              __m128 right[4]) {
+  alignas(16) std::int32_t texel[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(texel), offset);
+  const std::uint8_t* pair[4];
+  for (int k = 0; k < 4; ++k)
+    pair[k] = reinterpret_cast<const std::uint8_t*>(base + std::ptrdiff_t(texel[k]) * 4);
+  transposeTexelPairs<PairEncoding::Float32>(pair, left, right);
+}
+
 #if defined(__AVX2__)
 // One lane's pair in a 256-bit register: left texel low, right texel high.
 template <PairEncoding kEncoding>
@@ -108,6 +121,17 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   for (int c = 0; c < 4; ++c) {
     left[c] = _mm256_permute2f128_ps(out[0][c], out[1][c], 0x20);
     right[c] = _mm256_permute2f128_ps(out[0][c], out[1][c], 0x31);
+  }
+}
+
+// The gather alternative for float pairs: texel offsets (texels from `base`)
+// per lane, one hardware gather per channel and side (8 per row).
+QUADRA_TRANSPOSE_INLINE void gatherTexelPairs(const float* base, __m256i offset, __m256 left[4],
+                                              __m256 right[4]) {
+  const __m256i index = _mm256_slli_epi32(offset, 2);  // 4 floats per texel
+  for (int c = 0; c < 4; ++c) {
+    left[c] = _mm256_i32gather_ps(base + c, index, 4);
+    right[c] = _mm256_i32gather_ps(base + 4 + c, index, 4);
   }
 }
 #endif
@@ -156,6 +180,15 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   for (int c = 0; c < 4; ++c) {
     left[c] = _mm512_shuffle_f32x4(out[0][c], out[1][c], _MM_SHUFFLE(2, 0, 2, 0));
     right[c] = _mm512_shuffle_f32x4(out[0][c], out[1][c], _MM_SHUFFLE(3, 1, 3, 1));
+  }
+}
+
+QUADRA_TRANSPOSE_INLINE void gatherTexelPairs(const float* base, __m512i offset, __m512 left[4],
+                                              __m512 right[4]) {
+  const __m512i index = _mm512_slli_epi32(offset, 2);
+  for (int c = 0; c < 4; ++c) {
+    left[c] = _mm512_i32gather_ps(index, base + c, 4);
+    right[c] = _mm512_i32gather_ps(index, base + 4 + c, 4);
   }
 }
 #endif

@@ -32,17 +32,19 @@ inline std::vector<Lookup> randomLookups(int count, std::uint32_t seed) {
   return lookups;
 }
 
-// RGBA of every lookup, in order, through the given filter and kernel path.
+// RGBA of every lookup, in order, through the given filter and kernel path
+// (float texels through hardware gathers when asked).
 inline std::vector<float> sampleAll(const Texture& texture, Filter filter, Isa isa,
-                                    const std::vector<Lookup>& lookups) {
+                                    const std::vector<Lookup>& lookups, bool gatherTexels = false) {
   std::vector<float> column[6];
   for (const Lookup& l : lookups)
     for (int i = 0; i < 6; ++i) column[i].push_back(l[i]);
   const LookupBatch batch{column[0].data(), column[1].data(), column[2].data(), column[3].data(),
                           column[4].data(), column[5].data(), lookups.size()};
   std::vector<float> rgba(lookups.size() * 4);
-  TextureSampler(texture, FilterSettings(filter, 16), isa)
-      .sample(batch, 0, lookups.size(), rgba.data());
+  FilterSettings settings(filter, 16);
+  settings.gatherTexels = gatherTexels;
+  TextureSampler(texture, settings, isa).sample(batch, 0, lookups.size(), rgba.data());
   return rgba;
 }
 

@@ -69,6 +69,29 @@ TEST(SamplerPaths, EveryIsaMatchesScalarForEveryFilterWrapModeAndFormat) {
   if (compared == 0) GTEST_SKIP() << "this CPU has no SIMD path to compare";
 }
 
+// The gather variant of the float fetch (the benchmarked alternative) reads
+// the same texels: identical bits on the paths that have gathers.
+TEST(SamplerPaths, GatheredTexelsEqualPairLoads) {
+  const auto image = std::make_shared<Image>(makeValueNoiseTexture(37, 23, 5));
+  const std::vector<Lookup> lookups = randomLookups(300, 29);
+  int compared = 0;
+  for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::ClampToBorder}) {
+    SamplerState state;
+    state.wrapU = state.wrapV = wrap;
+    const Texture texture(image, state);
+    for (const Filter filter : {Filter::Bilinear, Filter::Trilinear, Filter::Anisotropic}) {
+      for (const Isa isa : {Isa::Avx2, Isa::Avx512}) {
+        if (!isaSupported(isa)) continue;
+        EXPECT_EQ(sampleAll(texture, filter, isa, lookups, true),
+                  sampleAll(texture, filter, isa, lookups))
+            << isaName(isa) << " " << filterName(filter) << " " << wrapName(wrap);
+        ++compared;
+      }
+    }
+  }
+  if (compared == 0) GTEST_SKIP() << "this CPU has no gather path";
+}
+
 // Each narrow format against float storage, bilinear on every path: within
 // the format's stated rounding (texel_format.h) of values in [0, 1].
 TEST(SamplerPaths, NarrowFormatsStayWithinTheirRoundingOfFloat) {

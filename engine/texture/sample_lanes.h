@@ -31,6 +31,16 @@ struct UvDerivatives {
   typename L::F dudx, dvdx, dudy, dvdy;
 };
 
+// How a kernel reads texels: the storage format, and for RGBA32F whether the
+// bilinear rows come from hardware gathers instead of pair loads (kept as a
+// benchmarked alternative: quadra_sample_bench --benchmark_filter=gather).
+template <TexelFormat kStoredAs, bool kUseGathers = false>
+struct TexelRead {
+  static constexpr TexelFormat kFormat = kStoredAs;
+  static constexpr bool kGather = kUseGathers;
+  static_assert(!kUseGathers || kStoredAs == TexelFormat::Rgba32F, "gathers read float texels");
+};
+
 namespace sampling {
 
 template <class L>
@@ -120,13 +130,13 @@ QUADRA_LANE_INLINE typename L::I texelOffset(const LevelGeometry<L>& g, const ty
 }
 
 // Per-lane pointers to the texels at the given offsets.
-template <class L, TexelFormat kFormat>
+template <class L, class R>
 QUADRA_LANE_INLINE void texelPointers(const TextureView& view, const LevelGeometry<L>& g,
                                       const typename L::I& level, const typename L::I& offset,
                                       const std::uint8_t* out[L::kWidth]) {
   alignas(64) std::int32_t off[L::kWidth], lv[L::kWidth];
   offset.store_aligned(off);
-  constexpr std::ptrdiff_t texelBytes = bytesPerTexel(kFormat);
+  constexpr std::ptrdiff_t texelBytes = bytesPerTexel(R::kFormat);
   if (g.uniform >= 0) {
     const std::uint8_t* const base = view.levels[g.uniform].texels;
     for (int k = 0; k < L::kWidth; ++k) out[k] = base + std::ptrdiff_t(off[k]) * texelBytes;
@@ -138,15 +148,15 @@ QUADRA_LANE_INLINE void texelPointers(const TextureView& view, const LevelGeomet
 }
 
 // One texel per lane (nearest filtering), decoded lane by lane.
-template <class L, TexelFormat kFormat>
+template <class L, class R>
 Rgba<L> fetch(const TextureView& view, const LevelGeometry<L>& g, const typename L::I& level,
               const typename L::F& x, const typename L::F& y) {
   const std::uint8_t* texel[L::kWidth];
-  texelPointers<L, kFormat>(view, g, level, texelOffset<L>(g, x, y), texel);
+  texelPointers<L, R>(view, g, level, texelOffset<L>(g, x, y), texel);
   alignas(64) float channel[4][L::kWidth];
   for (int k = 0; k < L::kWidth; ++k) {
     float rgba[4];
-    decodeTexel(kFormat, texel[k], rgba);
+    decodeTexel(R::kFormat, texel[k], rgba);
     for (int c = 0; c < 4; ++c) channel[c][k] = rgba[c];
   }
   using F = typename L::F;
@@ -165,28 +175,39 @@ QUADRA_LANE_INLINE void transposeRowPairs(const std::uint8_t* const pair[L::kWid
 
 // The left and right texels of one bilinear row per lane, as channel lanes:
 // each lane reads its pair (texels x and x + 1, contiguous in a padded level)
-// whole, decoded and transposed in registers (simd/texel_pairs.h).
-// Gather-free: hardware gathers measured slower here on both an Intel Xeon
-// and an AMD EPYC (Zen 5) VM (alpha-quads 34.8 vs 24.8 ms on the latter), and
-// are microcode-mitigated on many Intel parts.
-template <class L, TexelFormat kFormat>
+// whole, decoded and transposed in registers (simd/texel_pairs.h). The
+// gather variant (TexelRead<Rgba32F, true>) is the alternative the sampler
+// benchmark measures per ISA; the pair loads won on both AVX2 and AVX-512 on
+// an Intel Xeon and an AMD EPYC (Zen 5) VM (README "Texel storage"), and
+// gathers are microcode-mitigated on many Intel parts, so they are the default.
+template <class L, class R>
 QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeometry<L>& g,
                                       const typename L::I& level, const typename L::I& offset,
                                       Rgba<L>& left, Rgba<L>& right) {
   constexpr int W = L::kWidth;
+  if constexpr (R::kGather && !kIsScalarLanes<L>) {
+    if (g.uniform >= 0) {  // one base pointer for every lane
+      typename L::F::register_type l[4], r[4];
+      simd::gatherTexelPairs(reinterpret_cast<const float*>(view.levels[g.uniform].texels),
+                             typename L::I::register_type(offset), l, r);
+      left = {l[0], l[1], l[2], l[3]};
+      right = {r[0], r[1], r[2], r[3]};
+      return;
+    }
+  }
   const std::uint8_t* pair[W];
-  texelPointers<L, kFormat>(view, g, level, offset, pair);
+  texelPointers<L, R>(view, g, level, offset, pair);
   if constexpr (kIsScalarLanes<L>) {
     for (int k = 0; k < W; ++k) {
       float l[4], r[4];
-      decodeTexel(kFormat, pair[k], l);
-      decodeTexel(kFormat, pair[k] + bytesPerTexel(kFormat), r);
+      decodeTexel(R::kFormat, pair[k], l);
+      decodeTexel(R::kFormat, pair[k] + bytesPerTexel(R::kFormat), r);
       left.r.v[k] = l[0], left.g.v[k] = l[1], left.b.v[k] = l[2], left.a.v[k] = l[3];
       right.r.v[k] = r[0], right.g.v[k] = r[1], right.b.v[k] = r[2], right.a.v[k] = r[3];
     }
-  } else if constexpr (kFormat == TexelFormat::Rgba32F) {
+  } else if constexpr (R::kFormat == TexelFormat::Rgba32F) {
     transposeRowPairs<L, simd::PairEncoding::Float32>(pair, left, right);
-  } else if constexpr (kFormat == TexelFormat::Rgba16F) {
+  } else if constexpr (R::kFormat == TexelFormat::Rgba16F) {
     transposeRowPairs<L, simd::PairEncoding::Half>(pair, left, right);
   } else {
     transposeRowPairs<L, simd::PairEncoding::Unorm8>(pair, left, right);
@@ -211,7 +232,7 @@ QUADRA_LANE_INLINE Rgba<L> lerp(const Rgba<L>& p, const Rgba<L>& q, const typena
 }  // namespace sampling
 
 // Nearest texel of the given level(s).
-template <class L, TexelFormat kFormat>
+template <class L, class R>
 Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
                       const typename L::I& level) {
   using namespace sampling;
@@ -222,7 +243,7 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
   typename L::M inside = F(0.0f) == F(0.0f);
   const F x = wrapTexel<L>(simd::floor(u * g.width), g.width, view.wrapU, inside);
   const F y = wrapTexel<L>(simd::floor(v * g.height), g.height, view.wrapV, inside);
-  return withBorder<L>(view, fetch<L, kFormat>(view, g, level, x, y), inside);
+  return withBorder<L>(view, fetch<L, R>(view, g, level, x, y), inside);
 }
 
 // Bilinear reconstruction on the given level(s). Columns are read as pairs
@@ -233,7 +254,7 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
 // clamp on the folded coordinate (the bilinear reconstruction of a mirrored
 // row is symmetric about each fold); border reads the pair at the clamped
 // column and substitutes the border colour where a texel lies outside.
-template <class L, TexelFormat kFormat>
+template <class L, class R>
 QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F u, typename L::F v,
                                           const typename L::I& level) {
   using namespace sampling;
@@ -259,8 +280,8 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F
   const F y0 = wrapTexel<L>(fy0, g.height, view.wrapV, inY0);
   const F y1 = wrapTexel<L>(fy0 + F(1.0f), g.height, view.wrapV, inY1);
   Rgba<L> c00, c10, c01, c11;
-  fetchRowPairs<L, kFormat>(view, g, level, texelOffset<L>(g, x0, y0), c00, c10);
-  fetchRowPairs<L, kFormat>(view, g, level, texelOffset<L>(g, x0, y1), c01, c11);
+  fetchRowPairs<L, R>(view, g, level, texelOffset<L>(g, x0, y0), c00, c10);
+  fetchRowPairs<L, R>(view, g, level, texelOffset<L>(g, x0, y1), c01, c11);
 
   if (view.wrapU == WrapMode::ClampToBorder || view.wrapV == WrapMode::ClampToBorder) {
     M inX0 = all, inX1 = all;
@@ -301,7 +322,7 @@ QUADRA_LANE_INLINE typename L::F controlledLod(const TextureView& view, const ty
 }
 
 // Trilinear (or nearest-mip) at LOD λ; λ <= 0 is magnification.
-template <class L, TexelFormat kFormat>
+template <class L, class R>
 QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typename L::F& u,
                                            const typename L::F& v, typename L::F lod,
                                            bool linearBetweenLevels) {
@@ -311,15 +332,15 @@ QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typena
   lod = simd::min(simd::max(lod, F(0.0f)), lastLevel);  // simd::max(NaN, 0) is 0: level 0
   if (!linearBetweenLevels) {
     const I level = simd::toInt(simd::floor(lod + F(0.5f)));
-    return sampleBilinear<L, kFormat>(view, u, v, simd::min(level, I(view.levelCount - 1)));
+    return sampleBilinear<L, R>(view, u, v, simd::min(level, I(view.levelCount - 1)));
   }
   const F levelFloor = simd::floor(lod);
   const F t = lod - levelFloor;
   const I level0 = simd::toInt(levelFloor);
   const I level1 = simd::min(level0 + I(1), I(view.levelCount - 1));
-  const Rgba<L> fine = sampleBilinear<L, kFormat>(view, u, v, level0);
+  const Rgba<L> fine = sampleBilinear<L, R>(view, u, v, level0);
   if (!simd::any(t > F(0.0f))) return fine;
-  const Rgba<L> coarse = sampleBilinear<L, kFormat>(view, u, v, level1);
+  const Rgba<L> coarse = sampleBilinear<L, R>(view, u, v, level1);
   return sampling::lerp<L>(fine, coarse, t);
 }
 
@@ -327,7 +348,7 @@ QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typena
 // footprint's major axis at λ = log2(major/N). The axes are the singular
 // values of the Jacobian (the footprint ellipse), not the lengths of the two
 // derivative vectors, which can be equal for a strongly sheared footprint.
-template <class L, TexelFormat kFormat>
+template <class L, class R>
 Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const typename L::F& v,
                           const UvDerivatives<L>& d) {
   using F = typename L::F;
@@ -369,7 +390,7 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
     const F offset = (F(float(i) + 0.5f) / probes - F(0.5f));
     const auto active = F(float(i)) < probes;
     const Rgba<L> c =
-        sampleMipmapped<L, kFormat>(view, u + axisU * offset, v + axisV * offset, lod, true);
+        sampleMipmapped<L, R>(view, u + axisU * offset, v + axisV * offset, lod, true);
     sum.r = sum.r + simd::select(active, c.r, F(0.0f));
     sum.g = sum.g + simd::select(active, c.g, F(0.0f));
     sum.b = sum.b + simd::select(active, c.b, F(0.0f));
@@ -417,7 +438,7 @@ Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typenam
 // is spread over the SIMD lanes, W samples per bilinear call on the level the
 // plan chose. Sums run in double in sample order, so every ISA path adds the
 // same values in the same order and returns the same bits.
-template <class L, TexelFormat kFormat>
+template <class L, class R>
 Rgba<L> sampleArea(const TextureView& view, const typename L::F& u, const typename L::F& v,
                    const UvDerivatives<L>& d) {
   using F = typename L::F;
@@ -441,8 +462,8 @@ Rgba<L> sampleArea(const TextureView& view, const typename L::F& u, const typena
       const F column = n - row * columns;
       const F s = (column + F(0.5f)) / columns - F(0.5f);
       const F t = (row + F(0.5f)) / rows - F(0.5f);
-      const Rgba<L> c = sampleBilinear<L, kFormat>(view, F(in.u[k]) + dudx * s + dudy * t,
-                                                   F(in.v[k]) + dvdx * s + dvdy * t, I(grid.level));
+      const Rgba<L> c = sampleBilinear<L, R>(view, F(in.u[k]) + dudx * s + dudy * t,
+                                             F(in.v[k]) + dvdx * s + dvdy * t, I(grid.level));
       alignas(64) float value[4][W];
       c.r.store_aligned(value[0]);
       c.g.store_aligned(value[1]);
@@ -459,35 +480,35 @@ Rgba<L> sampleArea(const TextureView& view, const typename L::F& u, const typena
 }
 
 // The view's filter at the footprint given by the derivatives, for texels
-// stored in kFormat (the view's format).
-template <class L, TexelFormat kFormat>
+// stored in R::kFormat (the view's format).
+template <class L, class R>
 Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const typename L::F& v,
                         const UvDerivatives<L>& d) {
   using F = typename L::F;
   using I = typename L::I;
   const I level0(0);
   const Filter filter = view.minFilter;
-  if (filter == Filter::Nearest) return sampleNearest<L, kFormat>(view, u, v, level0);
-  if (filter == Filter::Bilinear) return sampleBilinear<L, kFormat>(view, u, v, level0);
+  if (filter == Filter::Nearest) return sampleNearest<L, R>(view, u, v, level0);
+  if (filter == Filter::Bilinear) return sampleBilinear<L, R>(view, u, v, level0);
   if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
-  if (filter == Filter::Area) return sampleArea<L, kFormat>(view, u, v, d);
+  if (filter == Filter::Area) return sampleArea<L, R>(view, u, v, d);
   // Magnification decided exactly on the squared footprint length: a group
   // that is magnified throughout (the common case up close) skips the log2
   // and the level selection, and reads level 0 as trilinear would there.
   const F lengthSq = isotropicLengthSq<L>(view, d);
   const auto surelyMagnified = lengthSq <= F(view.magnifiedLengthSq);
   if (filter != Filter::Anisotropic && simd::all(surelyMagnified))
-    return view.magLinear ? sampleBilinear<L, kFormat>(view, u, v, level0)
-                          : sampleNearest<L, kFormat>(view, u, v, level0);
+    return view.magLinear ? sampleBilinear<L, R>(view, u, v, level0)
+                          : sampleNearest<L, R>(view, u, v, level0);
   F lod = controlledLod<L>(view, F(0.5f) * simd::log2<L>(lengthSq));
   lod = simd::select(surelyMagnified, simd::min(lod, F(0.0f)), lod);
   const auto magnified = ~(lod > F(0.0f));
-  if (!view.magLinear && simd::all(magnified)) return sampleNearest<L, kFormat>(view, u, v, level0);
+  if (!view.magLinear && simd::all(magnified)) return sampleNearest<L, R>(view, u, v, level0);
   Rgba<L> c = filter == Filter::Anisotropic
-                  ? sampleAnisotropic<L, kFormat>(view, u, v, d)
-                  : sampleMipmapped<L, kFormat>(view, u, v, lod, filter == Filter::Trilinear);
+                  ? sampleAnisotropic<L, R>(view, u, v, d)
+                  : sampleMipmapped<L, R>(view, u, v, lod, filter == Filter::Trilinear);
   if (!view.magLinear && simd::any(magnified)) {
-    const Rgba<L> n = sampleNearest<L, kFormat>(view, u, v, level0);
+    const Rgba<L> n = sampleNearest<L, R>(view, u, v, level0);
     c = {simd::select(magnified, n.r, c.r), simd::select(magnified, n.g, c.g),
          simd::select(magnified, n.b, c.b), simd::select(magnified, n.a, c.a)};
   }
@@ -501,13 +522,17 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
                       const UvDerivatives<L>& d) {
   switch (view.format) {
     case TexelFormat::Rgba16F:
-      return sampleTextureAs<L, TexelFormat::Rgba16F>(view, u, v, d);
+      return sampleTextureAs<L, TexelRead<TexelFormat::Rgba16F>>(view, u, v, d);
     case TexelFormat::Rgba8Unorm:
-      return sampleTextureAs<L, TexelFormat::Rgba8Unorm>(view, u, v, d);
+      return sampleTextureAs<L, TexelRead<TexelFormat::Rgba8Unorm>>(view, u, v, d);
     case TexelFormat::Rgba32F:
       break;
   }
-  return sampleTextureAs<L, TexelFormat::Rgba32F>(view, u, v, d);
+  if constexpr (L::kWidth > 4) {  // gathers exist from AVX2 on
+    if (view.gatherTexels)
+      return sampleTextureAs<L, TexelRead<TexelFormat::Rgba32F, true>>(view, u, v, d);
+  }
+  return sampleTextureAs<L, TexelRead<TexelFormat::Rgba32F>>(view, u, v, d);
 }
 
 }  // namespace quadra

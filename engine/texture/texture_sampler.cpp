@@ -20,6 +20,7 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   // An explicit filter decides magnification too: nearest stays nearest.
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
   view.maxAniso = settings.maxAniso;
+  view.gatherTexels = settings.gatherTexels;
   view.setLodControls(settings.lodBias, settings.minLod, settings.maxLod);
   view.format = texture.storage();
   view.levels[0] = texture.sampledLevel0().view();

@@ -31,6 +31,9 @@ struct FilterSettings {
   float lodBias = 0.0f;
   float minLod = 0.0f;
   float maxLod = 1000.0f;
+  // Hardware gathers for float texels (TextureView::gatherTexels): off, as
+  // measured faster on every ISA here; for benchmarks.
+  bool gatherTexels = false;
 
   FilterSettings(std::optional<Filter> f = std::nullopt, int aniso = 16)
       : filter(f), maxAniso(aniso) {}

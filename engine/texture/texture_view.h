@@ -31,6 +31,9 @@ struct TextureView {
   Filter minFilter = Filter::Trilinear;  // used when the footprint is minified (LOD > 0)
   bool magLinear = true;                 // used when magnified (LOD <= 0)
   int maxAniso = 16;
+  // RGBA32F bilinear rows through hardware gathers instead of pair loads (the
+  // benchmarked alternative; AVX2 and AVX-512 paths only).
+  bool gatherTexels = false;
   // LOD controls, as in OpenGL: λ' = clamp(λ + lodBias, minLod, maxLod),
   // magnified when λ' <= 0.
   float lodBias = 0.0f;
