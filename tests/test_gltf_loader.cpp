@@ -19,6 +19,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
+#include "resolve/image_io.h"
 #include "scene/gltf_loader.h"
 #include "texture/mip_chain.h"
 
@@ -850,6 +851,45 @@ TEST(GltfLoader, ImagesFromFilesDataUrisAnd16BitPngs) {
 
   fs::remove(dir.file("deep texture.png"));
   expectError(path, "deep texture.png");
+}
+
+// Images over the 2^28-texel limit are refused from their headers, before
+// any pixel is decoded or allocated: a PNG and a JPEG in a glTF, and a PNG
+// file read directly. (A header-only PNG: IHDR, a stub IDAT, IEND, valid CRCs.)
+TEST(GltfLoaderErrors, OversizedImagesAreRefusedBeforeDecoding) {
+  TempDir dir;
+  std::vector<std::uint8_t> png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  std::vector<std::uint8_t> header;
+  putU32BigEndian(header, 20000);
+  putU32BigEndian(header, 20000);
+  header.insert(header.end(), {8, 6, 0, 0, 0});
+  pngChunk(png, "IHDR", header);
+  pngChunk(png, "IDAT", {0x78, 0x01});
+  pngChunk(png, "IEND", {});
+  // Start of image, then a baseline frame header: precision 8, 30000 x 30000.
+  const std::vector<std::uint8_t> jpeg = {0xFF, 0xD8, 0xFF, 0xE0, 0x00, 0x04, 0x00, 0x00,
+                                          0xFF, 0xC0, 0x00, 0x11, 0x08, 0x75, 0x30, 0x75,
+                                          0x30, 0x03, 0x01, 0x22, 0x00, 0x02, 0x11, 0x01};
+  for (const auto& [bytes, size] :
+       {std::pair{png, std::string("20000x20000")}, std::pair{jpeg, std::string("30000x30000")}}) {
+    Doc doc = squareDoc();
+    doc.images = {"{\"uri\":\"data:image/png;base64," + base64(bytes) + "\"}"};
+    doc.textures = {"{\"source\":0}"};
+    doc.materials = {"{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}"};
+    const int uv = doc.addData(std::vector<float>(8, 0.5f), kFloat, 2);
+    doc.meshes.clear();
+    doc.addMesh(primitive({{"POSITION", 0}, {"TEXCOORD_0", uv}}, 1, -1, 0));
+    expectError(doc.writeGltf(dir, "huge_" + size), size + ", more than the limit of 2^28");
+  }
+  const std::string file = dir.file("huge.png");
+  writeBytes(file, png.data(), png.size());
+  try {
+    readImage(file);
+    ADD_FAILURE() << "a 20000x20000 PNG was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("image too large (20000x20000"), std::string::npos)
+        << e.what();
+  }
 }
 
 // ---- malformed files -------------------------------------------------------------------

@@ -33,9 +33,10 @@ namespace quadra {
 
 namespace {
 
-// 2^28 texels is a 16384^2 texture, 4 GiB as float RGBA: beyond that a file is
-// more likely hostile than a texture, and refusing beats dying in the allocator.
-constexpr std::int64_t kMaxPixels = std::int64_t(1) << 28;
+std::string tooLargeText(std::int64_t width, std::int64_t height) {
+  return "image too large (" + std::to_string(width) + "x" + std::to_string(height) +
+         "; the limit is 2^28 texels, e.g. 16384x16384)";
+}
 
 std::string errnoText(int err, const char* fallback) {
   return err != 0 ? std::error_code(err, std::generic_category()).message() : fallback;
@@ -298,8 +299,8 @@ class PngReader {
   Image read(std::FILE* file, const std::string& path) {
     PngLayout layout;
     if (!decodePngHeader(decoder_, file, layout)) throw failure(path);
-    if (std::int64_t(layout.width) * layout.height > kMaxPixels) {
-      throw makeError(path, "image too large");
+    if (std::int64_t(layout.width) * layout.height > kMaxImagePixels) {
+      throw makeError(path, tooLargeText(layout.width, layout.height));
     }
     std::vector<png_byte> samples(layout.rowBytes * layout.height);
     std::vector<png_bytep> rows(layout.height);
@@ -352,7 +353,7 @@ Image readExr(const std::string& path) {
   const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
   const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
   if (width <= 0 || height <= 0) throw makeError(path, "empty EXR data window");
-  if (width * height > kMaxPixels) throw makeError(path, "image too large");
+  if (width * height > kMaxImagePixels) throw makeError(path, tooLargeText(width, height));
   const ExrSources sources = exrSources(file.header().channels(), path);
   Image image(static_cast<int>(width), static_cast<int>(height));
   const std::size_t texelBytes = 4 * sizeof(float);

@@ -193,6 +193,44 @@ int MaterialTable::sceneTexture(int gltfTexture, const std::string& what) {
   return int(textures_.size()) - 1;
 }
 
+namespace {
+
+std::uint32_t bigEndian(const std::uint8_t* p, int bytes) {
+  std::uint32_t value = 0;
+  for (int i = 0; i < bytes; ++i) value = value << 8 | p[i];
+  return value;
+}
+
+// Width and height from a PNG or JPEG header, read before decoding so an
+// oversized image is refused before anything is allocated for it; false
+// when the header is not one of those (the decoder then reports the error).
+bool encodedImageSize(const std::uint8_t* data, std::uint64_t size, std::uint32_t& width,
+                      std::uint32_t& height) {
+  static const std::uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (size >= 24 && std::memcmp(data, kPng, 8) == 0 && std::memcmp(data + 12, "IHDR", 4) == 0) {
+    width = bigEndian(data + 16, 4);
+    height = bigEndian(data + 20, 4);
+    return true;
+  }
+  if (size < 4 || data[0] != 0xFF || data[1] != 0xD8) return false;
+  // JPEG: walk the marker segments to the first start-of-frame.
+  for (std::uint64_t at = 2; at + 9 <= size;) {
+    if (data[at] != 0xFF) return false;
+    const std::uint8_t marker = data[at + 1];
+    const bool startOfFrame =
+        marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+    if (startOfFrame) {
+      height = bigEndian(data + at + 5, 2);
+      width = bigEndian(data + at + 7, 2);
+      return true;
+    }
+    at += 2 + bigEndian(data + at + 2, 2);
+  }
+  return false;
+}
+
+}  // namespace
+
 std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex,
                                                         TexelFormat& storage) const {
   const tinygltf::Image& source = ref_.model.images[std::size_t(imageIndex)];
@@ -209,6 +247,12 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex,
   }
   if (bytes.size == 0 || bytes.size > std::uint64_t(INT_MAX)) {
     throw ref_.fail(what + " has " + std::to_string(bytes.size) + " bytes of data");
+  }
+  std::uint32_t width = 0, height = 0;
+  if (encodedImageSize(bytes.data, bytes.size, width, height) &&
+      std::uint64_t(width) * height > std::uint64_t(kMaxImagePixels)) {
+    throw ref_.fail(what + " is " + std::to_string(width) + "x" + std::to_string(height) +
+                    ", more than the limit of 2^28 texels (e.g. 16384x16384)");
   }
   tinygltf::Image decoded;
   std::string err, warn;

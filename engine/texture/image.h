@@ -9,6 +9,14 @@
 
 namespace quadra {
 
+// The largest image quadra reads or samples: 2^28 texels, a 16384^2 texture.
+// Memory at that size: 4 GiB as the float Image, and as sampled storage with
+// its mip chain (4/3 of level 0, padding aside) 5.3 GiB in rgba32f, 2.7 GiB in
+// rgba16f, 1.3 GiB in rgba8. Larger files are refused by size before any
+// pixel is decoded: more likely hostile than a texture, and a clear error
+// beats dying in the allocator.
+constexpr std::int64_t kMaxImagePixels = std::int64_t(1) << 28;
+
 struct Image {
   int width = 0;
   int height = 0;
