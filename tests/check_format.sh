@@ -10,7 +10,8 @@ if ((${#files[@]} == 0)); then
   exit 1
 fi
 if ! clang-format --dry-run --Werror "${files[@]}" 2>/tmp/quadra-format.$$; then
-  grep -o '^[^:]*' /tmp/quadra-format.$$ | sort -u | sed 's/^/not clang-formatted: /'
+  grep -E ': (warning|error):' /tmp/quadra-format.$$ | cut -d: -f1 | sort -u |
+    sed 's/^/not clang-formatted: /'
   rm -f /tmp/quadra-format.$$
   exit 1
 fi
