@@ -128,6 +128,8 @@ TEST(Cli, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(
       run("render builtin:checker-plane --texture-format rgba4 --out " + out.string()),
       "--texture-format");
+  expectOneLineError(run("render builtin:checker-plane --depth inverted --out " + out.string()),
+                     "--depth");
   EXPECT_FALSE(fs::exists(out));
 }
 

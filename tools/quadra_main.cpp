@@ -37,6 +37,8 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --lod-bias B           added to every texture lookup's LOD (default 0)
   --texture-format auto|rgba32f|rgba16f|rgba8
                          texel storage (default auto: rgba16f for 8-bit images, else rgba32f)
+  --depth standard|reversed
+                         depth buffer: standard (0 near, LESS) or reversed (1 near, GREATER)
   --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
@@ -130,6 +132,13 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
       if (value != "auto" && !parseFormat(value, format))
         throw Error(arg + ": unknown texel format '" + value + "' (auto, rgba32f, rgba16f, rgba8)");
       if (value != "auto") cmd.textureFormat = format;
+    } else if (arg == "--depth") {
+      if (value == "standard")
+        cmd.settings.depth = DepthMode::Standard;
+      else if (value == "reversed")
+        cmd.settings.depth = DepthMode::Reversed;
+      else
+        throw Error(arg + ": unknown depth mode '" + value + "' (standard, reversed)");
     } else if (arg == "--shading") {
       if (value == "unlit")
         cmd.settings.shading = Shading::Unlit;

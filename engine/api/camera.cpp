@@ -17,7 +17,7 @@ glm::mat4 viewMatrix(const Camera& camera) {
   return glm::inverse(world);
 }
 
-glm::mat4 projectionMatrix(const Camera& camera, double aspect) {
+glm::mat4 projectionMatrix(const Camera& camera, double aspect, DepthMode depth) {
   glm::dmat4 p(0.0);
   const double n = camera.znear, f = camera.zfar;
   if (camera.type == Camera::Type::Perspective) {
@@ -39,6 +39,10 @@ glm::mat4 projectionMatrix(const Camera& camera, double aspect) {
     p[2][2] = 1.0 / (n - f);
     p[3][2] = n / (n - f);
     p[3][3] = 1.0;
+  }
+  if (depth == DepthMode::Reversed) {
+    // depth' = 1 - depth: z_c' = w_c - z_c, exact in double before the float cast.
+    for (int column = 0; column < 4; ++column) p[column][2] = p[column][3] - p[column][2];
   }
   return glm::mat4(p);
 }

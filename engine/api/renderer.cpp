@@ -69,6 +69,7 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
                                 filtering, &frame.executor);
   }
   s.vertexColor = !mesh.colors.empty();
+  s.depthGreater = settings.depth == DepthMode::Reversed;
   s.lit = settings.shading == Shading::Lit;
   if (s.alphaMode == AlphaMode::Blend) {
     s.blend = BlendMode::Over;
@@ -111,8 +112,9 @@ float drawDistance(const Draw& draw) {
 
 std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
                                 const RenderSettings& settings, const Executor& executor) {
-  const FrameContext frame{scene, settings, executor, viewMatrix(camera),
-                           projectionMatrix(camera, double(settings.width) / settings.height)};
+  const FrameContext frame{
+      scene, settings, executor, viewMatrix(camera),
+      projectionMatrix(camera, double(settings.width) / settings.height, settings.depth)};
   std::vector<Draw> opaque, blended;
   for (const Instance& instance : scene.instances) {
     Draw draw = makeDraw(frame, instance);
@@ -197,7 +199,8 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   out.height = settings.height;
   out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
   out.depth.resize(std::size_t(out.width) * std::size_t(out.height));
-  renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, executor, out);
+  const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
+  renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out);
 
   SetupCounters total;
   for (const FrontEndChunk& chunk : chunks) total.add(chunk.setup.counters);

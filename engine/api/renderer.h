@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "api/camera.h"
 #include "resolve/frame.h"
 #include "scene/scene.h"
 #include "simd/isa.h"
@@ -46,6 +47,9 @@ struct RenderSettings {
   float lodBias = 0.0f;  // added to every texture lookup's LOD
   Shading shading = Shading::Unlit;
   glm::vec4 clearColor{0.0f};  // premultiplied linear
+  // Reversed: depth 1 at near and 0 at far, test GREATER, clear to 0; the
+  // frame's depth (and the EXR Z channel) then holds reversed depth.
+  DepthMode depth = DepthMode::Standard;
   DebugView debugView = DebugView::None;
 };
 

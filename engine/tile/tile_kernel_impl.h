@@ -152,7 +152,7 @@ struct Shader {
   void shadeGroup(const F& x, const F& y, M cover, float* depth, float* const color[4]) const {
     const F zValue = z.at(x, y);
     const F zOld = F::load_aligned(depth);
-    if (shade.depthTest) cover = cover & (zValue < zOld);
+    if (shade.depthTest) cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
     if (!simd::any(cover)) return;
 
     // Perspective-correct: a = (a/w) / (1/w), with one exact division.

@@ -12,20 +12,20 @@ namespace quadra {
 
 namespace {
 
-void clearTile(TileBuffers& tile, const glm::vec4& clearColor) {
-  std::fill(std::begin(tile.depth), std::end(tile.depth), 1.0f);
+void clearTile(TileBuffers& tile, const glm::vec4& clearColor, float clearDepth) {
+  std::fill(std::begin(tile.depth), std::end(tile.depth), clearDepth);
   for (int c = 0; c < 4; ++c)
     std::fill(std::begin(tile.color[c]), std::end(tile.color[c]), clearColor[c]);
 }
 
 void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& draws,
                 const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                const glm::vec4& clearColor, TileBuffers& tile, Frame& frame) {
+                const glm::vec4& clearColor, float clearDepth, TileBuffers& tile, Frame& frame) {
   tile.originX = (tileIndex % grid.tilesX) * kTileSize;
   tile.originY = (tileIndex / grid.tilesX) * kTileSize;
   tile.width = std::min(kTileSize, grid.width - tile.originX);
   tile.height = std::min(kTileSize, grid.height - tile.originY);
-  clearTile(tile, clearColor);
+  clearTile(tile, clearColor, clearDepth);
   for (const FrontEndChunk& chunk : chunks) {
     const std::uint32_t begin = chunk.bins.tileStart[tileIndex];
     const std::uint32_t end = chunk.bins.tileStart[tileIndex + 1];
@@ -42,11 +42,12 @@ void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& dr
 
 void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
                  const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                 const glm::vec4& clearColor, const Executor& executor, Frame& frame) {
+                 const glm::vec4& clearColor, float clearDepth, const Executor& executor,
+                 Frame& frame) {
   executor.parallelFor(std::size_t(grid.tileCount()), 1, [&](std::size_t begin, std::size_t end) {
     auto tile = std::make_unique<TileBuffers>();
     for (std::size_t t = begin; t < end; ++t)
-      renderTile(int(t), grid, draws, chunks, kernels, clearColor, *tile, frame);
+      renderTile(int(t), grid, draws, chunks, kernels, clearColor, clearDepth, *tile, frame);
   });
 }
 

@@ -25,6 +25,7 @@ struct FrontEndChunk {
 
 void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
                  const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                 const glm::vec4& clearColor, const Executor& executor, Frame& frame);
+                 const glm::vec4& clearColor, float clearDepth, const Executor& executor,
+                 Frame& frame);
 
 }  // namespace quadra

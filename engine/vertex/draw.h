@@ -45,6 +45,7 @@ struct ShadeState {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool depthTest = true;
+  bool depthGreater = false;  // reversed depth (api/camera.h DepthMode): GREATER, not LESS
   bool depthWrite = true;
   BlendMode blend = BlendMode::Replace;
   bool outputTexCoord = false;  // DebugView::TexCoord
