@@ -26,6 +26,16 @@ namespace quadra::simd {
 // How a pair is stored: 2 x RGBA float (32 bytes), half (16), UNORM8 (8).
 enum class PairEncoding { Float32, Half, Unorm8 };
 
+// UNORM8 codes decode as code * this (texture/texel_format.h kUnorm8Scale,
+// the same float, so every path rounds alike).
+constexpr float kUnorm8Scale = 1.0f / 255.0f;
+
+// The gather alternative for float pairs: per-lane texel offsets from `base`,
+// one hardware gather per channel and side. Defined for 256- and 512-bit
+// registers only (SSE2 has no gathers); the sampler uses it from AVX2 on.
+template <class Floats, class Ints>
+void gatherTexelPairs(const float* base, Ints offset, Floats left[4], Floats right[4]);
+
 // Exactly texel_format.cpp's halfToFloat, four lanes at a time: the
 // magnitude's bits moved into float position are the value times 2^-112, one
 // exact multiply rescales, infinity/NaN get the full exponent back.
@@ -53,7 +63,7 @@ QUADRA_TRANSPOSE_INLINE void loadPair(const std::uint8_t* pair, __m128& left, __
   } else {
     const __m128i words =
         _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(pair)), zero);
-    const __m128 scale = _mm_set1_ps(1.0f / 255.0f);
+    const __m128 scale = _mm_set1_ps(kUnorm8Scale);
     left = _mm_mul_ps(_mm_cvtepi32_ps(_mm_unpacklo_epi16(words, zero)), scale);
     right = _mm_mul_ps(_mm_cvtepi32_ps(_mm_unpackhi_epi16(words, zero)), scale);
   }
@@ -69,18 +79,6 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   for (int c = 0; c < 4; ++c) left[c] = l[c], right[c] = r[c];
 }
 
-// SSE2 has no gather instruction: lane-by-lane loads, for the interface only
-// (the sampler reaches its gather variant from AVX2 on).
-QUADRA_TRANSPOSE_INLINE void gatherTexelPairs(const float* base, __m128i offset, __m128 left[4],
-                                              __m128 right[4]) {
-  alignas(16) std::int32_t texel[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(texel), offset);
-  const std::uint8_t* pair[4];
-  for (int k = 0; k < 4; ++k)
-    pair[k] = reinterpret_cast<const std::uint8_t*>(base + std::ptrdiff_t(texel[k]) * 4);
-  transposeTexelPairs<PairEncoding::Float32>(pair, left, right);
-}
-
 #if defined(__AVX2__)
 // One lane's pair in a 256-bit register: left texel low, right texel high.
 template <PairEncoding kEncoding>
@@ -92,7 +90,7 @@ QUADRA_TRANSPOSE_INLINE __m256 loadPair256(const std::uint8_t* pair) {
   } else {
     const __m256i codes =
         _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(pair)));
-    return _mm256_mul_ps(_mm256_cvtepi32_ps(codes), _mm256_set1_ps(1.0f / 255.0f));
+    return _mm256_mul_ps(_mm256_cvtepi32_ps(codes), _mm256_set1_ps(kUnorm8Scale));
   }
 }
 
@@ -124,8 +122,7 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   }
 }
 
-// The gather alternative for float pairs: texel offsets (texels from `base`)
-// per lane, one hardware gather per channel and side (8 per row).
+template <>
 QUADRA_TRANSPOSE_INLINE void gatherTexelPairs(const float* base, __m256i offset, __m256 left[4],
                                               __m256 right[4]) {
   const __m256i index = _mm256_slli_epi32(offset, 2);  // 4 floats per texel
@@ -151,7 +148,7 @@ QUADRA_TRANSPOSE_INLINE __m512 loadPairs512(const std::uint8_t* a, const std::ui
     const __m128i codes = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(a)),
                                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(b)));
     return _mm512_mul_ps(_mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(codes)),
-                         _mm512_set1_ps(1.0f / 255.0f));
+                         _mm512_set1_ps(kUnorm8Scale));
   }
 }
 
@@ -183,6 +180,7 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   }
 }
 
+template <>
 QUADRA_TRANSPOSE_INLINE void gatherTexelPairs(const float* base, __m512i offset, __m512 left[4],
                                               __m512 right[4]) {
   const __m512i index = _mm512_slli_epi32(offset, 2);

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "render_helpers.h"
 #include "texture/ground_truth.h"
 #include "texture/mip_chain.h"
 #include "texture/test_textures.h"
@@ -47,13 +48,6 @@ std::vector<float> sample(const Texture& texture, const FilterSettings& settings
   std::vector<float> rgba(batch.u.size() * 4);
   sampler.sample(batch.view(), 0, batch.u.size(), rgba.data());
   return rgba;
-}
-
-std::vector<Isa> supportedIsas() {
-  std::vector<Isa> isas;
-  for (Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
-    if (isaSupported(isa)) isas.push_back(isa);
-  return isas;
 }
 
 class LodControls : public ::testing::Test {

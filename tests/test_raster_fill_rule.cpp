@@ -14,6 +14,7 @@
 
 #include "api/renderer.h"
 #include "reference/reference_raster.h"
+#include "render_helpers.h"
 
 namespace quadra {
 namespace {
@@ -57,13 +58,6 @@ Scene sceneFromWindow(const std::vector<WindowTriangle>& triangles, bool doubleS
   if (mirrored) instance.world[2][2] = -1.0f;
   scene.instances.push_back(instance);
   return scene;
-}
-
-std::vector<Isa> supportedIsas() {
-  std::vector<Isa> isas;
-  for (Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
-    if (isaSupported(isa)) isas.push_back(isa);
-  return isas;
 }
 
 // Renders the coverage count and compares it, pixel by pixel, with the

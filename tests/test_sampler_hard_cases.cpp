@@ -12,9 +12,9 @@
 #include <memory>
 #include <vector>
 
+#include "render_helpers.h"
 #include "sampler_helpers.h"
 #include "texture/ground_truth.h"
-#include "texture/mip_chain.h"
 #include "texture/test_textures.h"
 
 namespace quadra {
@@ -28,13 +28,6 @@ const Filter kAllFilters[] = {Filter::Nearest,   Filter::Bilinear,    Filter::Ne
                               Filter::Area};
 const WrapMode kAllWraps[] = {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
                               WrapMode::ClampToBorder};
-
-std::vector<Isa> supportedIsas() {
-  std::vector<Isa> isas;
-  for (Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
-    if (isaSupported(isa)) isas.push_back(isa);
-  return isas;
-}
 
 // Lookups no filter may turn into NaN, out-of-range values or a crash.
 std::vector<Lookup> hostileLookups() {

@@ -46,7 +46,11 @@ OiioTexture::~OiioTexture() {
   std::filesystem::remove(state_->file, ignored);
 }
 
-std::vector<NamedLookup> OiioTexture::lookups() const {
+std::vector<std::string> OiioTexture::labels(int maxAniso) {
+  return {"oiio-trilinear", "oiio-aniso-" + std::to_string(maxAniso)};
+}
+
+std::vector<BatchLookup> OiioTexture::lookups() const {
   const auto make = [this](OIIO::TextureOpt::MipMode mode) -> BatchLookup {
     return [this, mode](const LookupBatch& batch, std::size_t begin, std::size_t end, float* rgba) {
       OIIO::TextureOpt options;
@@ -61,8 +65,7 @@ std::vector<NamedLookup> OiioTexture::lookups() const {
                                 rgba + 4 * i);
     };
   };
-  return {{"oiio-trilinear", make(OIIO::TextureOpt::MipModeTrilinear)},
-          {"oiio-aniso-" + std::to_string(state_->maxAniso), make(OIIO::TextureOpt::MipModeAniso)}};
+  return {make(OIIO::TextureOpt::MipModeTrilinear), make(OIIO::TextureOpt::MipModeAniso)};
 }
 
 }  // namespace quadra

@@ -14,11 +14,6 @@
 
 namespace quadra {
 
-struct NamedLookup {
-  std::string label;
-  BatchLookup lookup;
-};
-
 // The OpenImageIO version quadra was built against, e.g. "2.4.7".
 std::string oiioVersion();
 
@@ -32,10 +27,13 @@ class OiioTexture {
   OiioTexture(const OiioTexture&) = delete;
   OiioTexture& operator=(const OiioTexture&) = delete;
 
-  // "oiio-trilinear" and "oiio-aniso-N": bilinear interpolation, periodic
-  // wrap, one TextureSystem::texture call per lookup (OIIO's batched call
-  // loops per lookup and measured no faster).
-  std::vector<NamedLookup> lookups() const;
+  // The report's names for lookups(), in its order: "oiio-trilinear" and
+  // "oiio-aniso-N".
+  static std::vector<std::string> labels(int maxAniso);
+  // Trilinear and anisotropic lookups: bilinear interpolation, periodic wrap,
+  // one TextureSystem::texture call per lookup (OIIO's batched call loops per
+  // lookup and measured no faster).
+  std::vector<BatchLookup> lookups() const;
 
  private:
   struct State;

@@ -335,11 +335,10 @@ int runReport(int argc, const char* const* argv) {
   }
 
 #if defined(QUADRA_HAVE_OIIO)
-  for (const char* label : {"oiio-trilinear", "oiio-aniso-"}) {
+  for (const std::string& label : OiioTexture::labels(options.maxAniso)) {
     FilterRow row;
     row.external = true;
     row.label = label;
-    if (row.label == "oiio-aniso-") row.label += std::to_string(options.maxAniso);
     rows.push_back(row);
   }
   const std::string externalNote =
@@ -372,19 +371,25 @@ int runReport(int argc, const char* const* argv) {
           << ", largest " << format("%.2g", truth.maxChange) << ", largest grid "
           << truth.maxSamples << " samples, " << format("%.1f", truthSeconds) << " s\n";
     const Texture sampled(texture.image, state);
-    std::vector<std::unique_ptr<TextureSampler>> samplers;
-    std::vector<BatchLookup> timed;
-    for (const FilterRow& row : rows) {
-      if (row.external) continue;
-      samplers.push_back(std::make_unique<TextureSampler>(
-          sampled, FilterSettings(row.filter, options.maxAniso), isa));
-      timed.push_back(batchLookupOf(*samplers.back()));
-    }
+    // One lookup function per row, in row order: quadra's samplers, and the
+    // external rows' lookups in the order their labels were given.
+    std::vector<BatchLookup> external;
 #if defined(QUADRA_HAVE_OIIO)
     const OiioTexture oiio(*texture.image, outDir / ("oiio-" + texture.name + ".exr"),
                            options.maxAniso);
-    for (const NamedLookup& lookup : oiio.lookups()) timed.push_back(lookup.lookup);
+    external = oiio.lookups();
 #endif
+    std::vector<std::unique_ptr<TextureSampler>> samplers(rows.size());
+    std::vector<BatchLookup> timed;
+    for (std::size_t f = 0, nextExternal = 0; f < rows.size(); ++f) {
+      if (rows[f].external) {
+        timed.push_back(external.at(nextExternal++));
+        continue;
+      }
+      samplers[f] = std::make_unique<TextureSampler>(
+          sampled, FilterSettings(rows[f].filter, options.maxAniso), isa);
+      timed.push_back(batchLookupOf(*samplers[f]));
+    }
     const std::vector<double> ns = timeLookupsInterleavedNs(timed, footprints);
     for (std::size_t f = 0; f < rows.size(); ++f) {
       FilterRow& row = rows[f];

@@ -1,5 +1,5 @@
-// Scene and Texture members: the lazily built mip chain and sampled levels, triangle counts and
-// world-space bounds.
+// Scene and Texture members: the lazily built mip chain and sampled levels,
+// triangle counts and world-space bounds.
 #include "scene/scene.h"
 
 #include <cmath>

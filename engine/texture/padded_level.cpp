@@ -6,10 +6,9 @@
 
 namespace quadra {
 
-PaddedLevel::PaddedLevel(const Image& image, TexelFormat storage)
+PaddedLevel::PaddedLevel(const Image& image, TexelFormat format)
     : texels(std::size_t(image.width + 1) * std::size_t(image.height) *
-             std::size_t(bytesPerTexel(storage))),
-      format(storage),
+             std::size_t(bytesPerTexel(format))),
       width(image.width),
       height(image.height),
       stride(image.width + 1) {

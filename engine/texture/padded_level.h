@@ -1,6 +1,6 @@
-// PaddedLevel: one texture level as the sampling kernels read it, in its
-// storage format (texel_format.h). Rows are
-// width + 1 texels long; the extra texel repeats the row's first one. A
+// PaddedLevel: one texture level as the sampling kernels read it, encoded in
+// its texture's storage format (texel_format.h). Rows are width + 1 texels
+// long; the extra texel repeats the row's first one. A
 // bilinear lookup then always reads its left and right texels of a row as one
 // contiguous pair (x, x + 1), under every wrap mode: repeat wraps x = width - 1
 // onto the copy of texel 0, and clamp and mirror clamp the coordinate so the
@@ -19,7 +19,6 @@ namespace quadra {
 
 struct PaddedLevel {
   std::vector<std::uint8_t> texels;  // height rows of stride texels, encoded
-  TexelFormat format = TexelFormat::Rgba32F;
   int width = 0;
   int height = 0;
   int stride = 0;  // texels per row: width + 1

@@ -41,6 +41,8 @@ struct TexelRead {
   static_assert(!kUseGathers || kStoredAs == TexelFormat::Rgba32F, "gathers read float texels");
 };
 
+static_assert(simd::kUnorm8Scale == kUnorm8Scale, "one UNORM8 decode on every path");
+
 namespace sampling {
 
 template <class L>
@@ -164,13 +166,19 @@ Rgba<L> fetch(const TextureView& view, const LevelGeometry<L>& g, const typename
           F::load_aligned(channel[3])};
 }
 
+// Four channel registers as lanes.
+template <class L>
+QUADRA_LANE_INLINE Rgba<L> fromRegisters(const typename L::F::register_type channel[4]) {
+  return {channel[0], channel[1], channel[2], channel[3]};
+}
+
 template <class L, simd::PairEncoding kEncoding>
 QUADRA_LANE_INLINE void transposeRowPairs(const std::uint8_t* const pair[L::kWidth], Rgba<L>& left,
                                           Rgba<L>& right) {
   typename L::F::register_type l[4], r[4];
   simd::transposeTexelPairs<kEncoding>(pair, l, r);
-  left = {l[0], l[1], l[2], l[3]};
-  right = {r[0], r[1], r[2], r[3]};
+  left = fromRegisters<L>(l);
+  right = fromRegisters<L>(r);
 }
 
 // The left and right texels of one bilinear row per lane, as channel lanes:
@@ -190,8 +198,8 @@ QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeomet
       typename L::F::register_type l[4], r[4];
       simd::gatherTexelPairs(reinterpret_cast<const float*>(view.levels[g.uniform].texels),
                              typename L::I::register_type(offset), l, r);
-      left = {l[0], l[1], l[2], l[3]};
-      right = {r[0], r[1], r[2], r[3]};
+      left = fromRegisters<L>(l);
+      right = fromRegisters<L>(r);
       return;
     }
   }
@@ -214,13 +222,20 @@ QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeomet
   }
 }
 
+// Per lane: a where the mask is set, else b.
+template <class L>
+QUADRA_LANE_INLINE Rgba<L> selectRgba(const typename L::M& mask, const Rgba<L>& a,
+                                      const Rgba<L>& b) {
+  return {simd::select(mask, a.r, b.r), simd::select(mask, a.g, b.g), simd::select(mask, a.b, b.b),
+          simd::select(mask, a.a, b.a)};
+}
+
 template <class L>
 QUADRA_LANE_INLINE Rgba<L> withBorder(const TextureView& view, const Rgba<L>& c,
                                       const typename L::M& inside) {
   using F = typename L::F;
-  return {
-      simd::select(inside, c.r, F(view.border[0])), simd::select(inside, c.g, F(view.border[1])),
-      simd::select(inside, c.b, F(view.border[2])), simd::select(inside, c.a, F(view.border[3]))};
+  const Rgba<L> border{F(view.border[0]), F(view.border[1]), F(view.border[2]), F(view.border[3])};
+  return selectRgba<L>(inside, c, border);
 }
 
 template <class L>
@@ -290,10 +305,8 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F
       inX1 = (fx0 >= F(-1.0f)) & (fx0 < lastColumn);
       // fx0 = -1 read the pair at column 0: its right texel is that left one.
       const M beforeFirst = fx0 < F(0.0f);
-      c10 = {simd::select(beforeFirst, c00.r, c10.r), simd::select(beforeFirst, c00.g, c10.g),
-             simd::select(beforeFirst, c00.b, c10.b), simd::select(beforeFirst, c00.a, c10.a)};
-      c11 = {simd::select(beforeFirst, c01.r, c11.r), simd::select(beforeFirst, c01.g, c11.g),
-             simd::select(beforeFirst, c01.b, c11.b), simd::select(beforeFirst, c01.a, c11.a)};
+      c10 = selectRgba<L>(beforeFirst, c00, c10);
+      c11 = selectRgba<L>(beforeFirst, c01, c11);
     }
     c00 = withBorder<L>(view, c00, inX0 & inY0);
     c10 = withBorder<L>(view, c10, inX1 & inY0);
@@ -509,8 +522,7 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
                   : sampleMipmapped<L, R>(view, u, v, lod, filter == Filter::Trilinear);
   if (!view.magLinear && simd::any(magnified)) {
     const Rgba<L> n = sampleNearest<L, R>(view, u, v, level0);
-    c = {simd::select(magnified, n.r, c.r), simd::select(magnified, n.g, c.g),
-         simd::select(magnified, n.b, c.b), simd::select(magnified, n.a, c.a)};
+    c = sampling::selectRgba<L>(magnified, n, c);
   }
   return c;
 }

@@ -3,9 +3,8 @@
 #pragma once
 
 #include <cmath>
-#include <limits>
-
 #include <cstdint>
+#include <limits>
 
 #include "texture/sampler_state.h"
 #include "texture/texel_format.h"
