@@ -33,7 +33,7 @@ struct UvDerivatives {
 
 // How a kernel reads texels: the storage format, and for RGBA32F whether the
 // bilinear rows come from hardware gathers instead of pair loads (kept as a
-// benchmarked alternative: quadra_sample_bench --benchmark_filter=gather).
+// benchmarked alternative: the gather:1 runs of quadra_sample_bench).
 template <TexelFormat kStoredAs, bool kUseGathers = false>
 struct TexelRead {
   static constexpr TexelFormat kFormat = kStoredAs;
