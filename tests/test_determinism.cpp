@@ -119,7 +119,7 @@ TEST(Determinism, RepeatedFramesFromOneRendererAreIdentical) {
 TEST(Determinism, EveryIsaMatchesScalar) {
   const std::vector<std::optional<Filter>> filters = {
       std::nullopt,      Filter::Nearest,     Filter::Bilinear, Filter::NearestMip,
-      Filter::Trilinear, Filter::Anisotropic, Filter::Ewa};
+      Filter::Trilinear, Filter::Anisotropic, Filter::Ewa,      Filter::SummedArea};
   int compared = 0;
   for (const std::string name : {"showcase", "checker-plane", "alpha-quads"}) {
     const Scene scene = makeBuiltinScene(name);

@@ -53,8 +53,7 @@ TEST(SamplerPaths, EveryIsaMatchesScalarForEveryFilterWrapModeAndFormat) {
       state.wrapU = state.wrapV = wrap;
       state.borderColor[0] = 0.25f, state.borderColor[3] = 1.0f;
       const Texture texture(image, state, format);
-      for (const Filter filter : {Filter::Nearest, Filter::Bilinear, Filter::NearestMip,
-                                  Filter::Trilinear, Filter::Anisotropic, Filter::Area}) {
+      for (const Filter filter : kEveryFilter) {
         const std::vector<float> scalar = sampleAll(texture, filter, Isa::Scalar, lookups);
         for (const Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
           if (!isaSupported(isa)) continue;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace quadra {
 
@@ -12,5 +13,7 @@ bool endsWithIgnoringCase(const std::string& text, const std::string& suffix);
 
 int runSample(int argc, const char* const* argv);
 int runReport(int argc, const char* const* argv);
+// `quadra report sat-precision` (report_sat_precision.cpp); args after the subject.
+int runSatPrecisionReport(const std::vector<std::string>& args);
 
 }  // namespace quadra

@@ -26,12 +26,13 @@ namespace {
 constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra sample --help
        quadra report textures --help
+       quadra report sat-precision --help
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
   --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
                          override the scene's first camera (far 0 = infinite)
-  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat
                          texture filter for every texture (default: each glTF sampler's)
   --aniso N              max anisotropy, default 16
   --lod-bias B           added to every texture lookup's LOD (default 0)
@@ -119,8 +120,7 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     } else if (arg == "--filter") {
       Filter f;
       if (!parseFilter(value, f))
-        throw Error(arg + ": unknown filter '" + value +
-                    "' (nearest, bilinear, nearest-mip, trilinear, aniso, ewa, area)");
+        throw Error(arg + ": unknown filter '" + value + "' (" + filterNames() + ")");
       cmd.settings.filter = f;
     } else if (arg == "--aniso")
       cmd.settings.maxAniso = parseInteger(arg, value, 1, 64);

@@ -302,13 +302,17 @@ std::string svgText(const std::vector<FilterRow>& rows, const std::string& subti
 
 int runReport(int argc, const char* const* argv) {
   const std::vector<std::string> all(argv + 1, argv + argc);
+  if (!all.empty() && all[0] == "sat-precision")
+    return runSatPrecisionReport({all.begin() + 1, all.end()});
   for (const std::string& a : all)
     if (a == "--help" || a == "-h") {
       std::cout << kReportUsage;
       return 0;
     }
   if (all.empty() || all[0] != "textures")
-    throw Error("report: expected a subject, 'textures' (see quadra report textures --help)");
+    throw Error(
+        "report: expected a subject, 'textures' or 'sat-precision' (see quadra report textures "
+        "--help)");
   const ReportOptions options = parseReport({all.begin() + 1, all.end()});
   const Isa isa = options.isa.value_or(detectBestIsa());
   if (!isaSupported(isa))
@@ -321,11 +325,8 @@ int runReport(int argc, const char* const* argv) {
 
   const Executor executor(options.threads);
   const std::vector<TestTexture> textures = makeTestTextures(options);
-  const Filter filters[] = {Filter::Nearest,   Filter::Bilinear,    Filter::NearestMip,
-                            Filter::Trilinear, Filter::Anisotropic, Filter::Ewa,
-                            Filter::Area};
   std::vector<FilterRow> rows;
-  for (const Filter f : filters) {
+  for (const Filter f : kEveryFilter) {
     FilterRow row;
     row.filter = f;
     row.label = f == Filter::Anisotropic

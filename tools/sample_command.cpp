@@ -26,7 +26,7 @@ constexpr const char* kSampleUsage =
     R"(usage: quadra sample --texture FILE.png|FILE.exr --filter F --in LOOKUPS.csv --out VALUES.csv
                      [--aniso N] [--wrap repeat|mirror|clamp|border] [--threads N] [--isa ISA]
                      [--lod-bias B] [--min-lod L] [--max-lod L] [--format F]
-  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat
   --format rgba32f|rgba16f|rgba8   texel storage the sampler reads (default rgba32f)
   LOOKUPS.csv: header u,v,dudx,dvdx,dudy,dvdy (normalized units, per-pixel derivatives)
   VALUES.csv:  header r,g,b,a, one row per lookup, linear float
@@ -58,8 +58,7 @@ SampleCommand parseSample(const std::vector<std::string>& args) {
     else if (arg == "--filter") {
       Filter f;
       if (!parseFilter(value, f))
-        throw Error(arg + ": unknown filter '" + value +
-                    "' (nearest, bilinear, nearest-mip, trilinear, aniso, ewa, area)");
+        throw Error(arg + ": unknown filter '" + value + "' (" + filterNames() + ")");
       cmd.filtering.filter = f;
     } else if (arg == "--aniso")
       cmd.filtering.maxAniso = parseInteger(arg, value, 1, 64);

@@ -7,6 +7,7 @@
 
 #include "texture/mip_chain.h"
 #include "texture/padded_level.h"
+#include "texture/summed_area.h"
 
 namespace quadra {
 
@@ -32,6 +33,13 @@ const std::vector<PaddedLevel>& Texture::sampledMipLevels(const Executor* execut
     for (int i = 1; i < chain.levelCount(); ++i) mipLevels_.emplace_back(chain.level(i), storage_);
   });
   return mipLevels_;
+}
+
+const SummedAreaTable& Texture::summedAreaTable(const Executor* executor) const {
+  std::call_once(summedAreaOnce_, [&] {
+    summedArea_ = std::make_unique<SummedAreaTable>(sampledLevel0().view(), storage_, executor);
+  });
+  return *summedArea_;
 }
 
 void setTextureStorage(Scene& scene, TexelFormat format) {

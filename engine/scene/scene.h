@@ -23,6 +23,7 @@ namespace quadra {
 class Executor;
 class MipChain;
 struct PaddedLevel;
+class SummedAreaTable;
 
 // A texture as the scene holds it: its level-0 image in linear float and its
 // sampler. The mip chain is built on first use, once, and only for textures
@@ -45,15 +46,19 @@ class Texture {
   // each built once on first use: level 0, and levels 1.. of the chain.
   const PaddedLevel& sampledLevel0() const;
   const std::vector<PaddedLevel>& sampledMipLevels(const Executor* executor = nullptr) const;
+  // The summed-area table of the sampled level 0 (texture/summed_area.h),
+  // built on first use: 32 bytes per texel, only for the `sat` filter.
+  const SummedAreaTable& summedAreaTable(const Executor* executor = nullptr) const;
 
  private:
   std::shared_ptr<const Image> image_;
   SamplerState sampler_;
   TexelFormat storage_;
-  mutable std::once_flag mipsOnce_, level0Once_, mipLevelsOnce_;
+  mutable std::once_flag mipsOnce_, level0Once_, mipLevelsOnce_, summedAreaOnce_;
   mutable std::unique_ptr<MipChain> mips_;
   mutable std::unique_ptr<PaddedLevel> level0_;
   mutable std::vector<PaddedLevel> mipLevels_;
+  mutable std::unique_ptr<SummedAreaTable> summedArea_;
 };
 
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };

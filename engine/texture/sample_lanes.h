@@ -16,6 +16,7 @@
 
 #include "texture/area_filter.h"
 #include "texture/ewa.h"
+#include "texture/summed_area.h"
 #include "texture/texture_view.h"
 
 namespace quadra {
@@ -429,22 +430,41 @@ struct LaneLookups {
   }
 };
 
-// EWA, lane by lane through the scalar ewaLookup (its per-lookup texel count
-// varies with the footprint, so lanes would mostly wait on each other).
-template <class L>
-Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typename L::F& v,
-                  const UvDerivatives<L>& d) {
+// A filter that works lookup by lookup in scalar code compiled once (EWA,
+// the summed-area table): `lookup(k, rgba)` fills lane k. Their per-lookup
+// work varies with the footprint, so lanes would mostly wait on each other;
+// and one compiled copy gives every ISA path the same bits.
+template <class L, class LaneLookup>
+Rgba<L> sampleEachLane(const LaneLookup& lookup) {
   constexpr int W = L::kWidth;
-  const LaneLookups<L> in(u, v, d);
   alignas(64) float out[4][W];
   for (int k = 0; k < W; ++k) {
     float rgba[4];
-    ewaLookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k], rgba);
+    lookup(k, rgba);
     for (int c = 0; c < 4; ++c) out[c][k] = rgba[c];
   }
   using F = typename L::F;
   return {F::load_aligned(out[0]), F::load_aligned(out[1]), F::load_aligned(out[2]),
           F::load_aligned(out[3])};
+}
+
+template <class L>
+Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                  const UvDerivatives<L>& d) {
+  const LaneLookups<L> in(u, v, d);
+  return sampleEachLane<L>([&](int k, float rgba[4]) {
+    ewaLookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k], rgba);
+  });
+}
+
+template <class L>
+Rgba<L> sampleSummedArea(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                         const UvDerivatives<L>& d) {
+  const LaneLookups<L> in(u, v, d);
+  return sampleEachLane<L>([&](int k, float rgba[4]) {
+    view.summedArea->lookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k],
+                            rgba);
+  });
 }
 
 // The area filter (texture/area_filter.h), lookup by lane: each lane's grid
@@ -505,6 +525,7 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
   if (filter == Filter::Bilinear) return sampleBilinear<L, R>(view, u, v, level0);
   if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
   if (filter == Filter::Area) return sampleArea<L, R>(view, u, v, d);
+  if (filter == Filter::SummedArea) return sampleSummedArea<L>(view, u, v, d);
   // Magnification decided exactly on the squared footprint length: a group
   // that is magnified throughout (the common case up close) skips the log2
   // and the level selection, and reads level 0 as trilinear would there.

@@ -15,7 +15,7 @@ struct FilterSpelling {
 };
 
 // The first entry for each filter is its canonical name; later ones are aliases.
-constexpr std::array<FilterSpelling, 8> kFilterSpellings = {{
+constexpr std::array<FilterSpelling, 9> kFilterSpellings = {{
     {Filter::Nearest, "nearest"},
     {Filter::Bilinear, "bilinear"},
     {Filter::NearestMip, "nearest-mip"},
@@ -24,6 +24,7 @@ constexpr std::array<FilterSpelling, 8> kFilterSpellings = {{
     {Filter::Anisotropic, "anisotropic"},
     {Filter::Ewa, "ewa"},
     {Filter::Area, "area"},
+    {Filter::SummedArea, "sat"},
 }};
 
 struct WrapSpelling {
@@ -55,6 +56,13 @@ bool parseFilter(const std::string& name, Filter& out) {
     }
   }
   return false;
+}
+
+std::string filterNames() {
+  std::string names;
+  for (const Filter f : kEveryFilter)
+    names += (names.empty() ? "" : ", ") + std::string(filterName(f));
+  return names;
 }
 
 const char* wrapName(WrapMode w) {

@@ -13,6 +13,9 @@ enum class WrapMode : std::uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampT
 // Area: the bilinear reconstruction averaged over the pixel's footprint
 // parallelogram on a midpoint grid, on the finest level whose grid fits the
 // sample budget (sample_lanes.h sampleArea): the offline-quality filter.
+// SummedArea: the exact average of the bilinear reconstruction over the
+// footprint's axis-aligned bounding box, from a summed-area table
+// (texture/summed_area.h).
 enum class Filter : std::uint8_t {
   Nearest,
   Bilinear,
@@ -20,8 +23,14 @@ enum class Filter : std::uint8_t {
   Trilinear,
   Anisotropic,
   Ewa,
-  Area
+  Area,
+  SummedArea
 };
+
+// Every filter, in the order reports list them.
+inline constexpr Filter kEveryFilter[] = {
+    Filter::Nearest,     Filter::Bilinear, Filter::NearestMip, Filter::Trilinear,
+    Filter::Anisotropic, Filter::Ewa,      Filter::Area,       Filter::SummedArea};
 
 inline bool needsMips(Filter f) {
   return f == Filter::NearestMip || f == Filter::Trilinear || f == Filter::Anisotropic ||
@@ -39,8 +48,10 @@ struct SamplerState {
 };
 
 const char* filterName(Filter f);
-// Parses nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area; false when unknown.
+// Parses nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat; false when unknown.
 bool parseFilter(const std::string& name, Filter& out);
+// The canonical filter names, comma separated, for error messages.
+std::string filterNames();
 const char* wrapName(WrapMode w);
 bool parseWrap(const std::string& name, WrapMode& out);
 

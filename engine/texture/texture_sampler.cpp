@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "texture/padded_level.h"
+#include "texture/summed_area.h"
 
 namespace quadra {
 
@@ -30,6 +31,7 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
     view.levelCount = std::min(int(mips.size()) + 1, TextureView::kMaxLevels);
     for (int i = 1; i < view.levelCount; ++i) view.levels[i] = mips[std::size_t(i - 1)].view();
   }
+  if (view.minFilter == Filter::SummedArea) view.summedArea = &texture.summedAreaTable(executor);
   return view;
 }
 

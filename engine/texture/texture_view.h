@@ -11,6 +11,8 @@
 
 namespace quadra {
 
+class SummedAreaTable;
+
 struct TextureLevel {
   const std::uint8_t* texels = nullptr;  // row-major, in the view's format
   int width = 0;
@@ -33,6 +35,8 @@ struct TextureView {
   // RGBA32F bilinear rows through hardware gathers instead of pair loads (the
   // benchmarked alternative; AVX2 and AVX-512 paths only).
   bool gatherTexels = false;
+  // The level-0 summed-area table, for Filter::SummedArea only.
+  const SummedAreaTable* summedArea = nullptr;
   // LOD controls, as in OpenGL: λ' = clamp(λ + lodBias, minLod, maxLod),
   // magnified when λ' <= 0.
   float lodBias = 0.0f;

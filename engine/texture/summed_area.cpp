@@ -1,0 +1,290 @@
+// The summed-area table: fixed-point choice, the parallel build, the wrap
+// extension of prefix sums and the box integral (summed_area.h).
+#include "texture/summed_area.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+
+namespace quadra {
+
+namespace {
+
+// A lookup's box is at most this many texture periods on a side; the fixed
+// point leaves room for its sum (and a few texels of margin) in 63 bits.
+constexpr double kMaxBoxPeriods = 64.0;
+constexpr int kMaxFractionBits = 40;  // 1e-12 per texel: finer buys nothing
+// The smallest half side of a box: a footprint of zero size (zero derivatives)
+// becomes a box this small, whose average is the bilinear value to about
+// this many texels times the local slope.
+constexpr double kMinHalfSide = 1.0 / 65536.0;
+
+double finiteOrZero(float value) {
+  return std::isfinite(value) ? double(value) : 0.0;
+}
+
+// Rows of texels handed to one task while building.
+void forEachRange(const Executor* executor, std::size_t count, std::size_t grain,
+                  const std::function<void(std::size_t, std::size_t)>& body) {
+  if (executor)
+    executor->parallelFor(count, grain, body);
+  else
+    body(0, count);
+}
+
+}  // namespace
+
+// The prefix sum P(m) = sum of the extended row's texels over [0, m) as a
+// combination of the table's prefix sums P(0..n): up to two integer-weighted
+// entries, plus, for the border mode, the count of border texels in [0, m)
+// (signed) and of texture texels.
+struct SummedAreaTable::AxisExtension {
+  long index[2] = {0, 0};
+  std::int64_t weight[2] = {0, 0};
+  int terms = 1;
+  long borderCount = 0;   // m - clamp(m, 0, n) under the border mode, else 0
+  long textureCount = 0;  // the signed count of [0, m) positions that read texels
+};
+
+namespace {
+
+long floorDiv(long a, long b) {
+  const long q = a / b;
+  return q * b > a ? q - 1 : q;
+}
+
+}  // namespace
+
+SummedAreaTable::AxisExtension SummedAreaTable::extendAxis(long m, long n, WrapMode mode) {
+  AxisExtension e;
+  e.textureCount = m;
+  switch (mode) {
+    case WrapMode::Repeat: {  // q whole periods and the remainder
+      const long q = floorDiv(m, n);
+      e.index[0] = m - q * n, e.weight[0] = 1;
+      e.index[1] = n, e.weight[1] = q;
+      e.terms = q == 0 ? 1 : 2;  // inside the texture: one table read, not two
+      return e;
+    }
+    case WrapMode::MirroredRepeat: {  // a period is the row and its reflection
+      const long q = floorDiv(m, 2 * n), r = m - q * 2 * n;
+      e.terms = 2;
+      e.index[1] = n;
+      if (r <= n) {
+        e.index[0] = r, e.weight[0] = 1, e.weight[1] = 2 * q;
+      } else {  // P(n) + (P(n) - P(2n - r)): the reflected part read backwards
+        e.index[0] = 2 * n - r, e.weight[0] = -1, e.weight[1] = 2 * q + 2;
+      }
+      if (e.weight[1] == 0) e.terms = 1;
+      return e;
+    }
+    case WrapMode::ClampToEdge:
+      if (m < 0) {  // m copies of texel 0, counted negatively
+        e.index[0] = 1, e.weight[0] = m;
+      } else if (m > n) {  // the row, then m - n copies of the last texel
+        e.index[0] = n, e.weight[0] = m - n + 1;
+        e.index[1] = n - 1, e.weight[1] = -(m - n);
+        e.terms = 2;
+      } else {
+        e.index[0] = m, e.weight[0] = 1;
+      }
+      return e;
+    case WrapMode::ClampToBorder: {
+      const long inside = std::clamp(m, 0L, n);
+      e.index[0] = inside, e.weight[0] = 1;
+      e.borderCount = m - inside;
+      e.textureCount = inside;
+      return e;
+    }
+  }
+  return e;
+}
+
+namespace {
+
+// The prefix of the bilinear reconstruction's integral along one axis up to
+// x (texel space): with j the texel whose centre is at or left of x and s the
+// distance past that centre, it is P(j) + t_j (1 - (1-s)^2/2) + t_{j+1} s^2/2,
+// which regrouped over prefix sums is P(j), P(j+1), P(j+2) with these weights.
+struct CornerTerms {
+  long index[3];
+  double weight[3];
+};
+
+CornerTerms cornerTerms(double x, double sign) {
+  const double j = std::floor(x - 0.5), s = x - 0.5 - j;
+  const long base = long(j);
+  return {{base, base + 1, base + 2},
+          {sign * 0.5 * (1.0 - s) * (1.0 - s), sign * (0.5 + s - s * s), sign * 0.5 * s * s}};
+}
+
+}  // namespace
+
+SummedAreaTable::SummedAreaTable(const TextureLevel& level, TexelFormat format,
+                                 const Executor* executor)
+    : width_(level.width), height_(level.height) {
+  const std::size_t w = std::size_t(width_), h = std::size_t(height_),
+                    texelBytes = bytesPerTexel(format);
+  auto decodedRow = [&](std::size_t y, std::vector<float>& row) {
+    row.resize(w * 4);
+    const std::uint8_t* texels = level.texels + y * std::size_t(level.stride) * texelBytes;
+    for (std::size_t x = 0; x < w; ++x) {
+      decodeTexel(format, texels + x * texelBytes, &row[x * 4]);
+      for (std::size_t c = 0; c < 4; ++c) row[x * 4 + c] = float(finiteOrZero(row[x * 4 + c]));
+    }
+  };
+
+  // The fixed point: the largest box sum, (64 periods + margin)^2 texels of
+  // the largest magnitude (at least 1, which also covers border colours in
+  // [0, 1]), must stay below 2^62.
+  std::vector<float> rowMax(h, 0.0f);
+  forEachRange(executor, h, 16, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> row;
+    for (std::size_t y = begin; y < end; ++y) {
+      decodedRow(y, row);
+      for (const float value : row) rowMax[y] = std::max(rowMax[y], std::abs(value));
+    }
+  });
+  valueBound_ = std::max(1.0, double(*std::max_element(rowMax.begin(), rowMax.end())));
+  const double largestBox =
+      (kMaxBoxPeriods * width_ + 8.0) * (kMaxBoxPeriods * height_ + 8.0) * valueBound_;
+  fractionBits_ = std::min(kMaxFractionBits, int(std::floor(62.0 - std::log2(largestBox))));
+  const double scale = std::ldexp(1.0, fractionBits_);
+
+  // Row prefix sums, then column prefix sums; integer additions, so the
+  // result does not depend on how the work is split.
+  const std::size_t rowLength = (w + 1) * 4;
+  sums_.assign((h + 1) * rowLength, 0);
+  forEachRange(executor, h, 16, [&](std::size_t begin, std::size_t end) {
+    std::vector<float> row;
+    for (std::size_t y = begin; y < end; ++y) {
+      decodedRow(y, row);
+      std::uint64_t* out = &sums_[(y + 1) * rowLength];
+      for (std::size_t x = 0; x < w; ++x)
+        for (std::size_t c = 0; c < 4; ++c)
+          out[(x + 1) * 4 + c] =
+              out[x * 4 + c] + std::uint64_t(std::llround(double(row[x * 4 + c]) * scale));
+    }
+  });
+  forEachRange(executor, rowLength, 256, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = 1; y <= h; ++y) {
+      std::uint64_t* out = &sums_[y * rowLength];
+      const std::uint64_t* above = out - rowLength;
+      for (std::size_t i = begin; i < end; ++i) out[i] += above[i];
+    }
+  });
+}
+
+void SummedAreaTable::extendedSum(const TextureView& view, const AxisExtension& ex,
+                                  const AxisExtension& ey, long n, std::uint64_t out[4]) const {
+  for (int c = 0; c < 4; ++c) out[c] = 0;
+  for (int i = 0; i < ex.terms; ++i) {
+    for (int j = 0; j < ey.terms; ++j) {
+      const std::uint64_t weight = std::uint64_t(ex.weight[i]) * std::uint64_t(ey.weight[j]);
+      const std::uint64_t* sum = entry(ex.index[i], ey.index[j]);
+      for (int c = 0; c < 4; ++c) out[c] += weight * sum[c];
+    }
+  }
+  // Border texels: those outside in u (all n rows of them), then those inside
+  // in u but outside in v.
+  const std::int64_t borderTexels =
+      std::int64_t(ex.borderCount) * n + std::int64_t(ex.textureCount) * ey.borderCount;
+  if (borderTexels == 0) return;
+  const double scale = std::ldexp(1.0, fractionBits_);
+  for (int c = 0; c < 4; ++c) {
+    const double border = std::clamp(finiteOrZero(view.border[c]), -valueBound_, valueBound_);
+    out[c] += std::uint64_t(borderTexels) * std::uint64_t(std::llround(border * scale));
+  }
+}
+
+void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, double y0,
+                                 double y1, double rgba[4]) const {
+  const CornerTerms xs[2] = {cornerTerms(x0, -1.0), cornerTerms(x1, 1.0)};
+  const CornerTerms ys[2] = {cornerTerms(y0, -1.0), cornerTerms(y1, 1.0)};
+  // Every entry is read relative to the box's first corner (mRef, nRef): the
+  // weights of each axis sum to zero, so subtracting terms constant along an
+  // axis changes nothing, and what remains are exact integer sums over boxes
+  // the size of this one, small enough to weight in double.
+  AxisExtension ex[6], ey[6];
+  long n[6];
+  bool inside = true;  // every bound within the table: each sum is one entry
+  for (int i = 0; i < 6; ++i) {
+    const long m = xs[i / 3].index[i % 3];
+    n[i] = ys[i / 3].index[i % 3];
+    inside = inside && m >= 0 && m <= width_ && n[i] >= 0 && n[i] <= height_;
+    ex[i] = extendAxis(m, width_, view.wrapU);
+    ey[i] = extendAxis(n[i], height_, view.wrapV);
+  }
+  auto sumAt = [&](int a, int b, std::uint64_t out[4]) {
+    if (inside) {
+      const std::uint64_t* e = entry(xs[a / 3].index[a % 3], n[b]);
+      for (int c = 0; c < 4; ++c) out[c] = e[c];
+    } else {
+      extendedSum(view, ex[a], ey[b], n[b], out);
+    }
+  };
+  std::uint64_t ref[4], alongX[6][4], alongY[6][4];
+  sumAt(0, 0, ref);
+  for (int i = 1; i < 6; ++i) {
+    sumAt(i, 0, alongX[i]);
+    sumAt(0, i, alongY[i]);
+  }
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  for (int a = 1; a < 6; ++a) {  // a = 0 or b = 0 is the reference corner's own line: 0
+    for (int b = 1; b < 6; ++b) {
+      std::uint64_t corner[4];
+      sumAt(a, b, corner);
+      const double weight = xs[a / 3].weight[a % 3] * ys[b / 3].weight[b % 3];
+      for (int c = 0; c < 4; ++c) {
+        const std::int64_t boxSum = std::int64_t(corner[c] - alongX[a][c] - alongY[b][c] + ref[c]);
+        sum[c] += weight * double(boxSum);
+      }
+    }
+  }
+  const double norm = 1.0 / (std::ldexp(1.0, fractionBits_) * (x1 - x0) * (y1 - y0));
+  for (int c = 0; c < 4; ++c) rgba[c] = sum[c] * norm;
+}
+
+void SummedAreaTable::texelSum(const TextureView& view, long m0, long m1, long n0, long n1,
+                               double rgba[4]) const {
+  const AxisExtension x0 = extendAxis(m0, width_, view.wrapU);
+  const AxisExtension x1 = extendAxis(m1, width_, view.wrapU);
+  const AxisExtension y0 = extendAxis(n0, height_, view.wrapV);
+  const AxisExtension y1 = extendAxis(n1, height_, view.wrapV);
+  std::uint64_t s00[4], s01[4], s10[4], s11[4];
+  extendedSum(view, x0, y0, n0, s00);
+  extendedSum(view, x1, y0, n0, s10);
+  extendedSum(view, x0, y1, n1, s01);
+  extendedSum(view, x1, y1, n1, s11);
+  const double unit = std::ldexp(1.0, -fractionBits_);
+  for (int c = 0; c < 4; ++c)
+    rgba[c] = double(std::int64_t(s11[c] - s10[c] - s01[c] + s00[c])) * unit;
+}
+
+void SummedAreaTable::lookup(const TextureView& view, float u, float v, float dudx, float dvdx,
+                             float dudy, float dvdy, float rgba[4]) const {
+  const double w = width_, h = height_;
+  // Half sides of the footprint's bounding box in texels; NaN counts as 0.
+  auto halfSide = [](float a, float b, double size) {
+    const double side = 0.5 * (std::abs(double(a)) + std::abs(double(b))) * size;
+    return std::isnan(side) ? kMinHalfSide
+                            : std::clamp(side, kMinHalfSide, 0.5 * kMaxBoxPeriods * size);
+  };
+  // The centre, brought near the texture without changing the answer:
+  // whole periods for repeat and mirror; for the clamp modes, far enough out
+  // that the largest box there reads only the extension.
+  auto centre = [](double t, WrapMode mode) {
+    if (mode == WrapMode::Repeat) return t - std::floor(t);
+    if (mode == WrapMode::MirroredRepeat) return t - 2.0 * std::floor(0.5 * t);
+    return std::clamp(t, -1.0 - 0.5 * kMaxBoxPeriods, 2.0 + 0.5 * kMaxBoxPeriods);
+  };
+  const double hx = halfSide(dudx, dudy, w), hy = halfSide(dvdx, dvdy, h);
+  const double cx = centre(finiteOrZero(u), view.wrapU) * w;
+  const double cy = centre(finiteOrZero(v), view.wrapV) * h;
+  double average[4];
+  boxAverage(view, cx - hx, cx + hx, cy - hy, cy + hy, average);
+  for (int c = 0; c < 4; ++c) rgba[c] = float(average[c]);
+}
+
+}  // namespace quadra

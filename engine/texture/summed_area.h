@@ -1,0 +1,84 @@
+// SummedAreaTable: the prefix sums of a texture's level 0 and the box filter
+// they give (Crow 1984): the average of the bilinear reconstruction over the
+// axis-aligned bounding box of a pixel's footprint, in constant time.
+//
+// The precision problem: a float table of an 8192^2 texture holds sums near
+// 3e7, where a float step is 2 to 4, so a small box (the difference of four
+// such entries) loses every digit (quadra report sat-precision measures it).
+// Here texels are stored as fixed-point integers and the table as wrapping
+// 64-bit integer sums: a box sum, the difference of table entries, is then
+// exact, whatever the magnitude of the entries. The only error left is the
+// texels' rounding to the fixed point, at most 2^-(fractionBits + 1) each, so
+// at most that on any average; fractionBits is chosen per texture so that
+// the largest box a lookup can form (64 texture periods per axis) fits.
+//
+// The bilinear reconstruction's integral from -inf to x along a row is the
+// prefix sum at the texel left of x plus two quadratic partial terms; by
+// summation by parts it is a weighted sum of three prefix sums. A box is
+// then 3 x 3 table entries per corner, read relative to one corner so every
+// product is of box-sized numbers. Wrap modes extend the table analytically
+// (repeat and mirror by whole periods, clamp by the edge texels, border by
+// the border colour), so footprints of any size and position are exact.
+//
+// Memory: 32 bytes per texel (4 channels of int64), 2 GiB at 8192^2: a filter
+// for offline quality, built on first use.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "texture/texel_format.h"
+#include "texture/texture_view.h"
+
+namespace quadra {
+
+class Executor;
+
+class SummedAreaTable {
+ public:
+  // The table of `level` (texels in `format`, decoded as the kernels decode
+  // them), built in parallel on `executor` when given. Non-finite texels
+  // count as 0, as the filters' storage encodes them.
+  SummedAreaTable(const TextureLevel& level, TexelFormat format, const Executor* executor);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int fractionBits() const { return fractionBits_; }
+
+  // The box filter for one lookup: (u, v) normalized, derivatives the
+  // Jacobian per pixel; wrap modes and border colour from `view`. The box is
+  // the footprint parallelogram's bounding box, at least 2^-15 texels and at
+  // most 64 texture periods on a side. NaN/Inf positions read as 0.
+  void lookup(const TextureView& view, float u, float v, float dudx, float dvdx, float dudy,
+              float dvdy, float rgba[4]) const;
+
+  // The exact average of the level's bilinear reconstruction over the texel-
+  // space box [x0, x1] x [y0, y1] (texel i covers [i, i + 1)), up to the
+  // fixed-point rounding; x1 > x0 and y1 > y0.
+  void boxAverage(const TextureView& view, double x0, double x1, double y0, double y1,
+                  double rgba[4]) const;
+
+  // The exact sum of the wrap-extended texels [m0, m1) x [n0, n1), up to the
+  // fixed-point rounding (what the table stores, for precision checks).
+  void texelSum(const TextureView& view, long m0, long m1, long n0, long n1, double rgba[4]) const;
+
+ private:
+  // A prefix bound m along one axis, as table entries (summed_area.cpp).
+  struct AxisExtension;
+  static AxisExtension extendAxis(long m, long n, WrapMode mode);
+  // The sum of the wrap-extended texels over [0, m) x [0, n) (signed: a
+  // negative bound counts the texels below 0 negatively), in fixed point,
+  // modulo 2^64; x and y are m and n extended along their axes.
+  void extendedSum(const TextureView& view, const AxisExtension& x, const AxisExtension& y, long n,
+                   std::uint64_t out[4]) const;
+  const std::uint64_t* entry(long m, long n) const {
+    return &sums_[(std::size_t(n) * std::size_t(width_ + 1) + std::size_t(m)) * 4];
+  }
+
+  int width_ = 0, height_ = 0;
+  int fractionBits_ = 0;
+  double valueBound_ = 1.0;          // the largest magnitude a texel or border colour may have
+  std::vector<std::uint64_t> sums_;  // (height + 1) rows of (width + 1) RGBA sums
+};
+
+}  // namespace quadra
