@@ -254,6 +254,8 @@ TEST(BuiltinScenes, DenseMeshIsLargeAndFillsTheView) {
   const Scene scene = makeBuiltinScene("dense-mesh");
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Recorded, not asserted: a timing is a benchmark figure, and a loaded CI
+  // machine would fail a bound (the benchmarks rebuild it per run).
   RecordProperty("build_ms", int(seconds * 1000));
   EXPECT_GE(scene.triangleCount(), 1900000u);
   EXPECT_LE(scene.triangleCount(), 2100000u);
@@ -272,9 +274,6 @@ TEST(BuiltinScenes, DenseMeshIsLargeAndFillsTheView) {
   EXPECT_NEAR(
       glm::dot(-glm::vec3(camera.world[2]), glm::normalize(center - glm::vec3(camera.world[3]))),
       1.0f, 1e-4f);
-#ifdef NDEBUG
-  EXPECT_LT(seconds, 1.0);  // built per benchmark run
-#endif
 }
 
 TEST(BuiltinScenes, ShowcaseExercisesTheFeatures) {

@@ -264,6 +264,34 @@ TEST(TextureError, BilinearAtMagnificationIsOnlyTheBoxVersusPointDifference) {
   }
 }
 
+// The ripmap's reason to exist: footprints stretched along u or v read levels
+// prefiltered to their shape, where trilinear must blur to the long side.
+TEST(TextureError, RipmapBeatsTrilinearOnAxisAlignedAnisotropy) {
+  const Executor executor(0);
+  const int size = 128;
+  const auto image = std::make_shared<Image>(makeValueNoiseTexture(size, size, 3));
+  FootprintSet set;
+  int n = 0;
+  for (const double anisotropy : {4.0, 8.0, 16.0})
+    for (const double major : {4.0, 16.0})
+      for (const double angle : {0.0, 1.5707963267948966})
+        for (int k = 0; k < 6; ++k, ++n) {
+          const Footprint f = makeFootprint(0.1 + 0.13 * n, 0.7 - 0.11 * n, major, anisotropy,
+                                            angle, 0.0, size, size);
+          set.u.push_back(float(f.u)), set.v.push_back(float(f.v));
+          set.dudx.push_back(float(f.dudx)), set.dvdx.push_back(float(f.dvdx));
+          set.dudy.push_back(float(f.dudy)), set.dvdy.push_back(float(f.dvdy));
+          set.scale.push_back(float(major)), set.anisotropy.push_back(float(anisotropy));
+          set.scaleBucket.push_back(0), set.anisoBucket.push_back(0);
+        }
+  const Measured m = groundTruthOf(*image, set, executor);
+  const double ripmap = filterRmse(image, m, Filter::Ripmap, executor);
+  const double trilinear = filterRmse(image, m, Filter::Trilinear, executor);
+  // Measured 0.046 against 0.073: the rest is the box-then-bilinear blur
+  // every prefiltered level has (anisotropic probes on finer levels: 0.015).
+  EXPECT_LT(ripmap, 0.7 * trilinear) << "ripmap " << ripmap << " trilinear " << trilinear;
+}
+
 TEST(TextureError, TrilinearBeatsNearestOnAMinifiedChecker) {
   const Executor executor(0);
   const int size = 128;

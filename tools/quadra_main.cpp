@@ -32,7 +32,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
   --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
                          override the scene's first camera (far 0 = infinite)
-  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat|ripmap
                          texture filter for every texture (default: each glTF sampler's)
   --aniso N              max anisotropy, default 16
   --lod-bias B           added to every texture lookup's LOD (default 0)

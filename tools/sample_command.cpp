@@ -26,7 +26,7 @@ constexpr const char* kSampleUsage =
     R"(usage: quadra sample --texture FILE.png|FILE.exr --filter F --in LOOKUPS.csv --out VALUES.csv
                      [--aniso N] [--wrap repeat|mirror|clamp|border] [--threads N] [--isa ISA]
                      [--lod-bias B] [--min-lod L] [--max-lod L] [--format F]
-  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat|ripmap
   --format rgba32f|rgba16f|rgba8   texel storage the sampler reads (default rgba32f)
   LOOKUPS.csv: header u,v,dudx,dvdx,dudy,dvdy (normalized units, per-pixel derivatives)
   VALUES.csv:  header r,g,b,a, one row per lookup, linear float

@@ -7,6 +7,7 @@
 
 #include "texture/mip_chain.h"
 #include "texture/padded_level.h"
+#include "texture/ripmap.h"
 #include "texture/summed_area.h"
 
 namespace quadra {
@@ -40,6 +41,12 @@ const SummedAreaTable& Texture::summedAreaTable(const Executor* executor) const 
     summedArea_ = std::make_unique<SummedAreaTable>(sampledLevel0().view(), storage_, executor);
   });
   return *summedArea_;
+}
+
+const Ripmap& Texture::ripmap(const Executor* executor) const {
+  std::call_once(ripmapOnce_,
+                 [&] { ripmap_ = std::make_unique<Ripmap>(*image_, storage_, executor); });
+  return *ripmap_;
 }
 
 void setTextureStorage(Scene& scene, TexelFormat format) {

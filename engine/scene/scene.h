@@ -24,6 +24,7 @@ class Executor;
 class MipChain;
 struct PaddedLevel;
 class SummedAreaTable;
+struct Ripmap;
 
 // A texture as the scene holds it: its level-0 image in linear float and its
 // sampler. The mip chain is built on first use, once, and only for textures
@@ -49,16 +50,20 @@ class Texture {
   // The summed-area table of the sampled level 0 (texture/summed_area.h),
   // built on first use: 32 bytes per texel, only for the `sat` filter.
   const SummedAreaTable& summedAreaTable(const Executor* executor = nullptr) const;
+  // The ripmap (texture/ripmap.h), built on first use: about 4x level 0,
+  // only for the `ripmap` filter.
+  const Ripmap& ripmap(const Executor* executor = nullptr) const;
 
  private:
   std::shared_ptr<const Image> image_;
   SamplerState sampler_;
   TexelFormat storage_;
-  mutable std::once_flag mipsOnce_, level0Once_, mipLevelsOnce_, summedAreaOnce_;
+  mutable std::once_flag mipsOnce_, level0Once_, mipLevelsOnce_, summedAreaOnce_, ripmapOnce_;
   mutable std::unique_ptr<MipChain> mips_;
   mutable std::unique_ptr<PaddedLevel> level0_;
   mutable std::vector<PaddedLevel> mipLevels_;
   mutable std::unique_ptr<SummedAreaTable> summedArea_;
+  mutable std::unique_ptr<Ripmap> ripmap_;
 };
 
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };

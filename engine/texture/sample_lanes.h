@@ -100,27 +100,28 @@ struct LevelGeometry {
   typename L::F width, height;
   typename L::I stride;  // texels per row (padded_level.h)
   int uniform;
+  const TextureLevel* table;  // the levels the lanes' level indices refer to
 };
 
 template <class L>
-QUADRA_LANE_INLINE LevelGeometry<L> levelGeometry(const TextureView& view,
+QUADRA_LANE_INLINE LevelGeometry<L> levelGeometry(const LevelTable& table,
                                                   const typename L::I& level) {
   using F = typename L::F;
   using I = typename L::I;
-  const int first = view.levelCount == 1 ? 0 : int(level.get(0));
-  if (view.levelCount == 1 || simd::all(simd::toFloat(level) == F(float(first)))) {
-    const TextureLevel& lev = view.levels[first];
-    return {F(float(lev.width)), F(float(lev.height)), I(lev.stride), first};
+  const int first = table.count == 1 ? 0 : int(level.get(0));
+  if (table.count == 1 || simd::all(simd::toFloat(level) == F(float(first)))) {
+    const TextureLevel& lev = table.levels[first];
+    return {F(float(lev.width)), F(float(lev.height)), I(lev.stride), first, table.levels};
   }
   alignas(64) std::int32_t lv[L::kWidth], stride[L::kWidth];
   alignas(64) float w[L::kWidth], h[L::kWidth];
   level.store_aligned(lv);
   for (int k = 0; k < L::kWidth; ++k) {
-    w[k] = float(view.levels[lv[k]].width);
-    h[k] = float(view.levels[lv[k]].height);
-    stride[k] = view.levels[lv[k]].stride;
+    w[k] = float(table.levels[lv[k]].width);
+    h[k] = float(table.levels[lv[k]].height);
+    stride[k] = table.levels[lv[k]].stride;
   }
-  return {F::load_aligned(w), F::load_aligned(h), I::load_aligned(stride), -1};
+  return {F::load_aligned(w), F::load_aligned(h), I::load_aligned(stride), -1, table.levels};
 }
 
 // Texel offset (row * stride + column) of integer-valued coordinates, in
@@ -134,28 +135,28 @@ QUADRA_LANE_INLINE typename L::I texelOffset(const LevelGeometry<L>& g, const ty
 
 // Per-lane pointers to the texels at the given offsets.
 template <class L, class R>
-QUADRA_LANE_INLINE void texelPointers(const TextureView& view, const LevelGeometry<L>& g,
-                                      const typename L::I& level, const typename L::I& offset,
+QUADRA_LANE_INLINE void texelPointers(const LevelGeometry<L>& g, const typename L::I& level,
+                                      const typename L::I& offset,
                                       const std::uint8_t* out[L::kWidth]) {
   alignas(64) std::int32_t off[L::kWidth], lv[L::kWidth];
   offset.store_aligned(off);
   constexpr std::ptrdiff_t texelBytes = bytesPerTexel(R::kFormat);
   if (g.uniform >= 0) {
-    const std::uint8_t* const base = view.levels[g.uniform].texels;
+    const std::uint8_t* const base = g.table[g.uniform].texels;
     for (int k = 0; k < L::kWidth; ++k) out[k] = base + std::ptrdiff_t(off[k]) * texelBytes;
     return;
   }
   level.store_aligned(lv);
   for (int k = 0; k < L::kWidth; ++k)
-    out[k] = view.levels[lv[k]].texels + std::ptrdiff_t(off[k]) * texelBytes;
+    out[k] = g.table[lv[k]].texels + std::ptrdiff_t(off[k]) * texelBytes;
 }
 
 // One texel per lane (nearest filtering), decoded lane by lane.
 template <class L, class R>
-Rgba<L> fetch(const TextureView& view, const LevelGeometry<L>& g, const typename L::I& level,
-              const typename L::F& x, const typename L::F& y) {
+Rgba<L> fetch(const LevelGeometry<L>& g, const typename L::I& level, const typename L::F& x,
+              const typename L::F& y) {
   const std::uint8_t* texel[L::kWidth];
-  texelPointers<L, R>(view, g, level, texelOffset<L>(g, x, y), texel);
+  texelPointers<L, R>(g, level, texelOffset<L>(g, x, y), texel);
   alignas(64) float channel[4][L::kWidth];
   for (int k = 0; k < L::kWidth; ++k) {
     float rgba[4];
@@ -190,14 +191,13 @@ QUADRA_LANE_INLINE void transposeRowPairs(const std::uint8_t* const pair[L::kWid
 // an Intel Xeon and an AMD EPYC (Zen 5) VM (README "Texel storage"), and
 // gathers are microcode-mitigated on many Intel parts, so they are the default.
 template <class L, class R>
-QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeometry<L>& g,
-                                      const typename L::I& level, const typename L::I& offset,
-                                      Rgba<L>& left, Rgba<L>& right) {
+QUADRA_LANE_INLINE void fetchRowPairs(const LevelGeometry<L>& g, const typename L::I& level,
+                                      const typename L::I& offset, Rgba<L>& left, Rgba<L>& right) {
   constexpr int W = L::kWidth;
   if constexpr (R::kGather && !kIsScalarLanes<L>) {
     if (g.uniform >= 0) {  // one base pointer for every lane
       typename L::F::register_type l[4], r[4];
-      simd::gatherTexelPairs(reinterpret_cast<const float*>(view.levels[g.uniform].texels),
+      simd::gatherTexelPairs(reinterpret_cast<const float*>(g.table[g.uniform].texels),
                              typename L::I::register_type(offset), l, r);
       left = fromRegisters<L>(l);
       right = fromRegisters<L>(r);
@@ -205,7 +205,7 @@ QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeomet
     }
   }
   const std::uint8_t* pair[W];
-  texelPointers<L, R>(view, g, level, offset, pair);
+  texelPointers<L, R>(g, level, offset, pair);
   if constexpr (kIsScalarLanes<L>) {
     for (int k = 0; k < W; ++k) {
       float l[4], r[4];
@@ -253,13 +253,13 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
                       const typename L::I& level) {
   using namespace sampling;
   using F = typename L::F;
-  const LevelGeometry<L> g = levelGeometry<L>(view, level);
+  const LevelGeometry<L> g = levelGeometry<L>(view.mipTable(), level);
   u = reduceCoordinate<L>(u, view.wrapU);
   v = reduceCoordinate<L>(v, view.wrapV);
   typename L::M inside = F(0.0f) == F(0.0f);
   const F x = wrapTexel<L>(simd::floor(u * g.width), g.width, view.wrapU, inside);
   const F y = wrapTexel<L>(simd::floor(v * g.height), g.height, view.wrapV, inside);
-  return withBorder<L>(view, fetch<L, R>(view, g, level, x, y), inside);
+  return withBorder<L>(view, fetch<L, R>(g, level, x, y), inside);
 }
 
 // Bilinear reconstruction on the given level(s). Columns are read as pairs
@@ -270,13 +270,15 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
 // clamp on the folded coordinate (the bilinear reconstruction of a mirrored
 // row is symmetric about each fold); border reads the pair at the clamped
 // column and substitutes the border colour where a texel lies outside.
+// `level` indexes `table`: the mip levels, or a ripmap's.
 template <class L, class R>
-QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F u, typename L::F v,
-                                          const typename L::I& level) {
+QUADRA_LANE_INLINE Rgba<L> sampleBilinearIn(const TextureView& view, const LevelTable& table,
+                                            typename L::F u, typename L::F v,
+                                            const typename L::I& level) {
   using namespace sampling;
   using F = typename L::F;
   using M = typename L::M;
-  const LevelGeometry<L> g = levelGeometry<L>(view, level);
+  const LevelGeometry<L> g = levelGeometry<L>(table, level);
   u = reduceCoordinate<L>(u, view.wrapU);
   v = reduceCoordinate<L>(v, view.wrapV);
   if (view.wrapU == WrapMode::MirroredRepeat) u = simd::select(u > F(1.0f), F(2.0f) - u, u);
@@ -296,8 +298,8 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F
   const F y0 = wrapTexel<L>(fy0, g.height, view.wrapV, inY0);
   const F y1 = wrapTexel<L>(fy0 + F(1.0f), g.height, view.wrapV, inY1);
   Rgba<L> c00, c10, c01, c11;
-  fetchRowPairs<L, R>(view, g, level, texelOffset<L>(g, x0, y0), c00, c10);
-  fetchRowPairs<L, R>(view, g, level, texelOffset<L>(g, x0, y1), c01, c11);
+  fetchRowPairs<L, R>(g, level, texelOffset<L>(g, x0, y0), c00, c10);
+  fetchRowPairs<L, R>(g, level, texelOffset<L>(g, x0, y1), c01, c11);
 
   if (view.wrapU == WrapMode::ClampToBorder || view.wrapV == WrapMode::ClampToBorder) {
     M inX0 = all, inX1 = all;
@@ -315,6 +317,12 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, typename L::F
     c11 = withBorder<L>(view, c11, inX1 & inY1);
   }
   return lerp<L>(lerp<L>(c00, c10, fx), lerp<L>(c01, c11, fx), fy);
+}
+
+template <class L, class R>
+QUADRA_LANE_INLINE Rgba<L> sampleBilinear(const TextureView& view, const typename L::F& u,
+                                          const typename L::F& v, const typename L::I& level) {
+  return sampleBilinearIn<L, R>(view, view.mipTable(), u, v, level);
 }
 
 // Squared length of the footprint's longer side in level-0 texels: the LOD
@@ -411,6 +419,41 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
     sum.a = sum.a + simd::select(active, c.a, F(0.0f));
   }
   return {sum.r / probes, sum.g / probes, sum.b / probes, sum.a / probes};
+}
+
+// Ripmap (texture/ripmap.h): a level per axis from the footprint's extent
+// along it (λu = log2 of the length of the Jacobian's u row in texels, λv of
+// its v row: for an axis-aligned footprint its side lengths), under the view's
+// LOD controls; the four levels around (λu, λv) blended bilinearly.
+template <class L, class R>
+Rgba<L> sampleRipmap(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                     const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  using I = typename L::I;
+  const F w = F(float(view.levels[0].width)), h = F(float(view.levels[0].height));
+  const F xu = d.dudx * w, yu = d.dudy * w, xv = d.dvdx * h, yv = d.dvdy * h;
+  auto axisLod = [&](const F& lengthSq, int count) {  // simd::max(NaN, 0) is 0: level 0
+    const F lod = controlledLod<L>(view, F(0.5f) * simd::log2<L>(lengthSq));
+    return simd::min(simd::max(lod, F(0.0f)), F(float(count - 1)));
+  };
+  const F lodU = axisLod(xu * xu + yu * yu, view.ripCountX);
+  const F lodV = axisLod(xv * xv + yv * yv, view.ripCountY);
+  const F floorU = simd::floor(lodU), floorV = simd::floor(lodV);
+  const F tu = lodU - floorU, tv = lodV - floorV;
+  const I i0 = simd::toInt(floorU), j0 = simd::toInt(floorV);
+  const I i1 = simd::min(i0 + I(1), I(view.ripCountX - 1));
+  const I j1 = simd::min(j0 + I(1), I(view.ripCountY - 1));
+  const LevelTable table = view.ripTable();
+  const I countX(view.ripCountX);
+  // One row of the blend: levels (i0, j) and (i1, j), the second only when a lane needs it.
+  auto row = [&](const I& j) {
+    const Rgba<L> left = sampleBilinearIn<L, R>(view, table, u, v, j * countX + i0);
+    if (!simd::any(tu > F(0.0f))) return left;
+    return sampling::lerp<L>(left, sampleBilinearIn<L, R>(view, table, u, v, j * countX + i1), tu);
+  };
+  const Rgba<L> first = row(j0);
+  if (!simd::any(tv > F(0.0f))) return first;
+  return sampling::lerp<L>(first, row(j1), tv);
 }
 
 // A lane group's lookups in memory, for the filters that work lookup by
@@ -526,6 +569,7 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
   if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
   if (filter == Filter::Area) return sampleArea<L, R>(view, u, v, d);
   if (filter == Filter::SummedArea) return sampleSummedArea<L>(view, u, v, d);
+  if (filter == Filter::Ripmap) return sampleRipmap<L, R>(view, u, v, d);
   // Magnification decided exactly on the squared footprint length: a group
   // that is magnified throughout (the common case up close) skips the log2
   // and the level selection, and reads level 0 as trilinear would there.

@@ -15,7 +15,7 @@ struct FilterSpelling {
 };
 
 // The first entry for each filter is its canonical name; later ones are aliases.
-constexpr std::array<FilterSpelling, 9> kFilterSpellings = {{
+constexpr std::array<FilterSpelling, 10> kFilterSpellings = {{
     {Filter::Nearest, "nearest"},
     {Filter::Bilinear, "bilinear"},
     {Filter::NearestMip, "nearest-mip"},
@@ -25,6 +25,7 @@ constexpr std::array<FilterSpelling, 9> kFilterSpellings = {{
     {Filter::Ewa, "ewa"},
     {Filter::Area, "area"},
     {Filter::SummedArea, "sat"},
+    {Filter::Ripmap, "ripmap"},
 }};
 
 struct WrapSpelling {

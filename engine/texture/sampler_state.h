@@ -13,6 +13,8 @@ enum class WrapMode : std::uint8_t { Repeat, MirroredRepeat, ClampToEdge, ClampT
 // Area: the bilinear reconstruction averaged over the pixel's footprint
 // parallelogram on a midpoint grid, on the finest level whose grid fits the
 // sample budget (sample_lanes.h sampleArea): the offline-quality filter.
+// Ripmap: bilinear on the levels prefiltered to the footprint's extent along u
+// and along v, blended between the 4 nearest (texture/ripmap.h).
 // SummedArea: the exact average of the bilinear reconstruction over the
 // footprint's axis-aligned bounding box, from a summed-area table
 // (texture/summed_area.h).
@@ -24,13 +26,14 @@ enum class Filter : std::uint8_t {
   Anisotropic,
   Ewa,
   Area,
-  SummedArea
+  SummedArea,
+  Ripmap
 };
 
 // Every filter, in the order reports list them.
 inline constexpr Filter kEveryFilter[] = {
-    Filter::Nearest,     Filter::Bilinear, Filter::NearestMip, Filter::Trilinear,
-    Filter::Anisotropic, Filter::Ewa,      Filter::Area,       Filter::SummedArea};
+    Filter::Nearest, Filter::Bilinear, Filter::NearestMip, Filter::Trilinear, Filter::Anisotropic,
+    Filter::Ewa,     Filter::Area,     Filter::SummedArea, Filter::Ripmap};
 
 inline bool needsMips(Filter f) {
   return f == Filter::NearestMip || f == Filter::Trilinear || f == Filter::Anisotropic ||
@@ -48,7 +51,7 @@ struct SamplerState {
 };
 
 const char* filterName(Filter f);
-// Parses nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat; false when unknown.
+// Parses nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat|ripmap; false when unknown.
 bool parseFilter(const std::string& name, Filter& out);
 // The canonical filter names, comma separated, for error messages.
 std::string filterNames();

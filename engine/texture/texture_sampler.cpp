@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "texture/padded_level.h"
+#include "texture/ripmap.h"
 #include "texture/summed_area.h"
 
 namespace quadra {
@@ -32,6 +33,12 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
     for (int i = 1; i < view.levelCount; ++i) view.levels[i] = mips[std::size_t(i - 1)].view();
   }
   if (view.minFilter == Filter::SummedArea) view.summedArea = &texture.summedAreaTable(executor);
+  if (view.minFilter == Filter::Ripmap) {
+    const Ripmap& ripmap = texture.ripmap(executor);
+    view.ripLevels = ripmap.levels.data();
+    view.ripCountX = ripmap.countX;
+    view.ripCountY = ripmap.countY;
+  }
   return view;
 }
 

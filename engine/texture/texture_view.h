@@ -20,6 +20,13 @@ struct TextureLevel {
   int stride = 0;  // texels from one row to the next: width + 1 (texture/padded_level.h)
 };
 
+// A set of levels the kernels index per lane: the mip chain, or a ripmap's
+// levels (level (i, j) at j * countX + i).
+struct LevelTable {
+  const TextureLevel* levels = nullptr;
+  int count = 0;
+};
+
 struct TextureView {
   static constexpr int kMaxLevels = 16;  // 32768^2 at most; textures are capped below that
 
@@ -35,6 +42,10 @@ struct TextureView {
   // RGBA32F bilinear rows through hardware gathers instead of pair loads (the
   // benchmarked alternative; AVX2 and AVX-512 paths only).
   bool gatherTexels = false;
+  // Filter::Ripmap's levels: width halved i times and height j times at
+  // ripLevels[j * ripCountX + i].
+  const TextureLevel* ripLevels = nullptr;
+  int ripCountX = 0, ripCountY = 0;
   // The level-0 summed-area table, for Filter::SummedArea only.
   const SummedAreaTable* summedArea = nullptr;
   // LOD controls, as in OpenGL: λ' = clamp(λ + lodBias, minLod, maxLod),
@@ -46,6 +57,9 @@ struct TextureView {
   // controls give λ' <= 0: 2^(-2 lodBias), +inf when maxLod <= 0, -1 when
   // minLod > 0. Set with the controls (setLodControls).
   float magnifiedLengthSq = 1.0f;
+
+  LevelTable mipTable() const { return {levels, levelCount}; }
+  LevelTable ripTable() const { return {ripLevels, ripCountX * ripCountY}; }
 
   void setLodControls(float bias, float min, float max) {
     lodBias = bias, minLod = min, maxLod = max;
