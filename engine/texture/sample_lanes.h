@@ -158,7 +158,7 @@ Rgba<L> fetch(const TextureView& view, const LevelGeometry<L>& g, const typename
   alignas(64) float channel[4][L::kWidth];
   for (int k = 0; k < L::kWidth; ++k) {
     float rgba[4];
-    decodeTexel(R::kFormat, texel[k], rgba);
+    decodeTexel(view.format, texel[k], rgba);
     for (int c = 0; c < 4; ++c) channel[c][k] = rgba[c];
   }
   using F = typename L::F;
@@ -179,6 +179,19 @@ QUADRA_LANE_INLINE void transposeRowPairs(const std::uint8_t* const pair[L::kWid
   simd::transposeTexelPairs<kEncoding>(pair, l, r);
   left = fromRegisters<L>(l);
   right = fromRegisters<L>(r);
+}
+
+// rgba8srgb channel registers of codes (a Codes8 transpose) → values, as
+// decodeTexel computes them: colour through the sRGB decode table, alpha
+// code * kUnorm8Scale as in rgba8.
+template <class L>
+QUADRA_LANE_INLINE Rgba<L> decodeSrgb8(const TextureView& view,
+                                       const typename L::F::register_type code[4]) {
+  using F = typename L::F;
+  const float* table = view.srgbTable;
+  return {simd::lookupCodes(table, code[0]), simd::lookupCodes(table, code[1]),
+          simd::lookupCodes(table, code[2]),
+          simd::toFloat(simd::asInt(F(code[3]))) * F(kUnorm8Scale)};
 }
 
 // The left and right texels of one bilinear row per lane, as channel lanes:
@@ -208,8 +221,8 @@ QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeomet
   if constexpr (kIsScalarLanes<L>) {
     for (int k = 0; k < W; ++k) {
       float l[4], r[4];
-      decodeTexel(R::kFormat, pair[k], l);
-      decodeTexel(R::kFormat, pair[k] + bytesPerTexel(R::kFormat), r);
+      decodeTexel(view.format, pair[k], l);
+      decodeTexel(view.format, pair[k] + bytesPerTexel(R::kFormat), r);
       left.r.v[k] = l[0], left.g.v[k] = l[1], left.b.v[k] = l[2], left.a.v[k] = l[3];
       right.r.v[k] = r[0], right.g.v[k] = r[1], right.b.v[k] = r[2], right.a.v[k] = r[3];
     }
@@ -217,8 +230,13 @@ QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeomet
     transposeRowPairs<L, simd::PairEncoding::Float32>(pair, left, right);
   } else if constexpr (R::kFormat == TexelFormat::Rgba16F) {
     transposeRowPairs<L, simd::PairEncoding::Half>(pair, left, right);
-  } else {
+  } else if constexpr (R::kFormat == TexelFormat::Rgba8Unorm) {
     transposeRowPairs<L, simd::PairEncoding::Unorm8>(pair, left, right);
+  } else {
+    typename L::F::register_type l[4], r[4];
+    simd::transposeTexelPairs<simd::PairEncoding::Codes8>(pair, l, r);
+    left = decodeSrgb8<L>(view, l);
+    right = decodeSrgb8<L>(view, r);
   }
 }
 
@@ -537,6 +555,14 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
       return sampleTextureAs<L, TexelRead<TexelFormat::Rgba16F>>(view, u, v, d);
     case TexelFormat::Rgba8Unorm:
       return sampleTextureAs<L, TexelRead<TexelFormat::Rgba8Unorm>>(view, u, v, d);
+    case TexelFormat::Rgba8Srgb:
+      // The scalar path decodes every texel through decodeTexel(view.format),
+      // so rgba8's instantiation is already rgba8srgb's: one fewer copy of
+      // every filter in the largest kernel files.
+      if constexpr (sampling::kIsScalarLanes<L>)
+        return sampleTextureAs<L, TexelRead<TexelFormat::Rgba8Unorm>>(view, u, v, d);
+      else
+        return sampleTextureAs<L, TexelRead<TexelFormat::Rgba8Srgb>>(view, u, v, d);
     case TexelFormat::Rgba32F:
       break;
   }
