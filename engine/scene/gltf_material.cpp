@@ -271,7 +271,9 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex,
                                                     std::size_t(decoded.height) * 4 * bytesPerValue;
   if (!layoutOk) throw ref_.fail(what + " decoded to an unexpected pixel layout");
   // Half floats keep every step of an 8-bit sRGB source (texel_format.h) at
-  // half the memory of float; a 16-bit source's steps need float.
+  // half the memory of float; a 16-bit source's steps need float. rgba8srgb
+  // would halve the memory again, losslessly, but samples slower
+  // (texel_format.h gives the measurements).
   storage = decoded.bits == 8 ? TexelFormat::Rgba16F : TexelFormat::Rgba32F;
   return std::make_shared<const Image>(toLinear(decoded));
 }
