@@ -108,8 +108,8 @@ void lookupArguments(benchmark::internal::Benchmark* b) {
   b->ArgNames({"filter", "format", "isa", "side", "threads", "gather"});
   for (const Filter filter : {Filter::Nearest, Filter::Bilinear, Filter::NearestMip,
                               Filter::Trilinear, Filter::Anisotropic, Filter::Ripmap})
-    for (const TexelFormat format :
-         {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm})
+    for (const TexelFormat format : {TexelFormat::Rgba32F, TexelFormat::Rgba16F,
+                                     TexelFormat::Rgba8Unorm, TexelFormat::Rgba8Srgb})
       for (const Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
         for (const int side : {kSideL1, kSideL2, kSideDram})
           for (const int threads : {1, 2})

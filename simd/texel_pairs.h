@@ -6,7 +6,9 @@
 // it in registers (F16C and byte widening where the ISA has them) and
 // transposes (or, for float pairs, gathers: the benchmarked alternative).
 // The decodes are exact or round exactly as the scalar decode in
-// texture/texel_format.cpp, so every path returns the same bits.
+// texture/texel_format.cpp, so every path returns the same bits. Codes8 is
+// the one encoding left undecoded: 8-bit codes as int32s in the registers'
+// bits, for a decode after the transpose (sRGB8's table, lookupCodes).
 //
 // Include only from per-ISA kernel translation units; the 256- and 512-bit
 // helpers exist only in files built with AVX2 / AVX-512 flags.
@@ -23,8 +25,9 @@
 
 namespace quadra::simd {
 
-// How a pair is stored: 2 x RGBA float (32 bytes), half (16), UNORM8 (8).
-enum class PairEncoding { Float32, Half, Unorm8 };
+// How a pair is stored: 2 x RGBA float (32 bytes), half (16), UNORM8 (8), or
+// 8-bit codes (8) to be decoded after the transpose.
+enum class PairEncoding { Float32, Half, Unorm8, Codes8 };
 
 // UNORM8 codes decode as code * this (texture/texel_format.h kUnorm8Scale,
 // the same float, so every path rounds alike).
@@ -63,9 +66,15 @@ QUADRA_TRANSPOSE_INLINE void loadPair(const std::uint8_t* pair, __m128& left, __
   } else {
     const __m128i words =
         _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(pair)), zero);
-    const __m128 scale = _mm_set1_ps(kUnorm8Scale);
-    left = _mm_mul_ps(_mm_cvtepi32_ps(_mm_unpacklo_epi16(words, zero)), scale);
-    right = _mm_mul_ps(_mm_cvtepi32_ps(_mm_unpackhi_epi16(words, zero)), scale);
+    const __m128i l = _mm_unpacklo_epi16(words, zero), r = _mm_unpackhi_epi16(words, zero);
+    if constexpr (kEncoding == PairEncoding::Codes8) {
+      left = _mm_castsi128_ps(l);
+      right = _mm_castsi128_ps(r);
+    } else {
+      const __m128 scale = _mm_set1_ps(kUnorm8Scale);
+      left = _mm_mul_ps(_mm_cvtepi32_ps(l), scale);
+      right = _mm_mul_ps(_mm_cvtepi32_ps(r), scale);
+    }
   }
 }
 
@@ -79,6 +88,15 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   for (int c = 0; c < 4; ++c) left[c] = l[c], right[c] = r[c];
 }
 
+// table[code] per lane, the codes as int32 in the register's bits (a Codes8
+// transpose's output) and in [0, 255]. Without gathers the lanes are looked
+// up one by one.
+QUADRA_TRANSPOSE_INLINE __m128 lookupCodes(const float* table, __m128 codes) {
+  alignas(16) std::int32_t code[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(code), _mm_castps_si128(codes));
+  return _mm_setr_ps(table[code[0]], table[code[1]], table[code[2]], table[code[3]]);
+}
+
 #if defined(__AVX2__)
 // One lane's pair in a 256-bit register: left texel low, right texel high.
 template <PairEncoding kEncoding>
@@ -90,6 +108,7 @@ QUADRA_TRANSPOSE_INLINE __m256 loadPair256(const std::uint8_t* pair) {
   } else {
     const __m256i codes =
         _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(pair)));
+    if constexpr (kEncoding == PairEncoding::Codes8) return _mm256_castsi256_ps(codes);
     return _mm256_mul_ps(_mm256_cvtepi32_ps(codes), _mm256_set1_ps(kUnorm8Scale));
   }
 }
@@ -122,6 +141,16 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
   }
 }
 
+// Lane by lane as in SSE2: the AVX2 gather of the same lanes measured no
+// faster on the AMD EPYC (Zen 5) VM (README "Texel storage"), and gathers are
+// microcode-mitigated on many Intel parts.
+QUADRA_TRANSPOSE_INLINE __m256 lookupCodes(const float* table, __m256 codes) {
+  alignas(32) std::int32_t code[8];
+  _mm256_store_si256(reinterpret_cast<__m256i*>(code), _mm256_castps_si256(codes));
+  return _mm256_setr_ps(table[code[0]], table[code[1]], table[code[2]], table[code[3]],
+                        table[code[4]], table[code[5]], table[code[6]], table[code[7]]);
+}
+
 template <>
 QUADRA_TRANSPOSE_INLINE void gatherTexelPairs(const float* base, __m256i offset, __m256 left[4],
                                               __m256 right[4]) {
@@ -147,6 +176,8 @@ QUADRA_TRANSPOSE_INLINE __m512 loadPairs512(const std::uint8_t* a, const std::ui
   } else {
     const __m128i codes = _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(a)),
                                              _mm_loadl_epi64(reinterpret_cast<const __m128i*>(b)));
+    if constexpr (kEncoding == PairEncoding::Codes8)
+      return _mm512_castsi512_ps(_mm512_cvtepu8_epi32(codes));
     return _mm512_mul_ps(_mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(codes)),
                          _mm512_set1_ps(kUnorm8Scale));
   }
@@ -178,6 +209,24 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
     left[c] = _mm512_shuffle_f32x4(out[0][c], out[1][c], _MM_SHUFFLE(2, 0, 2, 0));
     right[c] = _mm512_shuffle_f32x4(out[0][c], out[1][c], _MM_SHUFFLE(3, 1, 3, 1));
   }
+}
+
+// In registers, no gather: each two-register permute looks up 32 entries by
+// the code's low 5 bits, and three blends on bits 5, 6, 7 pick among the
+// eight results. Measured faster than the gather and than lane-by-lane
+// lookups on the AMD EPYC (Zen 5) VM (README "Texel storage").
+QUADRA_TRANSPOSE_INLINE __m512 lookupCodes(const float* table, __m512 codes) {
+  const __m512i index = _mm512_castps_si512(codes);
+  __m512 part[8];
+  for (int j = 0; j < 8; ++j)
+    part[j] = _mm512_permutex2var_ps(_mm512_loadu_ps(table + 32 * j), index,
+                                     _mm512_loadu_ps(table + 32 * j + 16));
+  for (int bit = 5, n = 8; bit < 8; ++bit, n /= 2) {
+    const __mmask16 high = _mm512_test_epi32_mask(index, _mm512_set1_epi32(1 << bit));
+    for (int j = 0; j < n / 2; ++j)
+      part[j] = _mm512_mask_blend_ps(high, part[2 * j], part[2 * j + 1]);
+  }
+  return part[0];
 }
 
 template <>

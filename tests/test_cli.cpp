@@ -177,8 +177,8 @@ TEST(Cli, SampleReadsLookupsAndWritesValuesInOrder) {
   }
 
   // The same lookups from each narrow storage format (0 and 1 are exact in
-  // both, so the midpoint is too); an unknown format is a one-line error.
-  for (const char* format : {"rgba16f", "rgba8"}) {
+  // all, so the midpoint is too); an unknown format is a one-line error.
+  for (const char* format : {"rgba16f", "rgba8", "rgba8srgb"}) {
     ASSERT_EQ(run("sample --texture " + tex.string() + " --filter bilinear --wrap clamp --in " +
                   in.string() + " --out " + out.string() + " --format " + format)
                   .exitCode,

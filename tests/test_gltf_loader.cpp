@@ -22,6 +22,7 @@
 #include "resolve/image_io.h"
 #include "scene/gltf_loader.h"
 #include "texture/mip_chain.h"
+#include "texture/texel_format.h"
 
 namespace quadra {
 namespace {
@@ -847,6 +848,15 @@ TEST(GltfLoader, ImagesFromFilesDataUrisAnd16BitPngs) {
   for (int c = 0; c < 4; ++c) {
     const double code = shallow[std::size_t(c)] / 255.0;
     EXPECT_NEAR(b.texel(0, 0)[c], c == 3 ? code : srgbReference(code), 1e-6);
+  }
+  // The 8-bit image decodes exactly as sRGB8 storage does: storing it loses nothing.
+  std::uint8_t stored[4];
+  float decoded[4];
+  encodeTexel(TexelFormat::Rgba8Srgb, b.texel(0, 0), stored);
+  decodeTexel(TexelFormat::Rgba8Srgb, stored, decoded);
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_EQ(stored[c], shallow[std::size_t(c)]);
+    EXPECT_EQ(decoded[c], b.texel(0, 0)[c]) << "channel " << c;
   }
 
   fs::remove(dir.file("deep texture.png"));

@@ -30,6 +30,7 @@
 #include "core/error.h"
 #include "resolve/image_io.h"
 #include "texture/image.h"
+#include "texture/texel_format.h"
 
 namespace quadra {
 namespace {
@@ -476,6 +477,18 @@ void checkPngDecode(const std::string& path, const PngSpec& spec, unsigned seed)
       ASSERT_NEAR(image.rgba[i * 4 + std::size_t(c)], expected[std::size_t(c)],
                   1e-6 * expected[std::size_t(c)] + 1e-12)
           << path << " texel " << i << " channel " << c;
+    }
+  }
+  // Images read from 8-bit codes keep every bit when stored as sRGB8 codes.
+  if (spec.bitDepth > 8) return;
+  for (int y = 0; y < spec.height; ++y) {
+    for (int x = 0; x < spec.width; ++x) {
+      std::uint8_t stored[4];
+      float decoded[4];
+      encodeTexel(TexelFormat::Rgba8Srgb, image.texel(x, y), stored);
+      decodeTexel(TexelFormat::Rgba8Srgb, stored, decoded);
+      for (int c = 0; c < 4; ++c)
+        ASSERT_EQ(decoded[c], image.texel(x, y)[c]) << path << " texel " << x << "," << y;
     }
   }
 }

@@ -12,16 +12,19 @@
 
 #include "sampler_helpers.h"
 #include "texture/ground_truth.h"
+#include "texture/image.h"
 #include "texture/padded_level.h"
 #include "texture/test_textures.h"
 
 namespace quadra {
 namespace {
 
+constexpr TexelFormat kAllFormats[] = {TexelFormat::Rgba32F, TexelFormat::Rgba16F,
+                                       TexelFormat::Rgba8Unorm, TexelFormat::Rgba8Srgb};
+
 TEST(PaddedLevel, EachRowEndsWithACopyOfItsFirstTexelInEveryFormat) {
   const Image image = makeValueNoiseTexture(5, 3, 2);
-  for (const TexelFormat format :
-       {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm}) {
+  for (const TexelFormat format : kAllFormats) {
     const PaddedLevel padded(image, format);
     const std::size_t texelBytes = std::size_t(bytesPerTexel(format));
     ASSERT_EQ(padded.stride, 6);
@@ -45,8 +48,7 @@ TEST(SamplerPaths, EveryIsaMatchesScalarForEveryFilterWrapModeAndFormat) {
   const auto image = std::make_shared<Image>(makeValueNoiseTexture(37, 23, 5));
   const std::vector<Lookup> lookups = randomLookups(400, 17);
   int compared = 0;
-  for (const TexelFormat format :
-       {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm}) {
+  for (const TexelFormat format : kAllFormats) {
     for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
                                 WrapMode::ClampToBorder}) {
       SamplerState state;
@@ -92,7 +94,8 @@ TEST(SamplerPaths, GatheredTexelsEqualPairLoads) {
 }
 
 // Each narrow format against float storage, bilinear on every path: within
-// the format's stated rounding (texel_format.h) of values in [0, 1].
+// the format's stated rounding (texel_format.h) of values in [0, 1]; for
+// sRGB8 that is half the widest step of the decoded codes (254 → 255).
 TEST(SamplerPaths, NarrowFormatsStayWithinTheirRoundingOfFloat) {
   const auto image = std::make_shared<Image>(makeValueNoiseTexture(64, 48, 3));
   const std::vector<Lookup> lookups = randomLookups(500, 23);
@@ -101,7 +104,8 @@ TEST(SamplerPaths, NarrowFormatsStayWithinTheirRoundingOfFloat) {
     TexelFormat format;
     double bound;
   } cases[] = {{TexelFormat::Rgba16F, std::ldexp(1.0, -11) + 1e-7},
-               {TexelFormat::Rgba8Unorm, 1.0 / 510.0 + 1e-7}};
+               {TexelFormat::Rgba8Unorm, 1.0 / 510.0 + 1e-7},
+               {TexelFormat::Rgba8Srgb, 0.5 * (1.0 - double(srgb8ToLinear(254))) + 1e-7}};
   for (const auto& c : cases) {
     const Texture narrow(image, SamplerState{}, c.format);
     for (const Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
@@ -150,6 +154,45 @@ TEST(SamplerPaths, BilinearAtTheLastColumnMatchesTheReferenceOnEveryPath) {
                 << lookups[i][0] << " channel " << c;
         }
       }
+    }
+  }
+}
+
+// A texture whose texels are exact decodes of 8-bit sRGB colour and UNORM8
+// alpha codes loses nothing in rgba8srgb: nearest lookups at texel centres
+// return its texels bit for bit, and bilinear lookups match the
+// double-precision reconstruction of those texels, on every path.
+TEST(SamplerPaths, Srgb8StorageOfEightBitTexelsIsLossless) {
+  constexpr int kWidth = 19, kHeight = 11;
+  const auto image = std::make_shared<Image>(kWidth, kHeight);
+  for (std::size_t i = 0; i < image->rgba.size(); ++i) {
+    const std::uint8_t code = std::uint8_t(i * 97 % 256);  // every code, neighbours far apart
+    image->rgba[i] = i % 4 == 3 ? float(code) * kUnorm8Scale : srgb8ToLinear(code);
+  }
+  SamplerState state;
+  state.wrapU = WrapMode::Repeat, state.wrapV = WrapMode::ClampToEdge;
+  const Texture texture(image, state, TexelFormat::Rgba8Srgb);
+  const BilinearReference reference(*image, state);
+  std::vector<Lookup> centres;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      centres.push_back(
+          {(float(x) + 0.5f) / kWidth, (float(y) + 0.5f) / kHeight, 1e-4f, 0, 0, 1e-4f});
+  std::vector<Lookup> between = randomLookups(300, 41);
+  for (Lookup& l : between) l[2] = l[3] = l[4] = l[5] = 1e-4f;  // magnified: level 0
+  for (const Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+    if (!isaSupported(isa)) continue;
+    const std::vector<float> nearest = sampleAll(texture, Filter::Nearest, isa, centres);
+    for (std::size_t i = 0; i < nearest.size(); ++i)
+      ASSERT_EQ(nearest[i], image->rgba[i]) << isaName(isa) << " texel " << i / 4;
+    const std::vector<float> bilinear = sampleAll(texture, Filter::Bilinear, isa, between);
+    for (std::size_t i = 0; i < between.size(); ++i) {
+      double want[4];
+      reference.lookup(between[i][0], between[i][1], want);
+      // Float lerps of values in [0, 1]: a few ulps; a wrong texel is off by ~0.1.
+      for (int c = 0; c < 4; ++c)
+        ASSERT_NEAR(bilinear[i * 4 + std::size_t(c)], want[c], 1e-6)
+            << isaName(isa) << " lookup " << i << " channel " << c;
     }
   }
 }

@@ -1,7 +1,9 @@
 // Texel format conversions against independent double-precision references:
 // every one of the 65536 halves decodes to its exact value; float → half
 // rounds to the nearest half (ties to even) and overflows to infinity;
-// UNORM8 decodes code/255 within one float rounding; names round-trip.
+// UNORM8 decodes code/255 within one float rounding; sRGB8 decodes every
+// code to the correctly rounded exact curve and encodes to the nearest code;
+// names round-trip.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,8 +77,8 @@ TEST(TexelFormat, FloatToHalfRoundsToTheNearestHalfTiesToEven) {
 TEST(TexelFormat, EncodeMapsNanToZeroAndUnorm8RoundsAndClamps) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float in[4] = {nan, 0.5f, -0.25f, 1.75f};
-  for (const TexelFormat format :
-       {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm}) {
+  for (const TexelFormat format : {TexelFormat::Rgba32F, TexelFormat::Rgba16F,
+                                   TexelFormat::Rgba8Unorm, TexelFormat::Rgba8Srgb}) {
     std::uint8_t stored[16];
     float out[4];
     encodeTexel(format, in, stored);
@@ -96,9 +98,65 @@ TEST(TexelFormat, EncodeMapsNanToZeroAndUnorm8RoundsAndClamps) {
   }
 }
 
+// The sRGB curve (IEC 61966-2-1) in double, independent of the float code.
+double srgbDecodeReference(double encoded) {
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+double srgbEncodeReference(double linear) {
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+TEST(TexelFormat, Srgb8DecodesEveryCodeToTheCorrectlyRoundedCurveAndEncodesItBack) {
+  for (int code = 0; code < 256; ++code) {
+    const std::uint8_t c = std::uint8_t(code);
+    const std::uint8_t texel[4] = {c, c, c, c};
+    float rgba[4];
+    decodeTexel(TexelFormat::Rgba8Srgb, texel, rgba);
+    const float linear = float(srgbDecodeReference(code / 255.0));
+    for (int ch = 0; ch < 3; ++ch) ASSERT_EQ(rgba[ch], linear) << "code " << code;
+    ASSERT_EQ(rgba[3], float(code) * kUnorm8Scale) << "alpha is UNORM8, code " << code;
+    // Decode then encode is the identity, and so is encoding the reference value.
+    std::uint8_t again[4];
+    encodeTexel(TexelFormat::Rgba8Srgb, rgba, again);
+    for (int ch = 0; ch < 4; ++ch) ASSERT_EQ(again[ch], c) << "code " << code << " channel " << ch;
+    const float fromReference[4] = {linear, linear, linear, float(code / 255.0)};
+    encodeTexel(TexelFormat::Rgba8Srgb, fromReference, again);
+    for (int ch = 0; ch < 4; ++ch) ASSERT_EQ(again[ch], c) << "code " << code << " channel " << ch;
+  }
+}
+
+TEST(TexelFormat, Srgb8EncodesToTheNearestCodeAndClamps) {
+  // Random linear values in [0, 1]: the code is nearest on the sRGB scale
+  // (within float rounding of the encode, 1e-4 of a step).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> logValue(-16.0, 0.0);
+  for (int i = 0; i < 100000; ++i) {
+    const float x = float(std::exp2(logValue(rng)));
+    const float in[4] = {x, x, x, x};
+    std::uint8_t codes[4];
+    encodeTexel(TexelFormat::Rgba8Srgb, in, codes);
+    ASSERT_LE(std::fabs(srgbEncodeReference(double(x)) * 255.0 - codes[0]), 0.5 + 1e-4) << x;
+    ASSERT_EQ(codes[1], codes[0]);
+    ASSERT_LE(std::fabs(double(x) * 255.0 - codes[3]), 0.5 + 1e-4) << x;
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const struct {
+    float value;
+    std::uint8_t code;
+  } edges[] = {{nan, 0},  {-nan, 0},   {-0.25f, 0},  {-inf, 0},
+               {0.0f, 0}, {1.0f, 255}, {1.75f, 255}, {inf, 255}};
+  for (const auto& e : edges) {
+    const float in[4] = {e.value, e.value, e.value, e.value};
+    std::uint8_t codes[4];
+    encodeTexel(TexelFormat::Rgba8Srgb, in, codes);
+    for (int ch = 0; ch < 4; ++ch) EXPECT_EQ(codes[ch], e.code) << e.value << " channel " << ch;
+  }
+}
+
 TEST(TexelFormat, NamesAndSizesRoundTrip) {
-  for (const TexelFormat format :
-       {TexelFormat::Rgba32F, TexelFormat::Rgba16F, TexelFormat::Rgba8Unorm}) {
+  for (const TexelFormat format : {TexelFormat::Rgba32F, TexelFormat::Rgba16F,
+                                   TexelFormat::Rgba8Unorm, TexelFormat::Rgba8Srgb}) {
     TexelFormat parsed = TexelFormat::Rgba32F;
     ASSERT_TRUE(parseFormat(formatName(format), parsed));
     EXPECT_EQ(parsed, format);
@@ -106,6 +164,8 @@ TEST(TexelFormat, NamesAndSizesRoundTrip) {
   EXPECT_EQ(bytesPerTexel(TexelFormat::Rgba32F), 16);
   EXPECT_EQ(bytesPerTexel(TexelFormat::Rgba16F), 8);
   EXPECT_EQ(bytesPerTexel(TexelFormat::Rgba8Unorm), 4);
+  EXPECT_EQ(bytesPerTexel(TexelFormat::Rgba8Srgb), 4);
+  EXPECT_STREQ(formatName(TexelFormat::Rgba8Srgb), "rgba8srgb");
   TexelFormat unused;
   EXPECT_FALSE(parseFormat("rgba4", unused));
 }

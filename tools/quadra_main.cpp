@@ -36,7 +36,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          texture filter for every texture (default: each glTF sampler's)
   --aniso N              max anisotropy, default 16
   --lod-bias B           added to every texture lookup's LOD (default 0)
-  --texture-format auto|rgba32f|rgba16f|rgba8
+  --texture-format auto|rgba32f|rgba16f|rgba8|rgba8srgb
                          texel storage (default auto: rgba16f for 8-bit images, else rgba32f)
   --depth standard|reversed
                          depth buffer: standard (0 near, LESS) or reversed (1 near, GREATER)
@@ -130,7 +130,8 @@ RenderCommand parseRender(const std::vector<std::string>& args) {
     } else if (arg == "--texture-format") {
       TexelFormat format;
       if (value != "auto" && !parseFormat(value, format))
-        throw Error(arg + ": unknown texel format '" + value + "' (auto, rgba32f, rgba16f, rgba8)");
+        throw Error(arg + ": unknown texel format '" + value +
+                    "' (auto, rgba32f, rgba16f, rgba8, rgba8srgb)");
       if (value != "auto") cmd.textureFormat = format;
     } else if (arg == "--depth") {
       if (value == "standard")

@@ -27,7 +27,8 @@ constexpr const char* kSampleUsage =
                      [--aniso N] [--wrap repeat|mirror|clamp|border] [--threads N] [--isa ISA]
                      [--lod-bias B] [--min-lod L] [--max-lod L] [--format F]
   --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat|ripmap
-  --format rgba32f|rgba16f|rgba8   texel storage the sampler reads (default rgba32f)
+  --format rgba32f|rgba16f|rgba8|rgba8srgb
+                                   texel storage the sampler reads (default rgba32f)
   LOOKUPS.csv: header u,v,dudx,dvdx,dudy,dvdy (normalized units, per-pixel derivatives)
   VALUES.csv:  header r,g,b,a, one row per lookup, linear float
 A PNG is decoded from sRGB to linear; an EXR is read as linear. Prints
@@ -73,7 +74,8 @@ SampleCommand parseSample(const std::vector<std::string>& args) {
         throw Error(arg + ": unknown wrap mode '" + value + "' (repeat, mirror, clamp, border)");
     } else if (arg == "--format") {
       if (!parseFormat(value, cmd.format))
-        throw Error(arg + ": unknown texel format '" + value + "' (rgba32f, rgba16f, rgba8)");
+        throw Error(arg + ": unknown texel format '" + value +
+                    "' (rgba32f, rgba16f, rgba8, rgba8srgb)");
     } else if (arg == "--threads")
       cmd.threads = parseInteger(arg, value, 1, 1024);
     else if (arg == "--isa") {

@@ -28,6 +28,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "texture/texel_format.h"
 
 namespace quadra {
 
@@ -275,7 +276,8 @@ void pngSamplesToLinear(const std::vector<png_byte>& samples, const PngLayout& l
       const std::size_t at = (s + std::size_t(c)) * (wide ? 2 : 1);
       const unsigned code = wide ? (unsigned(samples[at]) << 8) | samples[at + 1] : samples[at];
       if (c == 3) {
-        out[3] = float(code) / maxCode;
+        // 8-bit alpha as the 8-bit texel formats decode it (lossless rgba8srgb).
+        out[3] = wide ? float(code) / maxCode : float(code) * kUnorm8Scale;
       } else {
         out[c] = wide ? srgbToLinear(float(code) / maxCode) : srgb8ToLinear(std::uint8_t(code));
       }

@@ -12,6 +12,7 @@
 
 #include "core/parallel.h"
 #include "scene/gltf_internal.h"
+#include "texture/texel_format.h"
 
 namespace quadra::gltf {
 
@@ -89,14 +90,16 @@ std::string percentDecode(const std::string& uri) {
 }
 
 // 8-bit or 16-bit RGBA as stb_image returned it → linear float; colour
-// channels are sRGB-encoded (glTF baseColorTexture), alpha is linear.
+// channels are sRGB-encoded (glTF baseColorTexture), alpha is linear. 8-bit
+// codes decode exactly as the 8-bit texel formats decode them
+// (texture/texel_format.h), so storing the image as rgba8srgb loses nothing.
 Image toLinear(const tinygltf::Image& decoded) {
   Image image(decoded.width, decoded.height);
   const std::size_t values = image.rgba.size();
   if (decoded.bits == 8) {
     const unsigned char* codes = decoded.image.data();
     for (std::size_t i = 0; i < values; ++i) {
-      image.rgba[i] = i % 4 == 3 ? codes[i] / 255.0f : srgb8ToLinear(codes[i]);
+      image.rgba[i] = i % 4 == 3 ? float(codes[i]) * kUnorm8Scale : srgb8ToLinear(codes[i]);
     }
   } else {
     for (std::size_t i = 0; i < values; ++i) {
@@ -268,7 +271,9 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex,
                                                     std::size_t(decoded.height) * 4 * bytesPerValue;
   if (!layoutOk) throw ref_.fail(what + " decoded to an unexpected pixel layout");
   // Half floats keep every step of an 8-bit sRGB source (texel_format.h) at
-  // half the memory of float; a 16-bit source's steps need float.
+  // half the memory of float; a 16-bit source's steps need float. rgba8srgb
+  // would halve the memory again, losslessly, but samples slower
+  // (texel_format.h gives the measurements).
   storage = decoded.bits == 8 ? TexelFormat::Rgba16F : TexelFormat::Rgba32F;
   return std::make_shared<const Image>(toLinear(decoded));
 }

@@ -29,7 +29,7 @@ float linearToSrgb(float linear) {
   return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
 }
 
-float srgb8ToLinear(std::uint8_t code) {
+const float* srgb8ToLinearTable() {
   // Built in double so every entry is the correctly rounded float of the
   // exact curve, not the float curve's own rounding error.
   static const std::array<float, 256> table = [] {
@@ -41,7 +41,11 @@ float srgb8ToLinear(std::uint8_t code) {
     }
     return t;
   }();
-  return table[code];
+  return table.data();
+}
+
+float srgb8ToLinear(std::uint8_t code) {
+  return srgb8ToLinearTable()[code];
 }
 
 }  // namespace quadra

@@ -34,7 +34,10 @@ struct Image {
 // The sRGB transfer function (IEC 61966-2-1), exact in float.
 float srgbToLinear(float encoded);
 float linearToSrgb(float linear);
-// Decode of an 8-bit sRGB code through a 256-entry table built once.
+// Decode of an 8-bit sRGB code through a 256-entry table built once. The
+// sampling kernels index the table itself (srgb8ToLinearTable()[code]), so
+// texels stored as sRGB codes decode to the same bits on every path.
 float srgb8ToLinear(std::uint8_t code);
+const float* srgb8ToLinearTable();
 
 }  // namespace quadra

@@ -153,14 +153,14 @@ QUADRA_LANE_INLINE void texelPointers(const LevelGeometry<L>& g, const typename 
 
 // One texel per lane (nearest filtering), decoded lane by lane.
 template <class L, class R>
-Rgba<L> fetch(const LevelGeometry<L>& g, const typename L::I& level, const typename L::F& x,
-              const typename L::F& y) {
+Rgba<L> fetch(const TextureView& view, const LevelGeometry<L>& g, const typename L::I& level,
+              const typename L::F& x, const typename L::F& y) {
   const std::uint8_t* texel[L::kWidth];
   texelPointers<L, R>(g, level, texelOffset<L>(g, x, y), texel);
   alignas(64) float channel[4][L::kWidth];
   for (int k = 0; k < L::kWidth; ++k) {
     float rgba[4];
-    decodeTexel(R::kFormat, texel[k], rgba);
+    decodeTexel(view.format, texel[k], rgba);
     for (int c = 0; c < 4; ++c) channel[c][k] = rgba[c];
   }
   using F = typename L::F;
@@ -183,6 +183,19 @@ QUADRA_LANE_INLINE void transposeRowPairs(const std::uint8_t* const pair[L::kWid
   right = fromRegisters<L>(r);
 }
 
+// rgba8srgb channel registers of codes (a Codes8 transpose) → values, as
+// decodeTexel computes them: colour through the sRGB decode table, alpha
+// code * kUnorm8Scale as in rgba8.
+template <class L>
+QUADRA_LANE_INLINE Rgba<L> decodeSrgb8(const TextureView& view,
+                                       const typename L::F::register_type code[4]) {
+  using F = typename L::F;
+  const float* table = view.srgbTable;
+  return {simd::lookupCodes(table, code[0]), simd::lookupCodes(table, code[1]),
+          simd::lookupCodes(table, code[2]),
+          simd::toFloat(simd::asInt(F(code[3]))) * F(kUnorm8Scale)};
+}
+
 // The left and right texels of one bilinear row per lane, as channel lanes:
 // each lane reads its pair (texels x and x + 1, contiguous in a padded level)
 // whole, decoded and transposed in registers (simd/texel_pairs.h). The
@@ -191,8 +204,9 @@ QUADRA_LANE_INLINE void transposeRowPairs(const std::uint8_t* const pair[L::kWid
 // an Intel Xeon and an AMD EPYC (Zen 5) VM (README "Texel storage"), and
 // gathers are microcode-mitigated on many Intel parts, so they are the default.
 template <class L, class R>
-QUADRA_LANE_INLINE void fetchRowPairs(const LevelGeometry<L>& g, const typename L::I& level,
-                                      const typename L::I& offset, Rgba<L>& left, Rgba<L>& right) {
+QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeometry<L>& g,
+                                      const typename L::I& level, const typename L::I& offset,
+                                      Rgba<L>& left, Rgba<L>& right) {
   constexpr int W = L::kWidth;
   if constexpr (R::kGather && !kIsScalarLanes<L>) {
     if (g.uniform >= 0) {  // one base pointer for every lane
@@ -209,8 +223,8 @@ QUADRA_LANE_INLINE void fetchRowPairs(const LevelGeometry<L>& g, const typename 
   if constexpr (kIsScalarLanes<L>) {
     for (int k = 0; k < W; ++k) {
       float l[4], r[4];
-      decodeTexel(R::kFormat, pair[k], l);
-      decodeTexel(R::kFormat, pair[k] + bytesPerTexel(R::kFormat), r);
+      decodeTexel(view.format, pair[k], l);
+      decodeTexel(view.format, pair[k] + bytesPerTexel(R::kFormat), r);
       left.r.v[k] = l[0], left.g.v[k] = l[1], left.b.v[k] = l[2], left.a.v[k] = l[3];
       right.r.v[k] = r[0], right.g.v[k] = r[1], right.b.v[k] = r[2], right.a.v[k] = r[3];
     }
@@ -218,8 +232,13 @@ QUADRA_LANE_INLINE void fetchRowPairs(const LevelGeometry<L>& g, const typename 
     transposeRowPairs<L, simd::PairEncoding::Float32>(pair, left, right);
   } else if constexpr (R::kFormat == TexelFormat::Rgba16F) {
     transposeRowPairs<L, simd::PairEncoding::Half>(pair, left, right);
-  } else {
+  } else if constexpr (R::kFormat == TexelFormat::Rgba8Unorm) {
     transposeRowPairs<L, simd::PairEncoding::Unorm8>(pair, left, right);
+  } else {
+    typename L::F::register_type l[4], r[4];
+    simd::transposeTexelPairs<simd::PairEncoding::Codes8>(pair, l, r);
+    left = decodeSrgb8<L>(view, l);
+    right = decodeSrgb8<L>(view, r);
   }
 }
 
@@ -259,7 +278,7 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
   typename L::M inside = F(0.0f) == F(0.0f);
   const F x = wrapTexel<L>(simd::floor(u * g.width), g.width, view.wrapU, inside);
   const F y = wrapTexel<L>(simd::floor(v * g.height), g.height, view.wrapV, inside);
-  return withBorder<L>(view, fetch<L, R>(g, level, x, y), inside);
+  return withBorder<L>(view, fetch<L, R>(view, g, level, x, y), inside);
 }
 
 // Bilinear reconstruction on the given level(s). Columns are read as pairs
@@ -298,8 +317,8 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinearIn(const TextureView& view, const Level
   const F y0 = wrapTexel<L>(fy0, g.height, view.wrapV, inY0);
   const F y1 = wrapTexel<L>(fy0 + F(1.0f), g.height, view.wrapV, inY1);
   Rgba<L> c00, c10, c01, c11;
-  fetchRowPairs<L, R>(g, level, texelOffset<L>(g, x0, y0), c00, c10);
-  fetchRowPairs<L, R>(g, level, texelOffset<L>(g, x0, y1), c01, c11);
+  fetchRowPairs<L, R>(view, g, level, texelOffset<L>(g, x0, y0), c00, c10);
+  fetchRowPairs<L, R>(view, g, level, texelOffset<L>(g, x0, y1), c01, c11);
 
   if (view.wrapU == WrapMode::ClampToBorder || view.wrapV == WrapMode::ClampToBorder) {
     M inX0 = all, inX1 = all;
@@ -602,6 +621,14 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
       return sampleTextureAs<L, TexelRead<TexelFormat::Rgba16F>>(view, u, v, d);
     case TexelFormat::Rgba8Unorm:
       return sampleTextureAs<L, TexelRead<TexelFormat::Rgba8Unorm>>(view, u, v, d);
+    case TexelFormat::Rgba8Srgb:
+      // The scalar path decodes every texel through decodeTexel(view.format),
+      // so rgba8's instantiation is already rgba8srgb's: one fewer copy of
+      // every filter in the largest kernel files.
+      if constexpr (sampling::kIsScalarLanes<L>)
+        return sampleTextureAs<L, TexelRead<TexelFormat::Rgba8Unorm>>(view, u, v, d);
+      else
+        return sampleTextureAs<L, TexelRead<TexelFormat::Rgba8Srgb>>(view, u, v, d);
     case TexelFormat::Rgba32F:
       break;
   }

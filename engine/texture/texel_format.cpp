@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "texture/image.h"
+
 namespace quadra {
 
 namespace {
@@ -16,10 +18,11 @@ struct FormatSpelling {
   const char* name;
 };
 
-constexpr std::array<FormatSpelling, 3> kFormats = {{
+constexpr std::array<FormatSpelling, 4> kFormats = {{
     {TexelFormat::Rgba32F, "rgba32f"},
     {TexelFormat::Rgba16F, "rgba16f"},
     {TexelFormat::Rgba8Unorm, "rgba8"},
+    {TexelFormat::Rgba8Srgb, "rgba8srgb"},
 }};
 
 const FormatSpelling& spelling(TexelFormat format) {
@@ -38,6 +41,11 @@ float floatOf(std::uint32_t bits) {
   float value;
   std::memcpy(&value, &bits, sizeof value);
   return value;
+}
+
+// Nearest code of a value clamped to [0, 1]; the caller has replaced NaN.
+std::uint8_t unorm8Code(float value) {
+  return std::uint8_t(std::nearbyint(std::clamp(value, 0.0f, 1.0f) * 255.0f));
 }
 
 }  // namespace
@@ -97,8 +105,11 @@ void encodeTexel(TexelFormat format, const float rgba[4], std::uint8_t* out) {
       }
       return;
     case TexelFormat::Rgba8Unorm:
-      for (int c = 0; c < 4; ++c)
-        out[c] = std::uint8_t(std::nearbyint(std::clamp(clean[c], 0.0f, 1.0f) * 255.0f));
+      for (int c = 0; c < 4; ++c) out[c] = unorm8Code(clean[c]);
+      return;
+    case TexelFormat::Rgba8Srgb:
+      for (int c = 0; c < 3; ++c) out[c] = unorm8Code(linearToSrgb(clean[c]));
+      out[3] = unorm8Code(clean[3]);
       return;
   }
 }
@@ -117,6 +128,10 @@ void decodeTexel(TexelFormat format, const std::uint8_t* in, float rgba[4]) {
       return;
     case TexelFormat::Rgba8Unorm:
       for (int c = 0; c < 4; ++c) rgba[c] = float(in[c]) * kUnorm8Scale;
+      return;
+    case TexelFormat::Rgba8Srgb:
+      for (int c = 0; c < 3; ++c) rgba[c] = srgb8ToLinear(in[c]);
+      rgba[3] = float(in[3]) * kUnorm8Scale;
       return;
   }
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "texture/image.h"
 #include "texture/padded_level.h"
 #include "texture/ripmap.h"
 #include "texture/summed_area.h"
@@ -25,6 +26,7 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   view.gatherTexels = settings.gatherTexels;
   view.setLodControls(settings.lodBias, settings.minLod, settings.maxLod);
   view.format = texture.storage();
+  view.srgbTable = srgb8ToLinearTable();
   view.levels[0] = texture.sampledLevel0().view();
   view.levelCount = 1;
   if (needsMips(view.minFilter)) {

@@ -33,6 +33,10 @@ struct TextureView {
   TextureLevel levels[kMaxLevels];
   int levelCount = 0;                         // 1 when the filter does not use mips
   TexelFormat format = TexelFormat::Rgba32F;  // of every level
+  // rgba8srgb's colour decode (srgb8ToLinearTable), held here so the kernels
+  // read a pointer instead of calling out: a call spills every live vector
+  // register.
+  const float* srgbTable = nullptr;
   WrapMode wrapU = WrapMode::Repeat;
   WrapMode wrapV = WrapMode::Repeat;
   float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
