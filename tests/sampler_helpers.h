@@ -32,6 +32,16 @@ inline std::vector<Lookup> randomLookups(int count, std::uint32_t seed) {
   return lookups;
 }
 
+// A sampler with both wrap modes set and a border colour distinct from every
+// test texture's texels.
+inline SamplerState samplerWith(WrapMode wrap,
+                                const std::array<float, 4>& border = {0.25f, 0.0f, 0.0f, 1.0f}) {
+  SamplerState state;
+  state.wrapU = state.wrapV = wrap;
+  for (int c = 0; c < 4; ++c) state.borderColor[c] = border[c];
+  return state;
+}
+
 // RGBA of every lookup, in order, through the given filter and kernel path
 // (float texels through hardware gathers when asked).
 inline std::vector<float> sampleAll(const Texture& texture, Filter filter, Isa isa,

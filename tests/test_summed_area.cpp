@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -27,14 +28,8 @@
 namespace quadra {
 namespace {
 
-SamplerState samplerWith(WrapMode wrap) {
-  SamplerState state;
-  state.wrapU = state.wrapV = wrap;
-  state.borderColor[0] = 0.25f;
-  state.borderColor[2] = 0.75f;
-  state.borderColor[3] = 1.0f;
-  return state;
-}
+// Blue in the border too, so each channel's border term is checked.
+constexpr std::array<float, 4> kBorder = {0.25f, 0.0f, 0.75f, 1.0f};
 
 // Axis-aligned footprints: sub-texel to several texture periods wide, centred
 // anywhere in [-2, 3)^2 so boxes cross seams, edges and whole periods.
@@ -90,8 +85,8 @@ TEST(SummedArea, AxisAlignedFootprintsEqualTheExactBoxIntegralInEveryWrapMode) {
   const std::vector<Lookup> lookups = axisAlignedLookups(200, 7);
   for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
                               WrapMode::ClampToBorder}) {
-    const Texture texture(image, samplerWith(wrap));
-    const BilinearReference reference(*image, samplerWith(wrap));
+    const Texture texture(image, samplerWith(wrap, kBorder));
+    const BilinearReference reference(*image, samplerWith(wrap, kBorder));
     const std::vector<float> got = sampleAll(texture, Filter::SummedArea, Isa::Scalar, lookups);
     for (std::size_t i = 0; i < lookups.size(); ++i) {
       const Lookup& l = lookups[i];
@@ -118,7 +113,7 @@ TEST(SummedArea, TheExactBoxIntegralAgreesWithTheGroundTruth) {
   options.minSamplesPerAxis = 64;
   options.maxSamples = std::size_t(1) << 22;
   for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::ClampToBorder}) {
-    const BilinearReference reference(image, samplerWith(wrap));
+    const BilinearReference reference(image, samplerWith(wrap, kBorder));
     for (const Lookup& l : axisAlignedLookups(20, 8)) {
       const GroundTruthValue truth =
           groundTruth(reference, {l[0], l[1], l[2], l[3], l[4], l[5]}, options);
@@ -139,7 +134,7 @@ TEST(SummedArea, WholePeriodsAverageToTheMeanAndFarBoxesReadTheEdge) {
   double mean[4] = {0, 0, 0, 0};
   for (std::size_t i = 0; i < image->rgba.size(); ++i) mean[i % 4] += image->rgba[i];
   for (double& m : mean) m /= 66.0;
-  const Texture repeat(image, samplerWith(WrapMode::Repeat));
+  const Texture repeat(image, samplerWith(WrapMode::Repeat, kBorder));
   // u in the middle of a texel column, 3 periods wide: exactly 3 periods.
   const std::vector<Lookup> periods = {{0.37f, -5.2f, 3.0f, 0.0f, 0.0f, 2.0f},
                                        {1e4f + 0.25f, 0.5f, 0.0f, 1.0f, 5.0f, 0.0f}};
@@ -147,8 +142,8 @@ TEST(SummedArea, WholePeriodsAverageToTheMeanAndFarBoxesReadTheEdge) {
   for (std::size_t i = 0; i < periods.size(); ++i)
     for (int c = 0; c < 4; ++c) EXPECT_NEAR(got[i * 4 + c], mean[c], 1e-6) << i;
 
-  const Texture clamp(image, samplerWith(WrapMode::ClampToEdge));
-  const BilinearReference reference(*image, samplerWith(WrapMode::ClampToEdge));
+  const Texture clamp(image, samplerWith(WrapMode::ClampToEdge, kBorder));
+  const BilinearReference reference(*image, samplerWith(WrapMode::ClampToEdge, kBorder));
   // Far right of the texture, one texel tall at row 2's centre: the last column's texel.
   const std::vector<Lookup> far = {{1e6f, 2.5f / 6.0f, 0.5f, 0.0f, 0.0f, 1e-6f}};
   const std::vector<float> edge = sampleAll(clamp, Filter::SummedArea, Isa::Scalar, far);
@@ -161,7 +156,7 @@ TEST(SummedArea, WholePeriodsAverageToTheMeanAndFarBoxesReadTheEdge) {
 TEST(SummedArea, BoxSumsAreExactWhereAFloatTableFails) {
   constexpr int kSide = 2048;
   const auto image = std::make_shared<Image>(makeValueNoiseTexture(kSide, kSide, 9));
-  const Texture texture(image, samplerWith(WrapMode::Repeat));
+  const Texture texture(image, samplerWith(WrapMode::Repeat, kBorder));
   const Executor executor(2);
   const SummedAreaTable& table = texture.summedAreaTable(&executor);
   EXPECT_GE(table.fractionBits(), 24);
@@ -200,14 +195,16 @@ TEST(SummedArea, BoxSumsAreExactWhereAFloatTableFails) {
 
 TEST(SummedArea, EveryIsaAndThreadCountGivesTheSameBits) {
   const auto image = std::make_shared<Image>(makeValueNoiseTexture(37, 23, 5));
-  const Texture texture(image, samplerWith(WrapMode::MirroredRepeat), TexelFormat::Rgba16F);
+  const Texture texture(image, samplerWith(WrapMode::MirroredRepeat, kBorder),
+                        TexelFormat::Rgba16F);
   const std::vector<Lookup> lookups = randomLookups(300, 12);
   const std::vector<float> scalar = sampleAll(texture, Filter::SummedArea, Isa::Scalar, lookups);
   for (const Isa isa : supportedIsas())
     EXPECT_EQ(sampleAll(texture, Filter::SummedArea, isa, lookups), scalar) << isaName(isa);
   // A table built on 3 threads holds the sums of the serial one (texture's,
   // built by the lookups above).
-  const Texture parallel(image, samplerWith(WrapMode::MirroredRepeat), TexelFormat::Rgba16F);
+  const Texture parallel(image, samplerWith(WrapMode::MirroredRepeat, kBorder),
+                         TexelFormat::Rgba16F);
   const Executor executor(3);
   const TextureView parallelView =
       makeTextureView(parallel, FilterSettings(Filter::SummedArea), &executor);

@@ -19,6 +19,7 @@
 
 #include "core/parallel.h"
 #include "resolve/image_io.h"
+#include "sampler_helpers.h"
 #include "texture/footprints.h"
 #include "texture/ground_truth.h"
 #include "texture/test_textures.h"
@@ -27,14 +28,6 @@
 
 namespace quadra {
 namespace {
-
-SamplerState samplerWith(WrapMode wrap) {
-  SamplerState state;
-  state.wrapU = state.wrapV = wrap;
-  state.borderColor[0] = 0.25f;
-  state.borderColor[3] = 1.0f;
-  return state;
-}
 
 Image constantImage(int w, int h, float value) {
   Image image(w, h);
