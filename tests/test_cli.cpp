@@ -211,4 +211,28 @@ TEST(Cli, SampleRejectsMalformedCsv) {
 }
 
 }  // namespace
+// `quadra report stability` end to end: every hard case of
+// scene/hard_case_scenes.h rendered by the engine and held to the
+// double-precision references (tools/report_stability.cpp); in the sanitizer
+// builds this is also the "no crash, no sanitizer report" check on them.
+TEST(Cli, StabilityReportPassesEveryCheck) {
+  const RunResult r = run("report stability --threads 2");
+  EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("failed=0"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("FAIL"), std::string::npos) << r.out;
+  for (const char* scene :
+       {"near-plane", "huge-1e6", "huge-1e30", "grazing", "slivers", "watertight", "closed-mesh",
+        "random-triangles", "invalid-input", "z-fighting", "shared-edge", "subpixel-plane"})
+    EXPECT_NE(r.out.find(std::string("\n") + scene), std::string::npos) << scene;
+}
+
+TEST(Cli, StabilityReportRejectsBadOptions) {
+  RunResult r = run("report stability --isa mmx");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("--isa mmx"), std::string::npos) << r.err;
+  r = run("report stability --frobnicate 1");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.err.find("unknown option --frobnicate"), std::string::npos) << r.err;
+}
+
 }  // namespace quadra

@@ -12,41 +12,12 @@
 
 #include "render_helpers.h"
 #include "scene/builtin_scenes.h"
+#include "scene/hard_case_scenes.h"
 
 namespace quadra {
 namespace {
 
 constexpr int kSize = 48;
-
-// A square quad facing the camera at depth z, covering the view.
-Mesh facingQuad(float z, float halfSize, int material) {
-  Mesh mesh;
-  mesh.positions = {{-halfSize, -halfSize, z},
-                    {halfSize, -halfSize, z},
-                    {halfSize, halfSize, z},
-                    {-halfSize, halfSize, z}};
-  mesh.indices = {0, 1, 2, 0, 2, 3};
-  mesh.material = material;
-  return mesh;
-}
-
-Scene twoQuads(double distance, double separation) {
-  Scene scene;
-  Material green, red;
-  green.baseColorFactor = {0.0f, 1.0f, 0.0f, 1.0f};
-  red.baseColorFactor = {1.0f, 0.0f, 0.0f, 1.0f};
-  scene.materials = {green, red};
-  const float halfSize = float(distance * 2.0);
-  scene.meshes = {facingQuad(float(-(distance + separation)), halfSize, 0),
-                  facingQuad(float(-distance), halfSize, 1)};
-  scene.instances = {{0, glm::mat4(1.0f)}, {1, glm::mat4(1.0f)}};  // far one first
-  Camera camera;
-  camera.yfov = 0.8f;
-  camera.znear = 1e-3f;
-  camera.zfar = 1e6f;
-  scene.cameras = {camera};
-  return scene;
-}
 
 double redFraction(const Scene& scene, DepthMode depth) {
   RenderSettings settings;
@@ -66,7 +37,7 @@ TEST(DepthPrecision, ReversedDepthResolvesWhatStandardDepthCannot) {
   std::printf("| distance | separation | standard | reversed |\n|---:|---:|---:|---:|\n");
   for (const double d : distances) {
     for (const double r : relative) {
-      const Scene scene = twoQuads(d, d * r);
+      const Scene scene = zFightingScene(d, d * r);
       const double standard = redFraction(scene, DepthMode::Standard);
       const double reversed = redFraction(scene, DepthMode::Reversed);
       std::printf("| %g | %g | %.3f | %.3f |\n", d, d * r, standard, reversed);
@@ -78,7 +49,7 @@ TEST(DepthPrecision, ReversedDepthResolvesWhatStandardDepthCannot) {
   }
   // And the test has teeth: standard depth, 1 - n/D, has float steps of
   // 2^-24 near 1, far coarser than the n*s/D^2 = 1e-10 this case needs.
-  EXPECT_LT(redFraction(twoQuads(1000.0, 0.1), DepthMode::Standard), 0.5);
+  EXPECT_LT(redFraction(zFightingScene(1000.0, 0.1), DepthMode::Standard), 0.5);
 }
 
 // On an ordinary scene the depth mode changes the stored depth, not the

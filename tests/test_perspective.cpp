@@ -105,21 +105,6 @@ double uvPerPixel(const std::function<glm::dvec2(const glm::dvec2&)>& uvAt, cons
   return std::max(glm::length(dx), glm::length(dy));
 }
 
-double distanceToSegment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b) {
-  const glm::dvec2 ab = b - a;
-  const double s = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
-  return glm::length(p - (a + s * ab));
-}
-
-// Distance from a point to the nearest edge of any projected (snapped) triangle.
-double distanceToEdges(const std::vector<ref::ProjectedTriangle>& triangles, const glm::dvec2& p) {
-  double nearest = HUGE_VAL;
-  for (const ref::ProjectedTriangle& t : triangles)
-    for (int k = 0; k < 3; ++k)
-      nearest = std::min(nearest, distanceToSegment(p, t.v[k].window, t.v[(k + 1) % 3].window));
-  return nearest;
-}
-
 // Screen-space barycentrics of a point in a projected triangle.
 glm::dvec3 screenBary(const ref::ProjectedTriangle& t, const glm::dvec2& p) {
   const auto area = [](const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c) {
@@ -204,7 +189,7 @@ TEST(Perspective, SteepPlaneTexCoordIsPerspectiveCorrect) {
       const bool refCovered = coverage.at(x, y) > 0;
       // Window positions are computed in float by the engine: a vertex may
       // snap one grid unit away, which matters only this close to an edge.
-      if (engineCovered != refCovered && distanceToEdges(projected, at) > 1.0 / 128)
+      if (engineCovered != refCovered && ref::distanceToEdges(projected, at) > 1.0 / 128)
         ++coverageMismatches;
       if (!engineCovered || !refCovered) continue;
       ++compared;
@@ -263,7 +248,7 @@ void checkClippedTriangle(const ClipCase& c) {
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
       const glm::dvec2 at = pixelCentre(x, y);
-      if (distanceToEdges(projected, at) <= kMargin) {
+      if (ref::distanceToEdges(projected, at) <= kMargin) {
         ++nearEdge;
         continue;
       }

@@ -15,5 +15,7 @@ int runSample(int argc, const char* const* argv);
 int runReport(int argc, const char* const* argv);
 // `quadra report sat-precision` (report_sat_precision.cpp); args after the subject.
 int runSatPrecisionReport(const std::vector<std::string>& args);
+// `quadra report stability` (report_stability.cpp); args after the subject.
+int runStabilityReport(const std::vector<std::string>& args);
 
 }  // namespace quadra

@@ -27,6 +27,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra sample --help
        quadra report textures --help
        quadra report sat-precision --help
+       quadra report stability --help
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)

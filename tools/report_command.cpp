@@ -304,6 +304,8 @@ int runReport(int argc, const char* const* argv) {
   const std::vector<std::string> all(argv + 1, argv + argc);
   if (!all.empty() && all[0] == "sat-precision")
     return runSatPrecisionReport({all.begin() + 1, all.end()});
+  if (!all.empty() && all[0] == "stability")
+    return runStabilityReport({all.begin() + 1, all.end()});
   for (const std::string& a : all)
     if (a == "--help" || a == "-h") {
       std::cout << kReportUsage;
@@ -311,8 +313,8 @@ int runReport(int argc, const char* const* argv) {
     }
   if (all.empty() || all[0] != "textures")
     throw Error(
-        "report: expected a subject, 'textures' or 'sat-precision' (see quadra report textures "
-        "--help)");
+        "report: expected a subject, 'textures', 'sat-precision' or 'stability' (see quadra "
+        "report textures --help)");
   const ReportOptions options = parseReport({all.begin() + 1, all.end()});
   const Isa isa = options.isa.value_or(detectBestIsa());
   if (!isaSupported(isa))

@@ -81,18 +81,20 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     s.blend = BlendMode::Add;
     s.depthTest = s.depthWrite = false;
     g.texcoordSet = 0;
-  } else if (settings.debugView == DebugView::TexCoord) {
+  } else if (settings.debugView == DebugView::TexCoord ||
+             settings.debugView == DebugView::Derivatives) {
     s.textured = s.vertexColor = s.lit = false;
     s.alphaMode = AlphaMode::Opaque;
     s.blend = BlendMode::Replace;
     s.depthWrite = true;
-    s.outputTexCoord = true;
+    s.outputTexCoord = settings.debugView == DebugView::TexCoord;
+    s.outputDerivatives = settings.debugView == DebugView::Derivatives;
     g.texcoordSet = 0;
   }
 
   // Interpolate only what the shading reads.
   AttributeLayout& a = g.attributes;
-  if (s.textured || s.outputTexCoord) a.texcoord = a.count, a.count += 2;
+  if (s.textured || s.outputTexCoord || s.outputDerivatives) a.texcoord = a.count, a.count += 2;
   if (s.vertexColor) a.color = a.count, a.count += 4;
   if (s.lit) a.normal = a.count, a.count += 3;
   s.attributes = a;

@@ -37,6 +37,10 @@ enum class DebugView : std::uint8_t {
   None,
   CoverageCount,  // R = number of triangles covering the pixel; no depth test
   TexCoord,       // R, G = perspective-correct TEXCOORD_0 at the pixel centre; A = 1
+  // R, G, B, A = du/dx, dv/dx, du/dy, dv/dy of TEXCOORD_0 as the sampler gets
+  // them (one footprint per 2x2 quad, from its top-left pixel, helper lanes
+  // included), in normalized texture units per pixel; depth-tested.
+  Derivatives,
 };
 
 struct RenderSettings {
@@ -60,7 +64,7 @@ struct FrameStats {
   std::size_t culledBackFace = 0;
   std::size_t culledOutside = 0;      // entirely outside a clip plane / the viewport
   std::size_t droppedDegenerate = 0;  // zero area after snapping
-  std::size_t droppedInvalid = 0;     // NaN or Inf in a position
+  std::size_t droppedInvalid = 0;     // NaN or Inf in a position or an attribute read
   std::size_t clipped = 0;            // needed clipping against near/far/guard band
 };
 

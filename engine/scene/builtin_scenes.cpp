@@ -12,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
+#include "scene/hard_case_scenes.h"
 
 namespace quadra {
 
@@ -312,7 +313,9 @@ Scene showcase() {
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-  return {"showcase", "checker-plane", "alpha-quads", "dense-mesh"};
+  std::vector<std::string> names = {"showcase", "checker-plane", "alpha-quads", "dense-mesh"};
+  for (const std::string& name : hardCaseSceneNames()) names.push_back(name);
+  return names;
 }
 
 Scene makeBuiltinScene(const std::string& name) {
@@ -320,6 +323,7 @@ Scene makeBuiltinScene(const std::string& name) {
   if (name == "checker-plane") return checkerPlane();
   if (name == "alpha-quads") return alphaQuads();
   if (name == "dense-mesh") return denseMesh();
+  if (Scene scene; makeHardCaseScene(name, scene)) return scene;
   std::string known;
   for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
   throw makeError("builtin:" + name, "unknown built-in scene (known: " + known + ")");

@@ -160,7 +160,7 @@ struct Shader {
     const AttributeLayout& layout = shade.attributes;
     F r = F(shade.baseColor.r), g = F(shade.baseColor.g), b = F(shade.baseColor.b),
       a = F(shade.baseColor.a);
-    if (kTextured || shade.outputTexCoord) {
+    if (kTextured || shade.outputTexCoord || shade.outputDerivatives) {
       const F u = attribute(layout.texcoord, x, y, w);
       const F v = attribute(layout.texcoord + 1, x, y, w);
       if (shade.outputTexCoord) {
@@ -170,8 +170,12 @@ struct Shader {
         const F u0 = simd::quadBroadcast<0>(u), v0 = simd::quadBroadcast<0>(v);
         const UvDerivatives<L> d{simd::quadBroadcast<1>(u) - u0, simd::quadBroadcast<1>(v) - v0,
                                  simd::quadBroadcast<2>(u) - u0, simd::quadBroadcast<2>(v) - v0};
-        const Rgba<L> texel = sampleTexture<L>(shade.texture, u, v, d);
-        r = r * texel.r, g = g * texel.g, b = b * texel.b, a = a * texel.a;
+        if (shade.outputDerivatives) {
+          r = d.dudx, g = d.dvdx, b = d.dudy, a = d.dvdy;
+        } else {
+          const Rgba<L> texel = sampleTexture<L>(shade.texture, u, v, d);
+          r = r * texel.r, g = g * texel.g, b = b * texel.b, a = a * texel.a;
+        }
       }
     }
     if (kVertexColor) {
@@ -190,7 +194,7 @@ struct Shader {
       r = r * light, g = g * light, b = b * light;
     }
     if (kAlpha == AlphaMode::Mask) cover = cover & (a >= F(shade.alphaCutoff));
-    if (kAlpha != AlphaMode::Blend) a = F(1.0f);
+    if (kAlpha != AlphaMode::Blend && !shade.outputDerivatives) a = F(1.0f);  // A = dv/dy there
     if (!simd::any(cover)) return;
     write(cover, zValue, zOld, r, g, b, a, depth, color);
   }

@@ -48,7 +48,8 @@ struct ShadeState {
   bool depthGreater = false;  // reversed depth (api/camera.h DepthMode): GREATER, not LESS
   bool depthWrite = true;
   BlendMode blend = BlendMode::Replace;
-  bool outputTexCoord = false;  // DebugView::TexCoord
+  bool outputTexCoord = false;     // DebugView::TexCoord
+  bool outputDerivatives = false;  // DebugView::Derivatives
   AttributeLayout attributes;
 };
 

@@ -24,10 +24,14 @@ double roundHalfEven(double v) {
   return (v + kShift) - kShift;
 }
 
-std::uint8_t outcodeOf(const float* v, double guardX, double guardY) {
+// floats: the position and every attribute the draw reads. A NaN or Inf in any
+// of them makes every triangle using the vertex invalid (dropped and counted):
+// a non-finite attribute has no meaningful interpolation, and a NaN texture
+// coordinate would otherwise reach the sampler's address arithmetic.
+std::uint8_t outcodeOf(const float* v, int floats, double guardX, double guardY) {
+  for (int k = 0; k < floats; ++k)
+    if (!std::isfinite(v[k])) return kNotFinite;
   const double x = v[0], y = v[1], z = v[2], w = v[3];
-  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z) || !std::isfinite(w))
-    return kNotFinite;
   std::uint8_t code = 0;
   if (z < 0.0) code |= kOutsideNear;
   if (z > w) code |= kOutsideFar;
@@ -87,7 +91,7 @@ void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t
           mesh.normals.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : normalMatrix * mesh.normals[i];
       for (int k = 0; k < 3; ++k) attr[a.normal + k] = n[k];
     }
-    const std::uint8_t code = outcodeOf(v, guardX, guardY);
+    const std::uint8_t code = outcodeOf(v, out.stride, guardX, guardY);
     out.outcode[i] = code;
     if (!(code & (kNeedsClipping | kNotFinite)))
       out.screen[i] = projectToWindow(v[0], v[1], v[2], v[3], viewport);

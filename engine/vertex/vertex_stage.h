@@ -27,7 +27,7 @@ enum OutcodeBit : std::uint8_t {
   kOutsideRight = 1 << 4,
   kOutsideBottom = 1 << 5,
   kOutsideTop = 1 << 6,
-  kNotFinite = 1 << 7,  // NaN or Inf in the position
+  kNotFinite = 1 << 7,  // NaN or Inf in the position or an attribute the draw reads
 };
 constexpr std::uint8_t kNeedsClipping = kOutsideNear | kOutsideFar | kOutsideGuard;
 

@@ -35,6 +35,9 @@ struct TracerHit {
   glm::dvec3 bary{0.0};     // weights of the triangle's vertices, in index order
 };
 
+// Texel index → index inside [0, n) under the wrap mode, or -1 for the border colour.
+std::int64_t wrapTexel(std::int64_t i, std::int64_t n, WrapMode mode);
+
 // Level-0 bilinear lookup in double, per the texel convention (lookup at u reads
 // texel-space x = u*W - 0.5; row 0 is v = 0) and the sampler's wrap modes.
 glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const glm::dvec2& uv);

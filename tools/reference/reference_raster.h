@@ -43,6 +43,9 @@ std::int64_t snapToGrid(double windowCoordinate);
 GridTriangle snapTriangle(const glm::dvec2& a, const glm::dvec2& b, const glm::dvec2& c,
                           CullMode cull = CullMode::None);
 
+// (towards - origin) x (p - origin), exactly.
+__int128 cross(const GridPoint& origin, const GridPoint& towards, const GridPoint& p);
+
 // Twice the signed area in grid units², (b - a) x (c - a) in window
 // coordinates: positive when the vertices run clockwise as seen (a back face).
 __int128 doubleSignedArea(const GridTriangle& t);
@@ -95,13 +98,24 @@ glm::dmat4 referenceViewMatrix(const Camera& camera);
 // Clip coordinates of a view-space point: x_c, y_c, z_c, w_c (depth = z_c / w_c).
 glm::dvec4 referenceClip(const Camera& camera, double aspect, const glm::dvec3& viewPoint);
 
+// |x|, |y| <= kReferenceGuard * w in clip space: 2^20 viewport half-widths,
+// so snapped coordinates stay within int64 (and their products within
+// int128) for vertices at any finite distance, e.g. 1e30.
+constexpr double kReferenceGuard = 0x1p20;
+
 // Every instance triangle of the scene in submission order (instances, then
 // triangles), clipped in double against the near (and a finite far) plane
-// only, projected and snapped. Side planes are not clipped: the integer
-// rasterizer takes any window coordinate.
+// and the sides at kReferenceGuard (never near the viewport), projected and
+// snapped. The integer rasterizer takes any window coordinate in that range.
 std::vector<ProjectedTriangle> projectScene(const Scene& scene, const Camera& camera, int width,
                                             int height);
 
 std::vector<GridTriangle> gridTriangles(const std::vector<ProjectedTriangle>& projected);
+
+// Distance from p to the segment a-b, and to the nearest edge of any of the
+// projected (snapped) triangles: how close a pixel centre is to where
+// snapping or clipping may legitimately decide its coverage either way.
+double distanceToSegment(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b);
+double distanceToEdges(const std::vector<ProjectedTriangle>& triangles, const glm::dvec2& p);
 
 }  // namespace quadra::ref
