@@ -227,7 +227,7 @@ Scene watertight() {
   std::bernoulli_distribution coin(0.5);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      glm::dvec2 p(lines[i], lines[j] * 2.0 + 0.0);  // rows twice as tall: reach y = 256
+      glm::dvec2 p(lines[i], lines[j] * 2.0);  // rows twice as tall: reach y = 256
       const bool inner = i > 0 && j > 0 && i + 1 < n && j + 1 < n;
       if (inner && coin(rng)) p += glm::dvec2(coin(rng) ? 0.5 : -0.5, coin(rng) ? 0.5 : -0.5);
       vertex[std::size_t(j * n + i)] = p;
@@ -401,40 +401,44 @@ Scene groundPlaneScene(int cellsPerSide) {
   return scene;
 }
 
+namespace {
+
+struct HardCase {
+  const char* name;
+  Scene (*make)();
+};
+
+// The one list of hard cases, in report order.
+const HardCase kHardCases[] = {
+    {"near-plane", nearPlane},
+    {"huge-1e6", [] { return hugeCoordinates("huge-1e6", 1e6f); }},
+    {"huge-1e30", [] { return hugeCoordinates("huge-1e30", 1e30f); }},
+    {"grazing", grazing},
+    {"slivers", slivers},
+    {"watertight", watertight},
+    {"closed-mesh", closedMesh},
+    {"random-triangles", [] { return randomTrianglesScene(20000, 1); }},
+    {"z-fighting", [] { return zFightingScene(1e3, 0.01); }},
+    {"invalid-input", invalidInput},
+    {"shared-edge", [] { return groundPlaneScene(1); }},
+    {"subpixel-plane", [] { return groundPlaneScene(200); }},
+};
+
+}  // namespace
+
 std::vector<std::string> hardCaseSceneNames() {
-  return {"near-plane", "huge-1e6",      "huge-1e30",   "grazing",
-          "slivers",    "watertight",    "closed-mesh", "random-triangles",
-          "z-fighting", "invalid-input", "shared-edge", "subpixel-plane"};
+  std::vector<std::string> names;
+  for (const HardCase& c : kHardCases) names.push_back(c.name);
+  return names;
 }
 
 bool makeHardCaseScene(const std::string& name, Scene& out) {
-  if (name == "near-plane")
-    out = nearPlane();
-  else if (name == "huge-1e6")
-    out = hugeCoordinates(name, 1e6f);
-  else if (name == "huge-1e30")
-    out = hugeCoordinates(name, 1e30f);
-  else if (name == "grazing")
-    out = grazing();
-  else if (name == "slivers")
-    out = slivers();
-  else if (name == "watertight")
-    out = watertight();
-  else if (name == "closed-mesh")
-    out = closedMesh();
-  else if (name == "random-triangles")
-    out = randomTrianglesScene(20000, 1);
-  else if (name == "z-fighting")
-    out = zFightingScene(1e3, 0.01);
-  else if (name == "invalid-input")
-    out = invalidInput();
-  else if (name == "shared-edge")
-    out = groundPlaneScene(1);
-  else if (name == "subpixel-plane")
-    out = groundPlaneScene(200);
-  else
-    return false;
-  return true;
+  for (const HardCase& c : kHardCases)
+    if (name == c.name) {
+      out = c.make();
+      return true;
+    }
+  return false;
 }
 
 }  // namespace quadra

@@ -37,8 +37,8 @@ Scene randomTrianglesScene(int count, std::uint32_t seed);
 
 // The ground plane y = -1 seen from the origin at 45 degrees down, with
 // TEXCOORD_0 = (x, z) / 4: one quad split along its diagonal when cellsPerSide
-// is 1, else a grid of cellsPerSide^2 quads over the same rectangle (small
-// enough to be sub-pixel on screen at 100 cells and a 160 x 100 viewport).
+// is 1, else a grid of cellsPerSide^2 quads over the same rectangle (about
+// half a pixel wide on screen at 200 cells and a 256 x 160 viewport).
 Scene groundPlaneScene(int cellsPerSide);
 // The rectangle groundPlaneScene tessellates: x in [-kGroundHalfWidth,
 // kGroundHalfWidth], z in [kGroundFarZ, kGroundNearZ], at y = kGroundY.
