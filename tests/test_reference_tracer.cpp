@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "reference/reference_tracer.h"
@@ -282,6 +283,52 @@ TEST(ReferenceTracer, CullingNearPlaneAndMirroring) {
   scene.meshes[1].positions = {{-1, -1, -5}, {1, -1, -5}, {1, 1, -5}, {-1, 1, -5}};
   scene.materials[1].doubleSided = true;
   EXPECT_EQ(ReferenceTracer(scene, camera, 8, 8).shade(centre, scratch), glm::dvec4(0, 1, 0, 1));
+}
+
+// A vertex 1e30 away weighs ~1e-30 at every visible point: the other two
+// weights must not swallow it (1 - b1 - b2 would round it to nothing and the
+// inside test would then miss about half the triangle at random). Every pixel
+// centre clear of the analytic edges x = -3, y = -1 and y = 2 (the far
+// vertex's edges are those lines to within 1e-29) hits at distance 6, and the
+// weights rebuild the hit point.
+TEST(ReferenceTracer, VertexFarAwayKeepsEveryHitAndWeight) {
+  Scene scene;
+  Mesh mesh;
+  mesh.positions = {{1e30f, 0.3f, -6.0f}, {-3.0f, -1.0f, -6.0f}, {-3.0f, 2.0f, -6.0f}};
+  mesh.indices = {0, 1, 2};
+  mesh.material = 0;
+  scene.meshes.push_back(mesh);
+  scene.instances.push_back({0, glm::mat4(1.0f)});
+  Material material;
+  material.doubleSided = true;
+  scene.materials.push_back(material);
+  const Camera camera;
+  constexpr int kSize = 64;
+  const ReferenceTracer tracer(scene, camera, kSize, kSize);
+  int inside = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const Ray ray = tracer.primaryRay({x + 0.5, y + 0.5});
+      const glm::dvec3 point = ray.direction * (6.0 / -ray.direction.z);
+      const double margin = 1e-9;
+      const bool expectHit =
+          point.x > -3.0 + margin && point.y > -1.0 + margin && point.y < 2.0 - margin;
+      const bool expectMiss =
+          point.x < -3.0 - margin || point.y < -1.0 - margin || point.y > 2.0 + margin;
+      const std::optional<TracerHit> hit = tracer.nearestHit({x + 0.5, y + 0.5});
+      if (expectMiss) {
+        EXPECT_FALSE(hit.has_value()) << x << "," << y;
+      }
+      if (!expectHit) continue;
+      ++inside;
+      ASSERT_TRUE(hit.has_value()) << x << "," << y;
+      EXPECT_NEAR(hit->viewDistance, 6.0, 1e-12);
+      glm::dvec3 rebuilt(0.0);
+      for (int k = 0; k < 3; ++k) rebuilt += hit->bary[k] * glm::dvec3(mesh.positions[k]);
+      EXPECT_NEAR(rebuilt.x, point.x, 1e-9 * std::max(1.0, std::fabs(point.x)));
+      EXPECT_NEAR(rebuilt.y, point.y, 1e-9);
+    }
+  EXPECT_GT(inside, kSize * kSize / 8);
 }
 
 }  // namespace

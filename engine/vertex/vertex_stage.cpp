@@ -54,6 +54,8 @@ ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewp
   s.y = std::int32_t(roundHalfEven(yw * kSubpixelScale));
   s.z = z * invW;
   s.invW = invW;
+  s.windowX = xw;
+  s.windowY = yw;
   return s;
 }
 

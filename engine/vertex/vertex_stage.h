@@ -34,9 +34,10 @@ constexpr std::uint8_t kNeedsClipping = kOutsideNear | kOutsideFar | kOutsideGua
 // A vertex after the perspective divide, valid when its outcode has none of
 // kNeedsClipping | kNotFinite.
 struct ScreenVertex {
-  std::int32_t x = 0, y = 0;  // window position in 1/256 pixel
-  double z = 0.0;             // depth z/w
-  double invW = 0.0;          // 1/w
+  std::int32_t x = 0, y = 0;            // window position snapped to 1/256 pixel
+  double windowX = 0.0, windowY = 0.0;  // unsnapped, in pixels
+  double z = 0.0;                       // depth z/w
+  double invW = 0.0;                    // 1/w
 };
 
 // Vertex i occupies data[i*stride .. i*stride+stride): x, y, z, w (clip space),

@@ -128,26 +128,29 @@ void ReferenceTracer::allHits(const Ray& ray, std::vector<TracerHit>& out) const
       const glm::dvec3& v0 = instance.viewPositions[indices[tri * 3]];
       const glm::dvec3& v1 = instance.viewPositions[indices[tri * 3 + 1]];
       const glm::dvec3& v2 = instance.viewPositions[indices[tri * 3 + 2]];
-      // Moller-Trumbore with inclusive edges: a ray through a shared edge hits
-      // both neighbours at the same distance, never neither.
-      const glm::dvec3 e1 = v1 - v0, e2 = v2 - v0;
-      const glm::dvec3 p = glm::cross(ray.direction, e2);
-      const double det = glm::dot(e1, p);
-      if (det == 0.0) continue;  // edge-on: zero projected area
-      // det = -dot(direction, e1 x e2) > 0: the ray sees the counter-clockwise
-      // (front) side; a mirroring instance matrix swaps which side that is.
-      const bool front = (det > 0.0) != instance.mirrored;
+      // Each vertex's weight is the signed volume the ray spans with the
+      // opposite edge (both relative to the ray origin): computed from that
+      // edge's two vertices alone, so a vertex 1e30 away spoils no other
+      // weight (Moller-Trumbore's 1 - b1 - b2 would lose a weight of 1e-30
+      // entirely), and the two triangles of a shared edge get exactly
+      // opposite values. Edges are inclusive: a ray through a shared edge
+      // hits both neighbours, never neither.
+      const glm::dvec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
+      const glm::dvec3 w(glm::dot(ray.direction, glm::cross(b, c)),
+                         glm::dot(ray.direction, glm::cross(c, a)),
+                         glm::dot(ray.direction, glm::cross(a, b)));
+      const bool inside =
+          (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0) || (w.x <= 0.0 && w.y <= 0.0 && w.z <= 0.0);
+      const double sum = w.x + w.y + w.z;   // dot(direction, e1 x e2)
+      if (!inside || sum == 0.0) continue;  // missed, or edge-on: zero projected area
+      // sum < 0: the ray sees the counter-clockwise (front) side; a mirroring
+      // instance matrix swaps which side that is.
+      const bool front = (sum < 0.0) != instance.mirrored;
       if (instance.cullBack && !front) continue;
-      const glm::dvec3 s = ray.origin - v0;
-      const double b1 = glm::dot(s, p) / det;
-      if (b1 < 0.0 || b1 > 1.0) continue;
-      const glm::dvec3 q = glm::cross(s, e1);
-      const double b2 = glm::dot(ray.direction, q) / det;
-      if (b2 < 0.0 || b1 + b2 > 1.0) continue;
-      const double t = glm::dot(e2, q) / det;
-      const double distance = -(ray.origin.z + t * ray.direction.z);
+      const glm::dvec3 bary = w / sum;
+      const double distance = -(bary.x * v0.z + bary.y * v1.z + bary.z * v2.z);
       if (distance < znear || distance > zfar) continue;
-      out.push_back({int(index), int(tri), distance, {1.0 - b1 - b2, b1, b2}});
+      out.push_back({int(index), int(tri), distance, bary});
     }
   }
   // Equal distances keep submission order, as the engine's LESS depth test does.
