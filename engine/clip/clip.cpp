@@ -2,6 +2,8 @@
 // Attributes are linear in clip space, so interpolating them there is exact.
 #include "clip/clip.h"
 
+#include <cmath>
+
 namespace quadra {
 
 namespace {
@@ -27,12 +29,19 @@ double planeDistance(int plane, const double* v, double guardX, double guardY) {
   }
 }
 
-// The intersection is always computed from the inside vertex toward the
-// outside one, so the two triangles sharing an edge produce the same point.
+// The crossing is interpolated from the vertex nearer the plane (ties: the
+// inside one), so the step is short: from a vertex 1e30 away, the near
+// plane's w = near would be the difference of two values ~1e30, anything from
+// -1e14 to 1e14. The two triangles sharing an edge see the same two vertices
+// and distances, so they produce the same point.
 void intersect(const ClipVertex& in, double dIn, const ClipVertex& out, double dOut, int floats,
                ClipVertex& result) {
-  const double t = dIn / (dIn - dOut);
-  for (int k = 0; k < floats; ++k) result.v[k] = in.v[k] + t * (out.v[k] - in.v[k]);
+  const bool fromIn = std::fabs(dIn) <= std::fabs(dOut);
+  const ClipVertex& base = fromIn ? in : out;
+  const ClipVertex& other = fromIn ? out : in;
+  const double dBase = fromIn ? dIn : dOut, dOther = fromIn ? dOut : dIn;
+  const double t = dBase / (dBase - dOther);
+  for (int k = 0; k < floats; ++k) result.v[k] = base.v[k] + t * (other.v[k] - base.v[k]);
 }
 
 void clipAgainst(int plane, int floats, double guardX, double guardY, ClipPolygon& poly) {

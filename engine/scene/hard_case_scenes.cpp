@@ -98,21 +98,29 @@ Scene nearPlane() {
   return scene;
 }
 
-// A ground quad from 1 unit ahead out to `extent` ahead and to either side,
+// A ground fan around a hub 1.5 ahead of the eye: 12 rim vertices `extent`
+// away in every direction, so half the rim is behind the eye (w < 0) and each
+// rim edge that passes behind crosses the w = 0 plane `extent` to the side;
 // and a wall triangle 6 ahead with one vertex `extent` to the right. At 1e6
 // (a float position's ulp is 1/16) the ground's TEXCOORD_0 is (x, z) / 4, so
 // texture coordinates near the eye come from vertices 1e6 away. At 1e30
-// (~1e29 pixels beyond the guard band) its corners carry 0 and 1 instead: a
-// coordinate of 1e29 at two far vertices could not be interpolated to the
-// eye in any floating-point format (the wall's single far vertex can).
+// (~1e29 pixels beyond the guard band) it is 0.5 + (x, z) / 2e30 instead: a
+// coordinate of 1e29 at every rim vertex could not be interpolated back to
+// the eye in any floating-point format (the wall's single far vertex can).
 Scene hugeCoordinates(const std::string& name, float extent) {
   Scene scene = texturedScene(name);
-  const glm::vec3 a(-extent, -1.0f, -1.0f), b(extent, -1.0f, -1.0f), c(extent, -1.0f, -extent),
-      d(-extent, -1.0f, -extent);
-  const UvOfPosition cornerUv = [](const glm::vec3& p) {
-    return glm::vec2(p.x > 0.0f ? 1.0f : 0.0f, p.z < -1.0f ? 1.0f : 0.0f);
+  const glm::vec3 hub(0.0f, -1.0f, 0.5f);
+  constexpr int kRim = 12;
+  std::vector<Triangle> fan;
+  const auto rim = [&](int i) {
+    const float angle = 2.0f * std::numbers::pi_v<float> * (float(i % kRim) + 0.3f) / kRim;
+    return hub + extent * glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
   };
-  addTriangles(scene, {{a, b, c}, {a, c, d}}, extent <= 1e6f ? groundUv : cornerUv);
+  for (int i = 0; i < kRim; ++i) fan.push_back({hub, rim(i), rim(i + 1)});
+  const UvOfPosition farGroundUv = [](const glm::vec3& p) {
+    return glm::vec2(0.5f + 0.5e-30f * p.x, 0.5f + 0.5e-30f * p.z);
+  };
+  addTriangles(scene, fan, extent <= 1e6f ? groundUv : farGroundUv);
   addTriangles(scene, {{{{extent, 0.3f, -6.0f}, {-3.0f, -1.0f, -6.0f}, {-3.0f, 2.0f, -6.0f}}}},
                wallUv);
   scene.cameras.push_back(lookAtCamera({0, 0, 0}, {0, 0, -1}, 0.9f, 0.1f, 0.0f));

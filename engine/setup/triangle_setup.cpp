@@ -165,6 +165,14 @@ void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats)
     ++ctx.out.counters.outside;
     return;
   }
+  // The clip leaves every vertex at w >= near > 0 up to rounding; a w that is
+  // not positive anyway (NaN, or a polygon rounded onto the eye) cannot be
+  // projected, so the polygon is dropped as degenerate instead of divided by.
+  for (int i = 0; i < polygon.count; ++i)
+    if (!(polygon.vertices[i].v[3] > 0.0)) {
+      ++ctx.out.counters.degenerate;
+      return;
+    }
   ++ctx.out.counters.clipped;
   SetupVertex fan[kMaxClipPolygon];
   for (int i = 0; i < polygon.count; ++i) {

@@ -3,6 +3,7 @@
 // same bits).
 #include "vertex/vertex_stage.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/parallel.h"
@@ -47,8 +48,15 @@ std::uint8_t outcodeOf(const float* v, int floats, double guardX, double guardY)
 
 ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport) {
   const double invW = 1.0 / w;
-  const double xw = (x * invW + 1.0) * 0.5 * viewport.width;
-  const double yw = (1.0 - y * invW) * 0.5 * viewport.height;
+  // A vertex the clip put on a guard plane may round a hair beyond it; the
+  // clamp (to the guard band plus a pixel, far outside any pixel centre)
+  // keeps the fixed-point range proof, and the int32 snap defined, whatever w.
+  const auto window = [](double ndc, int size) {
+    const double limit = kGuardBandPixels + 1.0;
+    return std::clamp((ndc + 1.0) * 0.5 * size, -limit, size + limit);
+  };
+  const double xw = window(x * invW, viewport.width);
+  const double yw = window(-y * invW, viewport.height);
   ScreenVertex s;
   s.x = std::int32_t(roundHalfEven(xw * kSubpixelScale));
   s.y = std::int32_t(roundHalfEven(yw * kSubpixelScale));

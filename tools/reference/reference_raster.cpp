@@ -158,8 +158,13 @@ std::vector<ClipVertex> clipPolygon(const std::vector<ClipVertex>& polygon, Dist
     const double da = distance(a.clip), db = distance(b.clip);
     if (da >= 0) out.push_back(a);
     if ((da >= 0) != (db >= 0)) {
-      const double t = da / (da - db);
-      out.push_back({a.clip + t * (b.clip - a.clip), a.bary + t * (b.bary - a.bary)});
+      // From the end nearer the plane: a short step stays accurate when the
+      // other end is 1e30 away.
+      const bool fromA = std::fabs(da) <= std::fabs(db);
+      const ClipVertex& from = fromA ? a : b;
+      const ClipVertex& to = fromA ? b : a;
+      const double t = (fromA ? da : db) / (fromA ? da - db : db - da);
+      out.push_back({from.clip + t * (to.clip - from.clip), from.bary + t * (to.bary - from.bary)});
     }
   }
   return out;
