@@ -98,22 +98,30 @@ const float* pixelOf(const Frame& frame, int x, int y) {
   return &frame.rgba[(std::size_t(y) * std::size_t(frame.width) + std::size_t(x)) * 4];
 }
 
+// The exact reference rasterizer's view of a scene through its camera.
+struct ReferenceCoverage {
+  std::vector<ref::ProjectedTriangle> projected;
+  ref::CoverageImage image;
+
+  ReferenceCoverage(const Scene& scene, int width, int height)
+      : projected(ref::projectScene(scene, scene.cameras[0], width, height)),
+        image(ref::rasterizeCoverage(ref::gridTriangles(projected), width, height)) {}
+};
+
 // Pixels whose coverage count differs from the exact reference rasterizer's,
 // not counting those within `margin` px of a reference edge (0: count all).
 // A perspective vertex's window position comes from the engine's float clip
 // coordinates, so it may snap one 1/256 grid unit away from the double
 // reference's: that moves an edge by at most sqrt(2)/256 px < 1/128 px.
-int coverageMismatches(const Context& ctx, const Scene& scene, int width, int height, double margin,
-                       std::optional<int> threads = std::nullopt) {
-  const auto projected = ref::projectScene(scene, scene.cameras[0], width, height);
-  const ref::CoverageImage expected =
-      ref::rasterizeCoverage(ref::gridTriangles(projected), width, height);
+int coverageMismatches(const Context& ctx, const Scene& scene, const ReferenceCoverage& expected,
+                       double margin, std::optional<int> threads = std::nullopt) {
+  const int width = expected.image.width, height = expected.image.height;
   const Frame frame = ctx.render(scene, width, height, DebugView::CoverageCount, nullptr, threads);
   int mismatches = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      if (pixelOf(frame, x, y)[0] != float(expected.at(x, y)) &&
-          (margin == 0.0 || ref::distanceToEdges(projected, {x + 0.5, y + 0.5}) > margin))
+      if (pixelOf(frame, x, y)[0] != float(expected.image.at(x, y)) &&
+          (margin == 0.0 || ref::distanceToEdges(expected.projected, {x + 0.5, y + 0.5}) > margin))
         ++mismatches;
   return mismatches;
 }
@@ -205,7 +213,8 @@ TexCoordError texCoordError(const Context& ctx, const Scene& scene) {
 void perspectiveCase(Context& ctx, const std::string& name) {
   const Scene scene = hardCase(name);
   ctx.add(name, "pixels != reference coverage, > 1/128 px from an edge",
-          coverageMismatches(ctx, scene, kWidth, kHeight, 1.0 / 128), Bound::Equal, 0);
+          coverageMismatches(ctx, scene, ReferenceCoverage(scene, kWidth, kHeight), 1.0 / 128),
+          Bound::Equal, 0);
   const TexCoordError uv = texCoordError(ctx, scene);
   ctx.add(name, "pixels with uv compared", uv.compared, Bound::AtLeast, 1000);
   ctx.add(name, "uv error at pixel centres / max(1, |uv|)", uv.relative, Bound::AtMost, 0x1p-20);
@@ -215,8 +224,10 @@ void perspectiveCase(Context& ctx, const std::string& name) {
 }
 
 void pixelExactCoverage(Context& ctx, const std::string& name) {
+  const Scene scene = hardCase(name);
   ctx.add(name, "pixels != reference coverage (all pixels)",
-          coverageMismatches(ctx, hardCase(name), kPixelExactSize, kPixelExactSize, 0.0),
+          coverageMismatches(ctx, scene, ReferenceCoverage(scene, kPixelExactSize, kPixelExactSize),
+                             0.0),
           Bound::Equal, 0);
 }
 
@@ -280,12 +291,12 @@ void closedMeshCase(Context& ctx) {
 void randomTrianglesCase(Context& ctx) {
   const std::string name = "random-triangles";
   const Scene scene = hardCase(name);
+  const ReferenceCoverage expected(scene, kPixelExactSize, kPixelExactSize);
   for (int threads : {1, 2, 3, 8})
     ctx.add(name,
             std::to_string(scene.triangleCount()) + " triangles, " + std::to_string(threads) +
                 " threads: pixels != reference",
-            coverageMismatches(ctx, scene, kPixelExactSize, kPixelExactSize, 0.0, threads),
-            Bound::Equal, 0);
+            coverageMismatches(ctx, scene, expected, 0.0, threads), Bound::Equal, 0);
 }
 
 void invalidInputCase(Context& ctx) {
@@ -372,17 +383,20 @@ LodErrors lodErrors(const Context& ctx, const Scene& scene, bool nearEdgeOnly) {
     const glm::dvec3 hit = origin + t * direction;
     return glm::dvec2(hit.x / 4.0, hit.z / 4.0);
   };
-  const auto projected = ref::projectScene(scene, scene.cameras[0], kWidth, kHeight);
+  // Which triangle covers each pixel centre: the exact rasterizer's answer,
+  // which for one plane of 80k triangles is also far cheaper than tracing.
+  const ReferenceCoverage coverage(scene, kWidth, kHeight);
   std::vector<double> lodError(std::size_t(kWidth * kHeight), NAN);
   std::vector<int> triangleAt(std::size_t(kWidth * kHeight), -1);
   LodErrors e;
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
       const float* p = pixelOf(frame, x, y);
-      const std::optional<ref::TracerHit> hit = tracer.nearestHit({x + 0.5, y + 0.5});
-      if (!hit || (p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 0)) continue;
+      const std::size_t i = std::size_t(y * kWidth + x);
+      const int covering = coverage.image.lastTriangle[i];
+      if (covering < 0 || (p[0] == 0 && p[1] == 0 && p[2] == 0 && p[3] == 0)) continue;
       if (nearEdgeOnly) {
-        const ref::ProjectedTriangle& t = projected[0];
+        const ref::ProjectedTriangle& t = coverage.projected[0];
         if (ref::distanceToSegment({x + 0.5, y + 0.5}, t.v[0].window, t.v[2].window) > 2.0)
           continue;
       }
@@ -391,9 +405,8 @@ LodErrors lodErrors(const Context& ctx, const Scene& scene, bool nearEdgeOnly) {
                        uvy = planeUv(origin + glm::dvec2(0, 1));
       const Derivatives exact{uvx.x - uv0.x, uvx.y - uv0.y, uvy.x - uv0.x, uvy.y - uv0.y};
       const Derivatives got{p[0], p[1], p[2], p[3]};
-      const std::size_t i = std::size_t(y * kWidth + x);
       lodError[i] = got.lod() - exact.lod();
-      triangleAt[i] = hit->triangle;
+      triangleAt[i] = coverage.projected[std::size_t(covering)].triangle;
       e.worst = std::max(e.worst, std::fabs(lodError[i]));
       ++e.pixels;
     }
@@ -418,9 +431,9 @@ void lodCases(Context& ctx) {
           Bound::AtMost, 1e-3);
   const LodErrors tiny = lodErrors(ctx, hardCase("subpixel-plane"), false);
   ctx.add("subpixel-plane", "LOD error, helper lanes of sub-pixel triangles (levels)", tiny.worst,
-          Bound::AtMost, 0.05);
+          Bound::AtMost, 1e-3);
   ctx.add("subpixel-plane", "LOD jump between neighbouring triangles (levels)", tiny.worstJump,
-          Bound::AtMost, 0.05);
+          Bound::AtMost, 1e-3);
 }
 
 // Bitwise differences of colour and depth between two frames.
