@@ -2,13 +2,25 @@
 #include "core/parallel.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+
+#include <optional>
 
 namespace quadra {
 
 struct Executor::Arena {
-  explicit Arena(int threads) : arena(threads) {}
+  explicit Arena(int threads) : arena(threads) {
+    // TBB caps its worker pool at the machine's cores (and warns when an arena
+    // asks for more); a caller asking for more threads than cores, e.g. to
+    // show that results do not depend on the split, gets them while this
+    // executor lives. A lower cap the embedder set stays in force.
+    if (threads > tbb::info::default_concurrency())
+      allowThreads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  }
+  std::optional<tbb::global_control> allowThreads;  // outlives the arena
   tbb::task_arena arena;
 };
 
