@@ -29,4 +29,12 @@ constexpr int kGuardBandPixels = 8192;
 constexpr int kTileSize = 64;
 constexpr int kBlockSize = 8;
 
+// A window coordinate (pixels, within the guard band) in 1/256 pixel, rounded
+// half to even without a libm call: adding 1.5 * 2^52 leaves no fraction
+// bits, so the FPU's default rounding does the work (exact for |v| < 2^51).
+inline std::int64_t snapToSubpixel(double window) {
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
+  return std::int64_t((window * kSubpixelScale + kShift) - kShift);
+}
+
 }  // namespace quadra

@@ -43,7 +43,8 @@ struct SetupContext {
 
 template <class T>
 SetupVertex makeSetupVertex(const ScreenVertex& s, const T* attributes, int count) {
-  SetupVertex v{s.x, s.y, s.windowX, s.windowY, s.z, s.invW, {}};
+  SetupVertex v{
+      snapToSubpixel(s.windowX), snapToSubpixel(s.windowY), s.windowX, s.windowY, s.z, s.invW, {}};
   for (int k = 0; k < count; ++k) v.attr[k] = double(attributes[k]) * s.invW;
   return v;
 }

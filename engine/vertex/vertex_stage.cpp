@@ -18,13 +18,6 @@ void guardBand(const Viewport& viewport, double& guardX, double& guardY) {
 
 namespace {
 
-// Round half to even for |v| < 2^51 without a libm call: adding 1.5 * 2^52
-// leaves no fraction bits, so the FPU's default rounding does the work.
-double roundHalfEven(double v) {
-  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
-  return (v + kShift) - kShift;
-}
-
 // floats: the position and every attribute the draw reads. A NaN or Inf in any
 // of them makes every triangle using the vertex invalid (dropped and counted):
 // a non-finite attribute has no meaningful interpolation, and a NaN texture
@@ -57,14 +50,7 @@ ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewp
   };
   const double xw = window(x * invW, viewport.width);
   const double yw = window(-y * invW, viewport.height);
-  ScreenVertex s;
-  s.x = std::int32_t(roundHalfEven(xw * kSubpixelScale));
-  s.y = std::int32_t(roundHalfEven(yw * kSubpixelScale));
-  s.z = z * invW;
-  s.invW = invW;
-  s.windowX = xw;
-  s.windowY = yw;
-  return s;
+  return {xw, yw, z * invW, invW};
 }
 
 namespace {

@@ -32,10 +32,10 @@ enum OutcodeBit : std::uint8_t {
 constexpr std::uint8_t kNeedsClipping = kOutsideNear | kOutsideFar | kOutsideGuard;
 
 // A vertex after the perspective divide, valid when its outcode has none of
-// kNeedsClipping | kNotFinite.
+// kNeedsClipping | kNotFinite. Setup snaps the position for coverage
+// (snapToSubpixel) and solves the attribute planes through it unsnapped.
 struct ScreenVertex {
-  std::int32_t x = 0, y = 0;            // window position snapped to 1/256 pixel
-  double windowX = 0.0, windowY = 0.0;  // unsnapped, in pixels
+  double windowX = 0.0, windowY = 0.0;  // window position in pixels
   double z = 0.0;                       // depth z/w
   double invW = 0.0;                    // 1/w
 };
@@ -54,8 +54,8 @@ struct TransformedVertices {
 // x within kGuardBandPixels of the viewport (see setup/fixed_point.h).
 void guardBand(const Viewport& viewport, double& guardX, double& guardY);
 
-// Window position of a clip-space point (w > 0), snapped to 1/256 pixel with
-// round-half-to-even; the one projection setup and the vertex stage share.
+// Window position of a clip-space point (w > 0); the one projection setup and
+// the vertex stage share.
 ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport);
 
 void transformVertices(const DrawGeometry& geometry, const Viewport& viewport,
