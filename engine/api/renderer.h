@@ -63,7 +63,7 @@ struct FrameStats {
   std::size_t trianglesDrawn = 0;  // set up and binned (after clipping splits)
   std::size_t culledBackFace = 0;
   std::size_t culledOutside = 0;      // entirely outside a clip plane / the viewport
-  std::size_t droppedDegenerate = 0;  // zero area after snapping
+  std::size_t droppedDegenerate = 0;  // zero area after snapping (or clipped onto the eye)
   std::size_t droppedInvalid = 0;     // NaN or Inf in a position or an attribute read
   std::size_t clipped = 0;            // needed clipping against near/far/guard band
 };

@@ -98,10 +98,12 @@ Scene nearPlane() {
   return scene;
 }
 
-// A ground fan around a hub 1.5 ahead of the eye: 12 rim vertices `extent`
-// away in every direction, so half the rim is behind the eye (w < 0) and each
-// rim edge that passes behind crosses the w = 0 plane `extent` to the side;
-// and a wall triangle 6 ahead with one vertex `extent` to the right. At 1e6
+// A ground fan around a hub below and 0.5 behind the eye: 12 rim vertices
+// `extent` away in every direction, so half the rim is behind the eye (w < 0),
+// each rim edge that passes behind crosses the w = 0 plane `extent` to the
+// side, and each edge from the hub to a rim vertex ahead crosses the near
+// plane next to the eye (a crossing from the far end lands anywhere); and a
+// wall triangle 6 ahead with one vertex `extent` to the right. At 1e6
 // (a float position's ulp is 1/16) the ground's TEXCOORD_0 is (x, z) / 4, so
 // texture coordinates near the eye come from vertices 1e6 away. At 1e30
 // (~1e29 pixels beyond the guard band) it is 0.5 + (x, z) / 2e30 instead: a

@@ -43,7 +43,7 @@ ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewp
   const double invW = 1.0 / w;
   // A vertex the clip put on a guard plane may round a hair beyond it; the
   // clamp (to the guard band plus a pixel, far outside any pixel centre)
-  // keeps the fixed-point range proof, and the int32 snap defined, whatever w.
+  // keeps the fixed-point range proof and the integer snap valid for any w.
   const auto window = [](double ndc, int size) {
     const double limit = kGuardBandPixels + 1.0;
     return std::clamp((ndc + 1.0) * 0.5 * size, -limit, size + limit);
