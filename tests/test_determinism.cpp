@@ -114,6 +114,39 @@ TEST(Determinism, RepeatedFramesFromOneRendererAreIdentical) {
   }
 }
 
+// A Renderer keeps its front-end buffers between frames; whatever the frame
+// before left in them (more draws, more triangles, clipped polygons, another
+// size) must not reach the next one: each frame equals a fresh Renderer's,
+// counters included.
+TEST(Determinism, OneRendererAcrossScenesMatchesFreshRenderers) {
+  Renderer renderer(RendererConfig{});
+  const auto expectFresh = [&](const std::string& name, int width, int height) {
+    SCOPED_TRACE(name);
+    const Scene scene = makeBuiltinScene(name);
+    RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    Frame reused;
+    const FrameStats got = renderer.render(scene, firstCameraOrDefault(scene), settings, reused);
+    FrameStats fresh;
+    const Frame expected = renderOnce(scene, firstCameraOrDefault(scene), settings,
+                                      renderer.threadCount(), std::nullopt, &fresh);
+    expectSameFrame(reused, expected);
+    EXPECT_EQ(got.trianglesIn, fresh.trianglesIn);
+    EXPECT_EQ(got.trianglesDrawn, fresh.trianglesDrawn);
+    EXPECT_EQ(got.culledBackFace, fresh.culledBackFace);
+    EXPECT_EQ(got.culledOutside, fresh.culledOutside);
+    EXPECT_EQ(got.droppedDegenerate, fresh.droppedDegenerate);
+    EXPECT_EQ(got.droppedInvalid, fresh.droppedInvalid);
+    EXPECT_EQ(got.clipped, fresh.clipped);
+  };
+  expectFresh("random-triangles", kWidth, kHeight);  // 20000 triangles, 3 chunks
+  expectFresh("near-plane", kWidth / 2, kHeight);    // clipped polygons, fewer of everything
+  expectFresh("showcase", kWidth, kHeight * 2);      // several draws
+  expectFresh("invalid-input", kWidth, kHeight);     // dropped triangles
+  expectFresh("near-plane", kWidth, kHeight);
+}
+
 // Every filter, on scenes with textures, blending and dense geometry, so each
 // kernel specialization meets its scalar twin.
 TEST(Determinism, EveryIsaMatchesScalar) {

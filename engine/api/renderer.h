@@ -80,6 +80,8 @@ class Renderer {
 
   // Renders one frame; throws Error for settings it cannot honour (size out of
   // range). out is resized as needed; its previous contents are irrelevant.
+  // One frame at a time per Renderer (it keeps its working buffers between
+  // frames); concurrent frames need a Renderer each.
   FrameStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                     Frame& out);
 

@@ -24,6 +24,11 @@ struct SetupOutput {
   std::vector<TriangleRecord> triangles;
   std::vector<Plane> planes;
   SetupCounters counters;
+  void clear() {  // keeps the capacity for the next frame
+    triangles.clear();
+    planes.clear();
+    counters = {};
+  }
 };
 
 // Sets up triangles [firstTriangle, lastTriangle) of a draw into out (appending).
