@@ -70,31 +70,12 @@ glm::dvec2 pixelCentre(int x, int y) {
   return {x + 0.5, y + 0.5};
 }
 
-// The exact value: the primary ray through a window point meets the plane of
-// source triangle `triangle` (unbounded); its barycentrics there weight the
-// vertices' uv.
-glm::dvec2 rayPlaneUv(const Scene& scene, const Camera& camera, const ref::ReferenceTracer& tracer,
-                      int triangle, const glm::dvec2& window) {
-  const Mesh& mesh = scene.meshes[0];
-  const glm::dmat4 view = ref::referenceViewMatrix(camera);
-  glm::dvec3 p[3];
-  glm::dvec2 uv[3];
-  for (int k = 0; k < 3; ++k) {
-    const std::uint32_t index = mesh.indices[triangle * 3 + k];
-    p[k] = glm::dvec3(view * glm::dvec4(glm::dvec3(mesh.positions[index]), 1.0));
-    uv[k] = glm::dvec2(mesh.texcoords[0][index]);
-  }
-  const ref::Ray ray = tracer.primaryRay(window);
-  const glm::dvec3 e1 = p[1] - p[0], e2 = p[2] - p[0];
-  const glm::dvec3 normal = glm::cross(e1, e2);
-  const double t = glm::dot(normal, p[0] - ray.origin) / glm::dot(normal, ray.direction);
-  const glm::dvec3 r = ray.origin + t * ray.direction - p[0];
-  // Solve r = b1 e1 + b2 e2 by the normal equations (Cramer's rule).
-  const double d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
-  const double r1 = glm::dot(r, e1), r2 = glm::dot(r, e2);
-  const double det = d11 * d22 - d12 * d12;
-  const double b1 = (r1 * d22 - r2 * d12) / det, b2 = (r2 * d11 - r1 * d12) / det;
-  return (1.0 - b1 - b2) * uv[0] + b1 * uv[1] + b2 * uv[2];
+// The exact value where the primary ray through a window point meets the plane
+// of triangle `triangle` of the scene's one instance (inside it or not).
+glm::dvec2 rayPlaneUv(const ref::ReferenceTracer& tracer, int triangle, const glm::dvec2& window) {
+  ref::TracerHit source;
+  source.triangle = triangle;
+  return tracer.planeTexCoord(source, tracer.primaryRay(window), 0);
 }
 
 // Screen-space barycentrics of a point in a projected triangle.
@@ -152,9 +133,7 @@ TEST(Perspective, SteepPlaneTexCoordIsPerspectiveCorrect) {
   const ref::CoverageImage coverage =
       ref::rasterizeCoverage(ref::gridTriangles(projected), kWidth, kHeight);
   const ref::ReferenceTracer tracer(scene, camera, kWidth, kHeight);
-  const auto exactUv = [&](const glm::dvec2& at) {
-    return rayPlaneUv(scene, camera, tracer, 0, at);
-  };
+  const auto exactUv = [&](const glm::dvec2& at) { return rayPlaneUv(tracer, 0, at); };
 
   constexpr double kBound = 1e-4;
   double worstRay = 0, worstAffine = 0;
@@ -212,9 +191,7 @@ void checkClippedTriangle(const ClipCase& c) {
   const ref::CoverageImage coverage =
       ref::rasterizeCoverage(ref::gridTriangles(projected), kWidth, kHeight);
   const ref::ReferenceTracer tracer(scene, c.camera, kWidth, kHeight);
-  const auto exactUv = [&](const glm::dvec2& at) {
-    return rayPlaneUv(scene, c.camera, tracer, 0, at);
-  };
+  const auto exactUv = [&](const glm::dvec2& at) { return rayPlaneUv(tracer, 0, at); };
   int covered = 0, nearEdge = 0, coverageMismatches = 0;
   double worstUv = 0;
   for (int y = 0; y < kHeight; ++y)

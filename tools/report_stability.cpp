@@ -126,41 +126,6 @@ int coverageMismatches(const Context& ctx, const Scene& scene, const ReferenceCo
   return mismatches;
 }
 
-// One source triangle in view space with its TEXCOORD_0, for the exact uv
-// where a primary ray meets its plane (unbounded).
-struct TrianglePlane {
-  glm::dvec3 p[3];
-  glm::dvec2 uv[3];
-  glm::dvec3 normal;
-
-  TrianglePlane(const Scene& scene, const ref::TracerHit& hit) {
-    const Instance& instance = scene.instances[std::size_t(hit.instance)];
-    const Mesh& mesh = scene.meshes[std::size_t(instance.mesh)];
-    const glm::dmat4 modelView =
-        ref::referenceViewMatrix(scene.cameras[0]) * glm::dmat4(instance.world);
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t index = mesh.indices[std::size_t(hit.triangle) * 3 + std::size_t(k)];
-      p[k] = glm::dvec3(modelView * glm::dvec4(glm::dvec3(mesh.positions[index]), 1.0));
-      uv[k] = glm::dvec2(mesh.texcoords[0][index]);
-    }
-    normal = glm::cross(p[1] - p[0], p[2] - p[0]);
-  }
-
-  glm::dvec2 uvAt(const ref::Ray& ray) const {
-    const double t = glm::dot(normal, p[0] - ray.origin) / glm::dot(normal, ray.direction);
-    const glm::dvec3 hit = ray.origin + t * ray.direction;
-    // Each barycentric from the sub-triangle of the hit and the other two
-    // vertices, relative to the hit: well conditioned when a vertex is 1e30
-    // away (its weight is tiny and exact to rounding), unlike normal equations.
-    glm::dvec2 result(0.0);
-    for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 a = p[(k + 1) % 3] - hit, b = p[(k + 2) % 3] - hit;
-      result += glm::dot(glm::cross(a, b), normal) / glm::dot(normal, normal) * uv[k];
-    }
-    return result;
-  }
-};
-
 double maxAbs(const glm::dvec2& v) {
   return std::max(std::fabs(v.x), std::fabs(v.y));
 }
@@ -192,8 +157,9 @@ TexCoordError texCoordError(const Context& ctx, const Scene& scene) {
       const std::optional<ref::TracerHit> hit = tracer.nearestHit(at);
       if (!hit || pixelOf(frame, x, y)[3] == 0.0f) continue;
       if (ref::distanceToEdges(projected, at) <= 1.0 / 32) continue;
-      const TrianglePlane plane(scene, *hit);
-      const auto uvAt = [&](const glm::dvec2& p) { return plane.uvAt(tracer.primaryRay(p)); };
+      const auto uvAt = [&](const glm::dvec2& p) {
+        return tracer.planeTexCoord(*hit, tracer.primaryRay(p), 0);
+      };
       const glm::dvec2 got(pixelOf(frame, x, y)[0], pixelOf(frame, x, y)[1]);
       const glm::dvec2 exact = uvAt(at);
       const double error = maxAbs(got - exact);

@@ -75,21 +75,16 @@ EdgeFunction makeEdge(const SetupVertex& p, const SetupVertex& q) {
 struct PlaneSolver {
   double x0, y0, x1, y1, x2, y2, invDet;
   explicit PlaneSolver(const SetupVertex* const v[3]) {
-    const auto place = [&](const double(&x)[3], const double(&y)[3]) {
-      x0 = x[0], y0 = y[0], x1 = x[1] - x[0], y1 = y[1] - y[0], x2 = x[2] - x[0], y2 = y[2] - y[0];
-      return x1 * y2 - x2 * y1;
-    };
-    double det = place({v[0]->windowX, v[1]->windowX, v[2]->windowX},
-                       {v[0]->windowY, v[1]->windowY, v[2]->windowY});
+    double x[3], y[3];
+    for (int i = 0; i < 3; ++i) x[i] = v[i]->windowX, y[i] = v[i]->windowY;
+    const double det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
     constexpr double kGridCellArea = 1.0 / (double(kSubpixelScale) * kSubpixelScale);
-    if (!(std::fabs(det) >= kGridCellArea)) {
-      const auto snapped = [&](int i, bool yAxis) {
-        return double(yAxis ? v[i]->y : v[i]->x) / kSubpixelScale;
-      };
-      det = place({snapped(0, false), snapped(1, false), snapped(2, false)},
-                  {snapped(0, true), snapped(1, true), snapped(2, true)});
-    }
-    invDet = 1.0 / det;
+    if (!(std::fabs(det) >= kGridCellArea))
+      for (int i = 0; i < 3; ++i)
+        x[i] = double(v[i]->x) / kSubpixelScale, y[i] = double(v[i]->y) / kSubpixelScale;
+    x0 = x[0], y0 = y[0];
+    x1 = x[1] - x0, y1 = y[1] - y0, x2 = x[2] - x0, y2 = y[2] - y0;
+    invDet = 1.0 / (x1 * y2 - x2 * y1);
   }
   Plane solve(double f0, double f1, double f2, int originX, int originY) const {
     f1 -= f0;

@@ -114,6 +114,29 @@ bool ReferenceTracer::rayMayHit(const PreparedInstance& instance, const Ray& ray
   return tLo <= tHi && tHi >= 0.0;
 }
 
+glm::dvec3 ReferenceTracer::planeWeights(const PreparedInstance& instance, std::size_t triangle,
+                                         const Ray& ray) const {
+  // Each vertex's weight is the signed volume the ray spans with the opposite
+  // edge (both relative to the ray origin): computed from that edge's two
+  // vertices alone, so a vertex 1e30 away spoils no other weight
+  // (Moller-Trumbore's 1 - b1 - b2 would lose a weight of 1e-30 entirely),
+  // and the two triangles of a shared edge get exactly opposite values.
+  const std::uint32_t* corner = &instance.mesh->indices[triangle * 3];
+  const glm::dvec3 a = instance.viewPositions[corner[0]] - ray.origin,
+                   b = instance.viewPositions[corner[1]] - ray.origin,
+                   c = instance.viewPositions[corner[2]] - ray.origin;
+  return {glm::dot(ray.direction, glm::cross(b, c)), glm::dot(ray.direction, glm::cross(c, a)),
+          glm::dot(ray.direction, glm::cross(a, b))};
+}
+
+glm::dvec2 ReferenceTracer::planeTexCoord(const TracerHit& hit, const Ray& ray, int set) const {
+  const glm::dvec3 w =
+      planeWeights(instances_[std::size_t(hit.instance)], std::size_t(hit.triangle), ray);
+  TracerHit onPlane = hit;
+  onPlane.bary = w / (w.x + w.y + w.z);
+  return texCoord(onPlane, set);
+}
+
 void ReferenceTracer::allHits(const Ray& ray, std::vector<TracerHit>& out) const {
   out.clear();
   const double znear = camera_.znear;
@@ -125,20 +148,9 @@ void ReferenceTracer::allHits(const Ray& ray, std::vector<TracerHit>& out) const
     if (!rayMayHit(instance, ray)) continue;
     const std::vector<std::uint32_t>& indices = instance.mesh->indices;
     for (std::size_t tri = 0; tri * 3 < indices.size(); ++tri) {
-      const glm::dvec3& v0 = instance.viewPositions[indices[tri * 3]];
-      const glm::dvec3& v1 = instance.viewPositions[indices[tri * 3 + 1]];
-      const glm::dvec3& v2 = instance.viewPositions[indices[tri * 3 + 2]];
-      // Each vertex's weight is the signed volume the ray spans with the
-      // opposite edge (both relative to the ray origin): computed from that
-      // edge's two vertices alone, so a vertex 1e30 away spoils no other
-      // weight (Moller-Trumbore's 1 - b1 - b2 would lose a weight of 1e-30
-      // entirely), and the two triangles of a shared edge get exactly
-      // opposite values. Edges are inclusive: a ray through a shared edge
-      // hits both neighbours, never neither.
-      const glm::dvec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
-      const glm::dvec3 w(glm::dot(ray.direction, glm::cross(b, c)),
-                         glm::dot(ray.direction, glm::cross(c, a)),
-                         glm::dot(ray.direction, glm::cross(a, b)));
+      const glm::dvec3 w = planeWeights(instance, tri, ray);
+      // Edges are inclusive: a ray through a shared edge hits both
+      // neighbours, never neither.
       const bool inside =
           (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0) || (w.x <= 0.0 && w.y <= 0.0 && w.z <= 0.0);
       const double sum = w.x + w.y + w.z;   // dot(direction, e1 x e2)
@@ -148,7 +160,9 @@ void ReferenceTracer::allHits(const Ray& ray, std::vector<TracerHit>& out) const
       const bool front = (sum < 0.0) != instance.mirrored;
       if (instance.cullBack && !front) continue;
       const glm::dvec3 bary = w / sum;
-      const double distance = -(bary.x * v0.z + bary.y * v1.z + bary.z * v2.z);
+      double distance = 0.0;
+      for (int k = 0; k < 3; ++k)
+        distance -= bary[k] * instance.viewPositions[indices[tri * 3 + k]].z;
       if (distance < znear || distance > zfar) continue;
       out.push_back({int(index), int(tri), distance, bary});
     }

@@ -57,6 +57,10 @@ class ReferenceTracer {
 
   // TEXCOORD_n interpolated at the hit; (0, 0) when the mesh has no such set.
   glm::dvec2 texCoord(const TracerHit& hit, int set) const;
+  // TEXCOORD_n where `ray` meets the plane of the hit's triangle, inside the
+  // triangle or not: the exact value at a neighbouring point, e.g. for finite
+  // differences across a pixel or a pixel centre beside the triangle.
+  glm::dvec2 planeTexCoord(const TracerHit& hit, const Ray& ray, int set) const;
   // baseColorFactor x texture x COLOR_0 at the hit, straight (not premultiplied).
   glm::dvec4 surfaceColour(const TracerHit& hit) const;
 
@@ -79,6 +83,11 @@ class ReferenceTracer {
   };
 
   bool rayMayHit(const PreparedInstance& instance, const Ray& ray) const;
+  // Barycentric weights, unnormalized, of where the ray meets the triangle's
+  // plane: all of one sign inside the triangle; their sum is
+  // dot(direction, e1 x e2).
+  glm::dvec3 planeWeights(const PreparedInstance& instance, std::size_t triangle,
+                          const Ray& ray) const;
 
   const Scene& scene_;
   Camera camera_;
