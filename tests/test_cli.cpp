@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 
 namespace quadra {
 namespace {

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "api/renderer.h"
+#include "io/image_io.h"
 #include "render_helpers.h"
-#include "resolve/image_io.h"
 #include "scene/builtin_scenes.h"
 
 namespace quadra {

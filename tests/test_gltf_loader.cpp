@@ -19,7 +19,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 #include "scene/gltf_loader.h"
 #include "texture/mip_chain.h"
 #include "texture/texel_format.h"

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 #include "texture/image.h"
 #include "texture/texel_format.h"
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/parallel.h"
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 #include "sampler_helpers.h"
 #include "texture/footprints.h"
 #include "texture/ground_truth.h"

@@ -16,7 +16,7 @@
 #include "api/renderer.h"
 #include "cli_args.h"
 #include "core/error.h"
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 

@@ -19,7 +19,7 @@
 #include "cli_args.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 #include "texture/footprints.h"
 #include "texture/ground_truth.h"
 #include "texture/test_textures.h"

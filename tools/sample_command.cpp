@@ -16,7 +16,7 @@
 #include "cli_args.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {

@@ -10,15 +10,13 @@
 #include "bin/bins.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "setup/fixed_point.h"
 #include "setup/triangle_setup.h"
 #include "texture/texture_sampler.h"
 #include "tile/tile_stage.h"
 #include "vertex/vertex_stage.h"
+#include "window/window_space.h"
 
 namespace quadra {
-
-static_assert(kMaxViewportSize == kMaxViewport, "one limit, stated in two headers");
 
 struct Renderer::Impl {
   Executor executor;
@@ -92,14 +90,14 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     s.alphaMode = AlphaMode::Opaque;
     s.blend = BlendMode::Replace;
     s.depthWrite = true;
-    s.outputTexCoord = settings.debugView == DebugView::TexCoord;
-    s.outputDerivatives = settings.debugView == DebugView::Derivatives;
+    s.output = settings.debugView == DebugView::TexCoord ? ShadeOutput::TexCoord
+                                                         : ShadeOutput::Derivatives;
     g.texcoordSet = 0;
   }
 
   // Interpolate only what the shading reads.
   AttributeLayout& a = g.attributes;
-  if (s.textured || s.outputTexCoord || s.outputDerivatives) a.texcoord = a.count, a.count += 2;
+  if (s.textured || s.output != ShadeOutput::Color) a.texcoord = a.count, a.count += 2;
   if (s.vertexColor) a.color = a.count, a.count += 4;
   if (s.lit) a.normal = a.count, a.count += 3;
   s.attributes = a;

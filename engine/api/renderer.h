@@ -15,10 +15,11 @@
 #include <glm/glm.hpp>
 
 #include "api/camera.h"
-#include "resolve/frame.h"
+#include "io/frame.h"
 #include "scene/scene.h"
 #include "simd/isa.h"
 #include "texture/sampler_state.h"
+#include "window/window_space.h"
 
 namespace quadra {
 
@@ -91,8 +92,8 @@ class Renderer {
 };
 
 // The largest width or height render accepts: window coordinates then stay
-// inside the 16.8 fixed-point guard band (see engine/setup/fixed_point.h).
-constexpr int kMaxViewportSize = 8192;
+// inside the 16.8 fixed-point guard band.
+constexpr int kMaxViewportSize = kMaxViewport;
 
 // A camera framing the whole scene from the front (+Z side, slightly above),
 // for scenes that have none.

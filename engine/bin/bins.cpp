@@ -2,7 +2,7 @@
 // bins are two flat arrays rather than a vector per tile.
 #include "bin/bins.h"
 
-#include "setup/fixed_point.h"
+#include "window/window_space.h"
 
 namespace quadra {
 

@@ -8,63 +8,15 @@
 
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "texture/image.h"
-#include "texture/sampler_state.h"
 #include "texture/texel_format.h"
+#include "texture/texture.h"
 
 namespace quadra {
-
-class Executor;
-class MipChain;
-struct PaddedLevel;
-class SummedAreaTable;
-struct Ripmap;
-
-// A texture as the scene holds it: its level-0 image in linear float and its
-// sampler. The mip chain is built on first use, once, and only for textures
-// that a mip filter reads ("model only what a scene needs").
-class Texture {
- public:
-  // storage: the format the sampling kernels read (texture/texel_format.h).
-  Texture(std::shared_ptr<const Image> image, SamplerState sampler,
-          TexelFormat storage = TexelFormat::Rgba32F);
-  ~Texture();
-
-  const Image& image() const { return *image_; }
-  const std::shared_ptr<const Image>& sharedImage() const { return image_; }
-  const SamplerState& sampler() const { return sampler_; }
-  TexelFormat storage() const { return storage_; }
-  // Thread-safe; the first call builds the chain, in parallel on `executor`
-  // when one is given.
-  const MipChain& mips(const Executor* executor = nullptr) const;
-  // The levels as the sampling kernels read them (texture/padded_level.h),
-  // each built once on first use: level 0, and levels 1.. of the chain.
-  const PaddedLevel& sampledLevel0() const;
-  const std::vector<PaddedLevel>& sampledMipLevels(const Executor* executor = nullptr) const;
-  // The summed-area table of the sampled level 0 (texture/summed_area.h),
-  // built on first use: 32 bytes per texel, only for the `sat` filter.
-  const SummedAreaTable& summedAreaTable(const Executor* executor = nullptr) const;
-  // The ripmap (texture/ripmap.h), built on first use: about 4x level 0,
-  // only for the `ripmap` filter.
-  const Ripmap& ripmap(const Executor* executor = nullptr) const;
-
- private:
-  std::shared_ptr<const Image> image_;
-  SamplerState sampler_;
-  TexelFormat storage_;
-  mutable std::once_flag mipsOnce_, level0Once_, mipLevelsOnce_, summedAreaOnce_, ripmapOnce_;
-  mutable std::unique_ptr<MipChain> mips_;
-  mutable std::unique_ptr<PaddedLevel> level0_;
-  mutable std::vector<PaddedLevel> mipLevels_;
-  mutable std::unique_ptr<SummedAreaTable> summedArea_;
-  mutable std::unique_ptr<Ripmap> ripmap_;
-};
 
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
 

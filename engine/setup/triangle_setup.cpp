@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "clip/clip.h"
-#include "setup/fixed_point.h"
+#include "window/window_space.h"
 
 namespace quadra {
 

@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <optional>
 
-#include "scene/scene.h"
 #include "simd/isa.h"
+#include "texture/texture.h"
 #include "texture/texture_view.h"
 
 namespace quadra {

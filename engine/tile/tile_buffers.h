@@ -4,7 +4,7 @@
 // contiguous, aligned run of floats.
 #pragma once
 
-#include "setup/fixed_point.h"
+#include "window/window_space.h"
 
 namespace quadra {
 

@@ -88,7 +88,7 @@ struct BlockEdges {
 
 // Coverage of the 8x8 block whose top-left pixel is (px, py) in the window:
 // bit (row*8 + column), limited to validMask, whose rows lie in
-// [rowBegin, rowEnd). Exact: integer edge functions (setup/fixed_point.h).
+// [rowBegin, rowEnd). Exact: integer edge functions (window/window_space.h).
 std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, int px, int py,
                             std::uint64_t validMask, int rowBegin, int rowEnd) {
   std::int64_t corner[3];
@@ -131,7 +131,8 @@ struct Attributes {
   F nx, ny, nz;
 };
 
-template <bool kTextured, bool kVertexColor, bool kLit, AlphaMode kAlpha>
+template <bool kTextured, bool kVertexColor, bool kLit, AlphaMode kAlpha,
+          ShadeOutput kOutput = ShadeOutput::Color>
 struct Shader {
   const ShadeState& shade;
   TilePlane z, invW;
@@ -160,17 +161,17 @@ struct Shader {
     const AttributeLayout& layout = shade.attributes;
     F r = F(shade.baseColor.r), g = F(shade.baseColor.g), b = F(shade.baseColor.b),
       a = F(shade.baseColor.a);
-    if (kTextured || shade.outputTexCoord || shade.outputDerivatives) {
+    if (kTextured || kOutput != ShadeOutput::Color) {
       const F u = attribute(layout.texcoord, x, y, w);
       const F v = attribute(layout.texcoord + 1, x, y, w);
-      if (shade.outputTexCoord) {
+      if constexpr (kOutput == ShadeOutput::TexCoord) {
         r = u, g = v, b = F(0.0f), a = F(1.0f);
       } else {
         // Coarse derivatives: one footprint per quad, from its top-left pixel.
         const F u0 = simd::quadBroadcast<0>(u), v0 = simd::quadBroadcast<0>(v);
         const UvDerivatives<L> d{simd::quadBroadcast<1>(u) - u0, simd::quadBroadcast<1>(v) - v0,
                                  simd::quadBroadcast<2>(u) - u0, simd::quadBroadcast<2>(v) - v0};
-        if (shade.outputDerivatives) {
+        if constexpr (kOutput == ShadeOutput::Derivatives) {
           r = d.dudx, g = d.dvdx, b = d.dudy, a = d.dvdy;
         } else {
           const Rgba<L> texel = sampleTexture<L>(shade.texture, u, v, d);
@@ -194,7 +195,7 @@ struct Shader {
       r = r * light, g = g * light, b = b * light;
     }
     if (kAlpha == AlphaMode::Mask) cover = cover & (a >= F(shade.alphaCutoff));
-    if (kAlpha != AlphaMode::Blend && !shade.outputDerivatives) a = F(1.0f);  // A = dv/dy there
+    if (kAlpha != AlphaMode::Blend && kOutput != ShadeOutput::Derivatives) a = F(1.0f);
     if (!simd::any(cover)) return;
     write(cover, zValue, zOld, r, g, b, a, depth, color);
   }
@@ -285,7 +286,15 @@ void dispatchLit(const TriangleRecord& t, const Plane* p, const ShadeState& s, T
 
 // Specialize on the state the draw actually has (template parameters), so
 // the inner loop carries no per-pixel branches for features it does not use.
+// Test views are opaque, untextured and unlit (api/renderer.cpp makeDraw).
 void rasterize(const TriangleRecord& t, const Plane* p, const ShadeState& s, TileBuffers& tile) {
+  constexpr AlphaMode kOpaque = AlphaMode::Opaque;
+  if (s.output == ShadeOutput::TexCoord)
+    return rasterizeWith<Shader<false, false, false, kOpaque, ShadeOutput::TexCoord>>(t, p, s,
+                                                                                      tile);
+  if (s.output == ShadeOutput::Derivatives)
+    return rasterizeWith<Shader<false, false, false, kOpaque, ShadeOutput::Derivatives>>(t, p, s,
+                                                                                         tile);
   if (s.textured) {
     if (s.vertexColor) return dispatchLit<true, true>(t, p, s, tile);
     return dispatchLit<true, false>(t, p, s, tile);

@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "core/parallel.h"
-#include "resolve/resolve.h"
+#include "tile/tile_resolve.h"
 
 namespace quadra {
 

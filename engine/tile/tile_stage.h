@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "bin/bins.h"
-#include "resolve/frame.h"
+#include "io/frame.h"
 #include "setup/triangle_setup.h"
 #include "tile/tile_kernel.h"
 #include "vertex/draw.h"

@@ -35,6 +35,10 @@ struct DrawGeometry {
 
 enum class BlendMode : std::uint8_t { Replace, Over, Add };
 
+// Colour, or the perspective-correct texture coordinates (R, G) or their
+// derivatives as the sampler gets them (R, G, B, A = du/dx, dv/dx, du/dy, dv/dy).
+enum class ShadeOutput : std::uint8_t { Color, TexCoord, Derivatives };
+
 // Everything the tile stage needs to shade a draw's pixels.
 struct ShadeState {
   glm::vec4 baseColor{1.0f};
@@ -48,8 +52,9 @@ struct ShadeState {
   bool depthGreater = false;  // reversed depth (api/camera.h DepthMode): GREATER, not LESS
   bool depthWrite = true;
   BlendMode blend = BlendMode::Replace;
-  bool outputTexCoord = false;     // DebugView::TexCoord
-  bool outputDerivatives = false;  // DebugView::Derivatives
+  // What the pixels receive; anything but Color is a test view (DebugView),
+  // which the tile kernels compile as separate specializations.
+  ShadeOutput output = ShadeOutput::Color;
   AttributeLayout attributes;
 };
 

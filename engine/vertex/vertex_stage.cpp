@@ -7,14 +7,8 @@
 #include <cmath>
 
 #include "core/parallel.h"
-#include "setup/fixed_point.h"
 
 namespace quadra {
-
-void guardBand(const Viewport& viewport, double& guardX, double& guardY) {
-  guardX = 1.0 + 2.0 * kGuardBandPixels / viewport.width;
-  guardY = 1.0 + 2.0 * kGuardBandPixels / viewport.height;
-}
 
 namespace {
 
@@ -36,24 +30,6 @@ std::uint8_t outcodeOf(const float* v, int floats, double guardX, double guardY)
   if (y > w) code |= kOutsideTop;
   return code;
 }
-
-}  // namespace
-
-ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport) {
-  const double invW = 1.0 / w;
-  // A vertex the clip put on a guard plane may round a hair beyond it; the
-  // clamp (to the guard band plus a pixel, far outside any pixel centre)
-  // keeps the fixed-point range proof and the integer snap valid for any w.
-  const auto window = [](double ndc, int size) {
-    const double limit = kGuardBandPixels + 1.0;
-    return std::clamp((ndc + 1.0) * 0.5 * size, -limit, size + limit);
-  };
-  const double xw = window(x * invW, viewport.width);
-  const double yw = window(-y * invW, viewport.height);
-  return {xw, yw, z * invW, invW};
-}
-
-namespace {
 
 void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t begin,
                     std::size_t end, TransformedVertices& out) {

@@ -8,15 +8,11 @@
 #include <vector>
 
 #include "vertex/draw.h"
+#include "window/window_space.h"
 
 namespace quadra {
 
 class Executor;
-
-struct Viewport {
-  int width = 0;
-  int height = 0;
-};
 
 // Outcode bits: planes a vertex is outside of.
 enum OutcodeBit : std::uint8_t {
@@ -31,32 +27,15 @@ enum OutcodeBit : std::uint8_t {
 };
 constexpr std::uint8_t kNeedsClipping = kOutsideNear | kOutsideFar | kOutsideGuard;
 
-// A vertex after the perspective divide, valid when its outcode has none of
-// kNeedsClipping | kNotFinite. Setup snaps the position for coverage
-// (snapToSubpixel) and solves the attribute planes through it unsnapped.
-struct ScreenVertex {
-  double windowX = 0.0, windowY = 0.0;  // window position in pixels
-  double z = 0.0;                       // depth z/w
-  double invW = 0.0;                    // 1/w
-};
-
 // Vertex i occupies data[i*stride .. i*stride+stride): x, y, z, w (clip space),
 // then the attributes at the offsets of geometry.attributes (plus 4).
 struct TransformedVertices {
   std::vector<float> data;
-  std::vector<ScreenVertex> screen;
+  std::vector<ScreenVertex> screen;  // valid where outcode has none of kNeedsClipping | kNotFinite
   std::vector<std::uint8_t> outcode;
   int stride = 4;
   const float* vertex(std::uint32_t i) const { return &data[std::size_t(i) * std::size_t(stride)]; }
 };
-
-// The guard band as a multiple of w per axis: |x| <= guardX * w keeps window
-// x within kGuardBandPixels of the viewport (see setup/fixed_point.h).
-void guardBand(const Viewport& viewport, double& guardX, double& guardY);
-
-// Window position of a clip-space point (w > 0); the one projection setup and
-// the vertex stage share.
-ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport);
 
 void transformVertices(const DrawGeometry& geometry, const Viewport& viewport,
                        const Executor& executor, TransformedVertices& out);

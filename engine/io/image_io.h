@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "resolve/frame.h"
+#include "io/frame.h"
 #include "texture/image.h"
 
 namespace quadra {

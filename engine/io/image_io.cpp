@@ -2,7 +2,7 @@
 // rename on success, so a failed write never leaves a partial file under the
 // requested name. libpng's errors are confined to setjmp-guarded functions
 // that hold no C++ objects, and OpenEXR's exceptions become quadra::Error.
-#include "resolve/image_io.h"
+#include "io/image_io.h"
 
 #include <png.h>
 #include <unistd.h>

@@ -1,5 +1,9 @@
-// Window-space fixed point and the guard band, with the range proof that keeps
-// every edge function exact in 64-bit integers.
+// Window space, written down once for every stage that uses it: the viewport,
+// the projection of a clip-space point to the window (y down, pixel centres at
+// +0.5), the 16.8 fixed point and the guard band with the range proof that
+// keeps every edge function exact in 64-bit integers, and the tile and block
+// sizes that divide the window into work. The vertex stage and setup project
+// through it, the bin and tile stages cut the window with it.
 //
 // Window coordinates are snapped to 1/256 pixel (8 sub-pixel bits, as D3D11).
 // The clip stage keeps every vertex within kGuardBandPixels outside the
@@ -36,5 +40,26 @@ inline std::int64_t snapToSubpixel(double window) {
   constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
   return std::int64_t((window * kSubpixelScale + kShift) - kShift);
 }
+
+struct Viewport {
+  int width = 0;
+  int height = 0;
+};
+
+// A vertex after the perspective divide. Setup snaps the position for coverage
+// (snapToSubpixel) and solves the attribute planes through it unsnapped.
+struct ScreenVertex {
+  double windowX = 0.0, windowY = 0.0;  // window position in pixels
+  double z = 0.0;                       // depth z/w
+  double invW = 0.0;                    // 1/w
+};
+
+// The guard band as a multiple of w per axis: |x| <= guardX * w keeps window
+// x within kGuardBandPixels of the viewport.
+void guardBand(const Viewport& viewport, double& guardX, double& guardY);
+
+// Window position of a clip-space point (w > 0); the one projection the vertex
+// stage and setup (for clipped vertices) share.
+ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport);
 
 }  // namespace quadra

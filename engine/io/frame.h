@@ -1,5 +1,6 @@
-// Frame: the resolved output of a render, what resolve hands to the writers:
-// premultiplied linear RGBA float and window-space depth in [0,1].
+// Frame: a rendered image in memory, what the tile stage resolves its tiles
+// into and the writers (io/image_io.h) read: premultiplied linear RGBA float
+// and window-space depth in [0,1].
 #pragma once
 
 #include <vector>

@@ -2,7 +2,7 @@
 // tile in its storage order (quad by quad), transposes each quad's planar
 // channels into RGBA pixels and streams them to two frame rows. (A plain
 // per-pixel, per-channel copy was the single largest cost of a textured frame.)
-#include "resolve/resolve.h"
+#include "tile/tile_resolve.h"
 
 #include <cstddef>
 #include <cstdint>
