@@ -8,7 +8,7 @@
 #include <string>
 
 #include "api/renderer.h"
-#include "scene/builtin_scenes.h"
+#include "lab/scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 
 namespace quadra {

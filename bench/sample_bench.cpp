@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "core/parallel.h"
-#include "texture/footprints.h"
-#include "texture/test_textures.h"
+#include "lab/texture/footprints.h"
+#include "lab/texture/test_textures.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {

@@ -1,12 +1,36 @@
-# `cmake --install` puts the library, headers and a package config in place so
-# an embedder writes find_package(quadra) and links quadra::quadra.
+# `cmake --install` puts the library, the headers an embedder includes and a
+# package config in place, so an embedder writes find_package(quadra) and links
+# quadra::quadra. The lab (references, ground truth, test scenes), the kernels
+# and the stages' internals are not installed.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
-install(TARGETS quadra_engine quadra_warnings EXPORT quadraTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+
+# The API and the records it takes and returns, with everything they include
+# (the InstallAndFindPackage test compiles each installed header on its own,
+# so one missing here fails there).
+set(QUADRA_PUBLIC_HEADERS
+    api/renderer.h api/camera.h
+    scene/scene.h scene/gltf_loader.h
+    io/frame.h io/image_io.h
+    texture/texture.h texture/image.h texture/sampler_state.h texture/texel_format.h
+    texture/texture_sampler.h texture/texture_view.h
+    window/window_space.h
+    core/error.h
+    simd/isa.h)
+foreach(header ${QUADRA_PUBLIC_HEADERS})
+  get_filename_component(folder ${header} DIRECTORY)
+  if(EXISTS ${PROJECT_SOURCE_DIR}/engine/${header})
+    install(FILES ${PROJECT_SOURCE_DIR}/engine/${header}
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/quadra/${folder})
+  else()
+    install(FILES ${PROJECT_SOURCE_DIR}/${header}
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/quadra/${folder})
+  endif()
+endforeach()
+
+install(TARGETS quadra_engine EXPORT quadraTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# The command-line tool, for offline users of the installed package.
 install(TARGETS quadra RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/engine/ ${PROJECT_SOURCE_DIR}/simd
-        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/quadra FILES_MATCHING PATTERN "*.h")
 install(EXPORT quadraTargets NAMESPACE quadra:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/quadra)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/quadraConfig.cmake.in
   ${CMAKE_BINARY_DIR}/quadraConfig.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/quadra)

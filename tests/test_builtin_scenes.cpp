@@ -14,8 +14,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
-#include "scene/builtin_scenes.h"
-#include "scene/hard_case_scenes.h"
+#include "lab/scene/builtin_scenes.h"
+#include "lab/scene/hard_case_scenes.h"
+#include "lab/texture/test_textures.h"
 #include "texture/mip_chain.h"
 
 namespace quadra {
@@ -148,8 +149,9 @@ TEST(BuiltinScenes, EveryHardCaseHasItsNameAndCamera) {
   }
 }
 
-TEST(BuiltinScenes, CheckerImagePattern) {
-  const Image image = makeCheckerImage(3, 5);
+// The one checker generator, as builtin:checker-plane and the texture report use it.
+TEST(BuiltinScenes, CheckerTexturePattern) {
+  const Image image = makeCheckerTexture(15, 15, 5);
   ASSERT_EQ(image.width, 15);
   ASSERT_EQ(image.height, 15);
   for (int y = 0; y < 15; ++y) {
@@ -159,7 +161,7 @@ TEST(BuiltinScenes, CheckerImagePattern) {
       ASSERT_EQ(image.texel(x, y)[3], 1.0f);
     }
   }
-  const Image big = makeCheckerImage(8, 64);
+  const Image big = makeCheckerTexture(512, 512, 64);
   EXPECT_EQ(big.width, 512);
   EXPECT_EQ(big.height, 512);
 }
@@ -192,7 +194,7 @@ TEST(BuiltinScenes, CheckerPlane) {
   EXPECT_EQ(material.baseColorFactor, glm::vec4(1.0f));
   const Texture& texture = *scene.textures.at(std::size_t(material.baseColorTexture));
   EXPECT_EQ(texture.image().width, 512);
-  EXPECT_EQ(texture.image().rgba, makeCheckerImage(8, 64).rgba);
+  EXPECT_EQ(texture.image().rgba, makeCheckerTexture(512, 512, 64).rgba);
   EXPECT_EQ(texture.sampler().wrapU, WrapMode::Repeat);
   EXPECT_EQ(texture.sampler().wrapV, WrapMode::Repeat);
   EXPECT_TRUE(texture.sampler().magLinear);

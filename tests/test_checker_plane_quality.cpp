@@ -9,9 +9,9 @@
 #include <cstdio>
 
 #include "api/renderer.h"
-#include "reference/reference_tracer.h"
+#include "lab/reference/reference_tracer.h"
+#include "lab/scene/builtin_scenes.h"
 #include "render_helpers.h"
-#include "scene/builtin_scenes.h"
 
 namespace quadra {
 namespace {

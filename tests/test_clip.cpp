@@ -13,7 +13,7 @@
 #include "api/camera.h"
 #include "api/renderer.h"
 #include "clip/clip.h"
-#include "reference/reference_raster.h"
+#include "lab/reference/reference_raster.h"
 #include "render_helpers.h"
 #include "vertex/vertex_stage.h"
 

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <vector>
 
+#include "lab/scene/builtin_scenes.h"
+#include "lab/scene/hard_case_scenes.h"
 #include "render_helpers.h"
-#include "scene/builtin_scenes.h"
-#include "scene/hard_case_scenes.h"
 
 namespace quadra {
 namespace {

@@ -15,8 +15,8 @@
 
 #include "api/renderer.h"
 #include "io/image_io.h"
+#include "lab/scene/builtin_scenes.h"
 #include "render_helpers.h"
-#include "scene/builtin_scenes.h"
 
 namespace quadra {
 namespace {

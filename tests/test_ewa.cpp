@@ -12,9 +12,9 @@
 #include <random>
 #include <vector>
 
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
 #include "sampler_helpers.h"
-#include "texture/ground_truth.h"
-#include "texture/test_textures.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {

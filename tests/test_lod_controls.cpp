@@ -9,10 +9,10 @@
 #include <random>
 #include <vector>
 
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
 #include "render_helpers.h"
-#include "texture/ground_truth.h"
 #include "texture/mip_chain.h"
-#include "texture/test_textures.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {

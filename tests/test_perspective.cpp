@@ -11,8 +11,8 @@
 #include <memory>
 
 #include "api/renderer.h"
-#include "reference/reference_raster.h"
-#include "reference/reference_tracer.h"
+#include "lab/reference/reference_raster.h"
+#include "lab/reference/reference_tracer.h"
 #include "render_helpers.h"
 
 namespace quadra {

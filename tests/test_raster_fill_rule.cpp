@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "api/renderer.h"
-#include "reference/reference_raster.h"
+#include "lab/reference/reference_raster.h"
 #include "render_helpers.h"
 
 namespace quadra {

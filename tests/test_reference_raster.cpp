@@ -1,12 +1,12 @@
 // Self-tests of the exact reference rasterizer and the double-precision scene
-// projection (tools/reference/reference_raster.h): analytic cases and an
+// projection (lab/reference/reference_raster.h): analytic cases and an
 // independent symbolic-perturbation formulation of the fill rule.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "reference/reference_raster.h"
+#include "lab/reference/reference_raster.h"
 
 namespace quadra::ref {
 

@@ -1,5 +1,5 @@
 // Self-tests of the double-precision reference ray caster
-// (tools/reference/reference_tracer.h) against closed-form answers:
+// (lab/reference/reference_tracer.h) against closed-form answers:
 // box-filtered bilinear textures via hat-function integrals, exact
 // pixel/half-plane areas, alpha compositing by hand.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <optional>
 #include <random>
 
-#include "reference/reference_tracer.h"
+#include "lab/reference/reference_tracer.h"
 
 namespace quadra::ref {
 

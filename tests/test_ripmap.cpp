@@ -7,10 +7,10 @@
 #include <memory>
 
 #include "core/parallel.h"
+#include "lab/texture/test_textures.h"
 #include "sampler_helpers.h"
 #include "texture/mip_chain.h"
 #include "texture/ripmap.h"
-#include "texture/test_textures.h"
 
 namespace quadra {
 namespace {

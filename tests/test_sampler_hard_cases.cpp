@@ -12,10 +12,10 @@
 #include <memory>
 #include <vector>
 
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
 #include "render_helpers.h"
 #include "sampler_helpers.h"
-#include "texture/ground_truth.h"
-#include "texture/test_textures.h"
 
 namespace quadra {
 namespace {

@@ -10,11 +10,11 @@
 #include <memory>
 #include <vector>
 
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
 #include "sampler_helpers.h"
-#include "texture/ground_truth.h"
 #include "texture/image.h"
 #include "texture/padded_level.h"
-#include "texture/test_textures.h"
 
 namespace quadra {
 namespace {

@@ -19,11 +19,11 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
 #include "render_helpers.h"
 #include "sampler_helpers.h"
-#include "texture/ground_truth.h"
 #include "texture/summed_area.h"
-#include "texture/test_textures.h"
 
 namespace quadra {
 namespace {

@@ -19,11 +19,11 @@
 
 #include "core/parallel.h"
 #include "io/image_io.h"
+#include "lab/texture/footprints.h"
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
+#include "lab/texture/texture_error.h"
 #include "sampler_helpers.h"
-#include "texture/footprints.h"
-#include "texture/ground_truth.h"
-#include "texture/test_textures.h"
-#include "texture/texture_error.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "lab/texture/texture_error.h"
 #include "texture/image.h"
-#include "texture/texture_error.h"
 
 namespace quadra {
 

@@ -17,7 +17,7 @@
 #include "cli_args.h"
 #include "core/error.h"
 #include "io/image_io.h"
-#include "scene/builtin_scenes.h"
+#include "lab/scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 
 namespace quadra {

@@ -20,10 +20,10 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "io/image_io.h"
-#include "texture/footprints.h"
-#include "texture/ground_truth.h"
-#include "texture/test_textures.h"
-#include "texture/texture_error.h"
+#include "lab/texture/footprints.h"
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
+#include "lab/texture/texture_error.h"
 #include "texture/texture_sampler.h"
 
 #if defined(QUADRA_HAVE_OIIO)

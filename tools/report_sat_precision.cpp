@@ -16,9 +16,9 @@
 #include "cli_args.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "lab/texture/test_textures.h"
 #include "texture/padded_level.h"
 #include "texture/summed_area.h"
-#include "texture/test_textures.h"
 
 namespace quadra {
 namespace {

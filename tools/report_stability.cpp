@@ -1,7 +1,7 @@
 // `quadra report stability`: every hard case of numerical stability (the
 // builtin: scenes of scene/hard_case_scenes.h, plus sweeps), rendered by the
 // engine and checked against the double-precision references of
-// tools/reference: the exact integer rasterizer for coverage, ray-plane hits
+// lab/reference: the exact integer rasterizer for coverage, ray-plane hits
 // for texture coordinates and their derivatives, counts for what must be
 // dropped, and bit comparisons for determinism. Prints one table row per
 // check (case, check, figure, bound, pass/fail); exits 1 if any check fails.
@@ -17,10 +17,10 @@
 #include "api/renderer.h"
 #include "cli_args.h"
 #include "core/error.h"
-#include "reference/reference_raster.h"
-#include "reference/reference_tracer.h"
-#include "scene/builtin_scenes.h"
-#include "scene/hard_case_scenes.h"
+#include "lab/reference/reference_raster.h"
+#include "lab/reference/reference_tracer.h"
+#include "lab/scene/builtin_scenes.h"
+#include "lab/scene/hard_case_scenes.h"
 
 namespace quadra {
 namespace {

@@ -1,5 +1,5 @@
 // Generated test textures for the texture error report and tests.
-#include "texture/test_textures.h"
+#include "lab/texture/test_textures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,7 +34,7 @@ Image makeCheckerTexture(int width, int height, int cellTexels) {
   Image image(width, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const float value = float(((x / cellTexels) + (y / cellTexels)) % 2);
+      const float value = float(((x / cellTexels) + (y / cellTexels) + 1) % 2);
       float* t = image.texel(x, y);
       t[0] = t[1] = t[2] = value;
       t[3] = 1.0f;

@@ -2,7 +2,7 @@
 // untextured-looking 2x2 texture: what matters is TEXCOORD_0, which every
 // mesh sets to an affine function of position so its exact value anywhere on
 // a triangle's plane is known.
-#include "scene/hard_case_scenes.h"
+#include "lab/scene/hard_case_scenes.h"
 
 #include <array>
 #include <cmath>

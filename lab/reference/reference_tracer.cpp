@@ -1,6 +1,6 @@
 // The double-precision reference ray caster (self-tests in
 // tests/test_reference_tracer.cpp).
-#include "reference/reference_tracer.h"
+#include "lab/reference/reference_tracer.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -12,7 +12,7 @@
 #include <random>
 
 #include "core/error.h"
-#include "reference/reference_raster.h"
+#include "lab/reference/reference_raster.h"
 
 namespace quadra::ref {
 

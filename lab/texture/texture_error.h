@@ -9,7 +9,7 @@
 #include <functional>
 #include <vector>
 
-#include "texture/footprints.h"
+#include "lab/texture/footprints.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {

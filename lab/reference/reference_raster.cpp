@@ -1,6 +1,6 @@
 // The exact reference rasterizer and the double-precision scene projection
 // (self-tests in tests/test_reference_raster.cpp).
-#include "reference/reference_raster.h"
+#include "lab/reference/reference_raster.h"
 
 #include <algorithm>
 #include <cmath>

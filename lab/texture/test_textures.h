@@ -10,7 +10,8 @@
 
 namespace quadra {
 
-// Squares of `cellTexels` texels, 0 and 1, grey, alpha 1.
+// Squares of `cellTexels` texels, 1 (white) and 0 (black), alpha 1; the square
+// at the top-left corner is white.
 Image makeCheckerTexture(int width, int height, int cellTexels);
 // 0.5 + 0.5 cos(pi r^2 / size) about the centre: the local frequency grows
 // linearly from 0 to the Nyquist limit (0.5 cycles per texel) at the edges.

@@ -1,5 +1,5 @@
 // Comparing a TextureSampler with the ground truth, and timing it.
-#include "texture/texture_error.h"
+#include "lab/texture/texture_error.h"
 
 #include <algorithm>
 #include <chrono>

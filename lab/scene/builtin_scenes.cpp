@@ -2,7 +2,7 @@
 // no files, for benchmarks (checker-plane, alpha-quads, dense-mesh) and the
 // CLI's default picture (showcase). Every mesh winds counter-clockwise seen
 // from its front, and carries normals, so lit shading works everywhere.
-#include "scene/builtin_scenes.h"
+#include "lab/scene/builtin_scenes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/error.h"
-#include "scene/hard_case_scenes.h"
+#include "lab/scene/hard_case_scenes.h"
+#include "lab/texture/test_textures.h"
 
 namespace quadra {
 
@@ -201,7 +202,7 @@ Scene checkerPlane() {
   sampler.magLinear = true;
   sampler.minFilter = Filter::Trilinear;
   Material material;
-  material.baseColorTexture = addTexture(scene, makeCheckerImage(8, 64), sampler);
+  material.baseColorTexture = addTexture(scene, makeCheckerTexture(512, 512, 64), sampler);
   const int mesh = addMesh(scene, makeGroundPlane(1000.0f, 4.0f, addMaterial(scene, material)));
   scene.instances.push_back({mesh, glm::mat4(1.0f)});
   scene.cameras.push_back(
@@ -279,7 +280,7 @@ Scene showcase() {
   Scene scene;
   scene.name = "builtin:showcase";
   Material ground, cube, sphere, mask, glass;
-  ground.baseColorTexture = addTexture(scene, makeCheckerImage(8, 32));
+  ground.baseColorTexture = addTexture(scene, makeCheckerTexture(256, 256, 32));
   ground.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
   cube.baseColorTexture = addTexture(scene, makeGradientGridImage(256));
   mask.baseColorTexture = addTexture(scene, makeHolesImage(128));
@@ -327,16 +328,6 @@ Scene makeBuiltinScene(const std::string& name) {
   std::string known;
   for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
   throw makeError("builtin:" + name, "unknown built-in scene (known: " + known + ")");
-}
-
-// Square (0, 0) in the top-left corner is white; neighbours alternate.
-Image makeCheckerImage(int squares, int texelsPerSquare) {
-  QUADRA_CHECK(squares > 0 && texelsPerSquare > 0);
-  const int size = squares * texelsPerSquare;
-  return makeImage(size, size, [texelsPerSquare](int x, int y) {
-    const bool white = (x / texelsPerSquare + y / texelsPerSquare) % 2 == 0;
-    return white ? glm::vec4(1.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-  });
 }
 
 }  // namespace quadra

@@ -1,6 +1,6 @@
 // The seeded footprint set: buckets, stratification and the Jacobian built
 // from its singular value decomposition.
-#include "texture/footprints.h"
+#include "lab/texture/footprints.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "texture/ground_truth.h"
+#include "lab/texture/ground_truth.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {

@@ -1,6 +1,6 @@
 // Ground truth for texture lookups: double-precision bilinear reconstruction of
 // level 0 and its midpoint-rule average over a pixel's parallelogram footprint.
-#include "texture/ground_truth.h"
+#include "lab/texture/ground_truth.h"
 
 #include <algorithm>
 #include <cmath>
