@@ -107,7 +107,7 @@ glm::vec2 project(const glm::mat4& viewProj, const glm::vec3& world) {
   return glm::vec2(clip) / clip.w;
 }
 
-// The four picture scenes first, then the hard cases of scene/hard_case_scenes.h
+// The four picture scenes first, then the hard cases of lab/scene/hard_case_scenes.h
 // (deliberately extreme or invalid geometry, checked by the stability report).
 const std::vector<std::string> kPictureScenes = {"showcase", "checker-plane", "alpha-quads",
                                                  "dense-mesh"};

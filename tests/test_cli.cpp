@@ -212,7 +212,7 @@ TEST(Cli, SampleRejectsMalformedCsv) {
 
 }  // namespace
 // `quadra report stability` end to end: every hard case of
-// scene/hard_case_scenes.h rendered by the engine and held to the
+// lab/scene/hard_case_scenes.h rendered by the engine and held to the
 // double-precision references (tools/report_stability.cpp); in the sanitizer
 // builds this is also the "no crash, no sanitizer report" check on them.
 TEST(Cli, StabilityReportPassesEveryCheck) {

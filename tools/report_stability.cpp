@@ -1,5 +1,5 @@
 // `quadra report stability`: every hard case of numerical stability (the
-// builtin: scenes of scene/hard_case_scenes.h, plus sweeps), rendered by the
+// builtin: scenes of lab/scene/hard_case_scenes.h, plus sweeps), rendered by the
 // engine and checked against the double-precision references of
 // lab/reference: the exact integer rasterizer for coverage, ray-plane hits
 // for texture coordinates and their derivatives, counts for what must be
