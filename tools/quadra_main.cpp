@@ -15,6 +15,7 @@
 #include "api/camera.h"
 #include "api/renderer.h"
 #include "cli_args.h"
+#include "commands.h"
 #include "core/error.h"
 #include "resolve/image_io.h"
 #include "scene/builtin_scenes.h"
@@ -251,9 +252,10 @@ int run(int argc, char** argv) {
     std::cout << kUsage << builtinList() << "\n";
     return args.empty() ? 2 : 0;
   }
-  if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
-  if (args[0] == "sample") return runSample(argc - 1, argv + 1);
-  if (args[0] == "report") return runReport(argc - 1, argv + 1);
+  const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
+  if (args[0] == "render") return renderCommand(commandArgs);
+  if (args[0] == "sample") return runSample(commandArgs);
+  if (args[0] == "report") return runReport(commandArgs);
   throw Error("unknown command '" + args[0] + "' (commands: render, sample, report)");
 }
 

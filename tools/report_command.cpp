@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "resolve/image_io.h"
@@ -300,8 +301,7 @@ std::string svgText(const std::vector<FilterRow>& rows, const std::string& subti
 
 }  // namespace
 
-int runReport(int argc, const char* const* argv) {
-  const std::vector<std::string> all(argv + 1, argv + argc);
+int runReport(const std::vector<std::string>& all) {
   if (!all.empty() && all[0] == "sat-precision")
     return runSatPrecisionReport({all.begin() + 1, all.end()});
   if (!all.empty() && all[0] == "stability")

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "texture/padded_level.h"

@@ -16,6 +16,7 @@
 
 #include "api/renderer.h"
 #include "cli_args.h"
+#include "commands.h"
 #include "core/error.h"
 #include "reference/reference_raster.h"
 #include "reference/reference_tracer.h"

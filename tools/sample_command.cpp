@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli_args.h"
+#include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "resolve/image_io.h"
@@ -176,8 +177,7 @@ void writeValues(const std::string& path, const std::vector<float>& rgba) {
 
 }  // namespace
 
-int runSample(int argc, const char* const* argv) {
-  const std::vector<std::string> args(argv + 1, argv + argc);
+int runSample(const std::vector<std::string>& args) {
   for (const std::string& a : args)
     if (a == "--help" || a == "-h") {
       std::cout << kSampleUsage;
