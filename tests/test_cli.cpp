@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -208,6 +209,21 @@ TEST(Cli, SampleRejectsMalformedCsv) {
                           in.string() + " --out " + out.string());
   expectOneLineError(r, in.string() + ": line 2");
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  const RunResult r = run("--version");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.out, std::string("quadra ") + QUADRA_VERSION_STRING + "\n");
+  EXPECT_TRUE(std::regex_match(r.out, std::regex("quadra [0-9]+\\.[0-9]+\\.[0-9]+\n"))) << r.out;
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(Cli, UnknownTopLevelArgumentIsAOneLineError) {
+  const RunResult r = run("--bogus");
+  EXPECT_EQ(r.exitCode, 1);
+  expectOneLineError(r, "unknown command '--bogus'");
+  EXPECT_EQ(r.out, "");
 }
 
 }  // namespace

@@ -29,6 +29,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra report textures --help
        quadra report sat-precision --help
        quadra report stability --help
+       quadra --version
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
@@ -213,6 +214,10 @@ int run(int argc, char** argv) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << usage();
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::cout << "quadra " QUADRA_VERSION_STRING "\n";
+    return 0;
   }
   const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
   if (args[0] == "render") return renderCommand(commandArgs);
