@@ -10,8 +10,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "io/image_io.h"
 
@@ -210,6 +212,109 @@ TEST(Cli, SampleRejectsMalformedCsv) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// One command with a valid command line split in two, so an option can go
+// first, between them, or last; `written` is what a run would create.
+struct CommandLineCase {
+  std::string command, head, tail;
+  fs::path written;
+};
+
+// Valid and quick (where they run at all): an option the parser ignored
+// would let the command run and write, failing the "nothing written" checks.
+std::vector<CommandLineCase> everyCommand() {
+  Frame texture;
+  texture.width = texture.height = 2;
+  texture.rgba.assign(16, 0.5f);
+  texture.depth.assign(4, 1.0f);
+  const fs::path tex = tempPath("parse_tex.exr"), in = tempPath("parse_lookups.csv");
+  writeFrame(texture, tex.string());
+  std::ofstream(in) << "u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,0,0,0,0\n";
+  const fs::path png = tempPath("parse.png"), csv = tempPath("parse_values.csv"),
+                 reportDir = testDir() / "parse_report";
+  fs::remove_all(reportDir);
+  return {
+      {"render", "builtin:checker-plane --width 32", "--height 32 --out " + png.string(), png},
+      {"sample", "--texture " + tex.string() + " --filter bilinear",
+       "--in " + in.string() + " --out " + csv.string(), csv},
+      {"report textures", "--size 8 --lookups 36", "--out-dir " + reportDir.string(), reportDir},
+      {"report sat-precision", "--size 16", "--boxes 1", {}},
+      {"report stability", "--threads 2", "--isa auto", {}},
+  };
+}
+
+void expectUsageError(const RunResult& r, const std::string& message, const fs::path& written) {
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_EQ(r.err, "quadra: " + message + "\n");
+  EXPECT_EQ(r.out, "");
+  EXPECT_TRUE(written.empty() || !fs::exists(written)) << written;
+}
+
+TEST(Cli, UnknownOptionIsAnErrorWhereverItStands) {
+  for (const CommandLineCase& c : everyCommand()) {
+    const std::string unknown =
+        c.command + ": unknown option '--bogus' (see quadra " + c.command + " --help)";
+    for (const std::string& line : {c.command + " --bogus " + c.head + " " + c.tail,
+                                    c.command + " " + c.head + " --bogus " + c.tail,
+                                    c.command + " " + c.head + " " + c.tail + " --bogus",
+                                    c.command + " " + c.head + " --bogus 1 " + c.tail}) {
+      SCOPED_TRACE(line);
+      expectUsageError(run(line), unknown, c.written);
+    }
+  }
+}
+
+TEST(Cli, KnownOptionWithoutItsValueIsMissingValue) {
+  for (const CommandLineCase& c : everyCommand())
+    for (const std::string& line : {c.command + " " + c.head + " " + c.tail + " --threads",
+                                    c.command + " " + c.head + " --threads " + c.tail}) {
+      SCOPED_TRACE(line);
+      expectUsageError(run(line), "--threads: missing value", c.written);
+    }
+  // An undeclared option outranks a missing value, wherever each stands.
+  expectUsageError(run("render --width --bogus"),
+                   "render: unknown option '--bogus' (see quadra render --help)", {});
+}
+
+TEST(Cli, HelpPrintsTheCommandsUsage) {
+  for (const CommandLineCase& c : everyCommand()) {
+    SCOPED_TRACE(c.command);
+    const RunResult r = run(c.command + " " + c.head + " --help --bogus");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.rfind("usage: quadra " + c.command + " ", 0), 0u) << r.out;
+    EXPECT_EQ(r.err, "");
+    EXPECT_TRUE(c.written.empty() || !fs::exists(c.written)) << c.written;
+  }
+}
+
+TEST(Cli, SharedOptionsSayTheSameWhicheverCommandHasThem) {
+  for (const CommandLineCase& c : everyCommand()) {
+    SCOPED_TRACE(c.command);
+    expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --threads 0"),
+                     "--threads: '0' must be a whole number in 1..1024", c.written);
+    if (c.command == "report sat-precision") continue;  // has no --isa
+    expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --isa mmx"),
+                     "--isa: unknown ISA 'mmx' (auto, scalar, sse2, avx2, avx512)", c.written);
+  }
+  for (const char* command : {"render builtin:checker-plane", "sample"})
+    expectUsageError(run(std::string(command) + " --lod-bias 33"),
+                     "--lod-bias: must lie in -32..32", {});
+}
+
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  const RunResult r = run("--version");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(r.out, std::string("quadra ") + QUADRA_VERSION_STRING + "\n");
+  EXPECT_TRUE(std::regex_match(r.out, std::regex("quadra [0-9]+\\.[0-9]+\\.[0-9]+\n"))) << r.out;
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(Cli, UnknownTopLevelArgumentIsAOneLineError) {
+  const RunResult r = run("--bogus");
+  EXPECT_EQ(r.exitCode, 1);
+  expectOneLineError(r, "unknown command '--bogus'");
+  EXPECT_EQ(r.out, "");
+}
+
 }  // namespace
 // `quadra report stability` end to end: every hard case of
 // lab/scene/hard_case_scenes.h rendered by the engine and held to the
@@ -229,10 +334,11 @@ TEST(Cli, StabilityReportPassesEveryCheck) {
 TEST(Cli, StabilityReportRejectsBadOptions) {
   RunResult r = run("report stability --isa mmx");
   EXPECT_NE(r.exitCode, 0);
-  EXPECT_NE(r.err.find("--isa mmx"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--isa: unknown ISA 'mmx'"), std::string::npos) << r.err;
   r = run("report stability --frobnicate 1");
   EXPECT_NE(r.exitCode, 0);
-  EXPECT_NE(r.err.find("unknown option --frobnicate"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("report stability: unknown option '--frobnicate'"), std::string::npos)
+      << r.err;
 }
 
 }  // namespace quadra

@@ -14,7 +14,8 @@
 
 #include "api/camera.h"
 #include "api/renderer.h"
-#include "cli_args.h"
+#include "cli_options.h"
+#include "commands.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
@@ -28,6 +29,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra report textures --help
        quadra report sat-precision --help
        quadra report stability --help
+       quadra --version
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
@@ -52,10 +54,10 @@ Prints "quadra frame_ms median=... min=... max=... triangles=... width=... heigh
 threads=..." after rendering.
 built-in scenes: )";
 
-std::string builtinList() {
+std::string usage() {
   std::string list;
   for (const std::string& name : builtinSceneNames()) list += (list.empty() ? "" : ", ") + name;
-  return list;
+  return kUsage + list + "\n";
 }
 
 glm::vec3 parseVector(const std::string& option, const std::string& text) {
@@ -83,89 +85,54 @@ struct RenderCommand {
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
 
-RenderCommand parseRender(const std::vector<std::string>& args) {
+// nullopt: --help printed the usage.
+std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   RenderCommand cmd;
+  CommandOptions options("render", usage());
   bool sceneGiven = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (arg.rfind("--", 0) != 0) {
-      if (sceneGiven) throw Error("render: more than one scene given ('" + arg + "')");
-      cmd.scenePath = arg;
-      sceneGiven = true;
-      continue;
-    }
-    if (i + 1 >= args.size()) throw Error(arg + ": missing value");
-    const std::string& value = args[++i];
-    if (arg == "--width")
-      cmd.settings.width = parseInteger(arg, value, 1, kMaxViewportSize);
-    else if (arg == "--height")
-      cmd.settings.height = parseInteger(arg, value, 1, kMaxViewportSize);
-    else if (arg == "--scene")
-      cmd.load.sceneIndex = parseInteger(arg, value, 0, 1 << 20);
-    else if (arg == "--eye")
-      cmd.eye = parseVector(arg, value);
-    else if (arg == "--target")
-      cmd.target = parseVector(arg, value);
-    else if (arg == "--up")
-      cmd.up = parseVector(arg, value);
-    else if (arg == "--fovy") {
-      cmd.fovyDegrees = float(parseNumber(arg, value));
-      if (!(*cmd.fovyDegrees > 0.0f && *cmd.fovyDegrees < 180.0f))
-        throw Error(arg + ": '" + value + "' must be between 0 and 180 degrees");
-    } else if (arg == "--near") {
-      cmd.znear = float(parseNumber(arg, value));
-      if (!(*cmd.znear > 0.0f)) throw Error(arg + ": '" + value + "' must be positive");
-    } else if (arg == "--far") {
-      cmd.zfar = float(parseNumber(arg, value));
-      if (*cmd.zfar < 0.0f) throw Error(arg + ": '" + value + "' must be 0 (infinite) or positive");
-    } else if (arg == "--filter") {
-      Filter f;
-      if (!parseFilter(value, f))
-        throw Error(arg + ": unknown filter '" + value + "' (" + filterNames() + ")");
-      cmd.settings.filter = f;
-    } else if (arg == "--aniso")
-      cmd.settings.maxAniso = parseInteger(arg, value, 1, 64);
-    else if (arg == "--lod-bias") {
-      cmd.settings.lodBias = float(parseNumber(arg, value));
-      if (std::fabs(cmd.settings.lodBias) > 32.0f) throw Error(arg + ": must lie in -32..32");
-    } else if (arg == "--texture-format") {
-      TexelFormat format;
-      if (value != "auto" && !parseFormat(value, format))
-        throw Error(arg + ": unknown texel format '" + value +
-                    "' (auto, rgba32f, rgba16f, rgba8, rgba8srgb)");
-      if (value != "auto") cmd.textureFormat = format;
-    } else if (arg == "--depth") {
-      if (value == "standard")
-        cmd.settings.depth = DepthMode::Standard;
-      else if (value == "reversed")
-        cmd.settings.depth = DepthMode::Reversed;
-      else
-        throw Error(arg + ": unknown depth mode '" + value + "' (standard, reversed)");
-    } else if (arg == "--shading") {
-      if (value == "unlit")
-        cmd.settings.shading = Shading::Unlit;
-      else if (value == "lit")
-        cmd.settings.shading = Shading::Lit;
-      else
-        throw Error(arg + ": unknown shading '" + value + "' (unlit, lit)");
-    } else if (arg == "--threads")
-      cmd.config.threads = parseInteger(arg, value, 1, 1024);
-    else if (arg == "--isa") {
-      if (value != "auto") {
-        const std::optional<Isa> isa = parseIsa(value);
-        if (!isa)
-          throw Error(arg + ": unknown ISA '" + value + "' (auto, scalar, sse2, avx2, avx512)");
-        cmd.config.isa = *isa;
-      }
-    } else if (arg == "--frames")
-      cmd.frames = parseInteger(arg, value, 1, 100000);
-    else if (arg == "--out") {
-      if (!endsWithIgnoringCase(value, ".exr") && !endsWithIgnoringCase(value, ".png"))
-        throw Error(value + ": unsupported output format (use .exr or .png)");
-      cmd.outputs.push_back(value);
-    } else
-      throw Error("render: unknown option '" + arg + "' (see quadra render --help)");
-  }
+  options.positional([&](const std::string& scene) {
+    if (sceneGiven) throw Error("render: more than one scene given ('" + scene + "')");
+    cmd.scenePath = scene;
+    sceneGiven = true;
+  });
+  options.integer("--width", cmd.settings.width, 1, kMaxViewportSize);
+  options.integer("--height", cmd.settings.height, 1, kMaxViewportSize);
+  options.integer("--scene", cmd.load.sceneIndex, 0, 1 << 20);
+  for (auto [name, target] : {std::pair{"--eye", &cmd.eye}, std::pair{"--target", &cmd.target},
+                              std::pair{"--up", &cmd.up}})
+    options.value(name, [target](const std::string& option, const std::string& value) {
+      *target = parseVector(option, value);
+    });
+  options.value("--fovy", [&](const std::string& option, const std::string& value) {
+    cmd.fovyDegrees = float(parseNumber(option, value));
+    if (!(*cmd.fovyDegrees > 0.0f && *cmd.fovyDegrees < 180.0f))
+      throw Error(option + ": '" + value + "' must be between 0 and 180 degrees");
+  });
+  options.value("--near", [&](const std::string& option, const std::string& value) {
+    cmd.znear = float(parseNumber(option, value));
+    if (!(*cmd.znear > 0.0f)) throw Error(option + ": '" + value + "' must be positive");
+  });
+  options.value("--far", [&](const std::string& option, const std::string& value) {
+    cmd.zfar = float(parseNumber(option, value));
+    if (*cmd.zfar < 0.0f)
+      throw Error(option + ": '" + value + "' must be 0 (infinite) or positive");
+  });
+  addFilterOptions(options, cmd.settings.filter, cmd.settings.maxAniso, cmd.settings.lodBias);
+  addTexelFormatOrAutoOption(options, "--texture-format", cmd.textureFormat);
+  options.choice("--depth", "depth mode",
+                 {{"standard", DepthMode::Standard}, {"reversed", DepthMode::Reversed}},
+                 cmd.settings.depth);
+  options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}},
+                 cmd.settings.shading);
+  addThreadsOption(options, cmd.config.threads);
+  addIsaOption(options, cmd.config.isa);
+  options.integer("--frames", cmd.frames, 1, 100000);
+  options.value("--out", [&](const std::string&, const std::string& value) {
+    if (!endsWithIgnoringCase(value, ".exr") && !endsWithIgnoringCase(value, ".png"))
+      throw Error(value + ": unsupported output format (use .exr or .png)");
+    cmd.outputs.push_back(value);
+  });
+  if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   return cmd;
 }
 
@@ -206,12 +173,9 @@ Camera chooseCamera(const Scene& scene, const RenderCommand& cmd) {
 }
 
 int renderCommand(const std::vector<std::string>& args) {
-  for (const std::string& a : args)
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage << builtinList() << "\n";
-      return 0;
-    }
-  const RenderCommand cmd = parseRender(args);
+  const std::optional<RenderCommand> parsed = parseRender(args);
+  if (!parsed) return 0;
+  const RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
   const Scene scene = loadScene(cmd);
   const Camera camera = chooseCamera(scene, cmd);
@@ -248,12 +212,17 @@ int renderCommand(const std::vector<std::string>& args) {
 int run(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-    std::cout << kUsage << builtinList() << "\n";
+    std::cout << usage();
     return args.empty() ? 2 : 0;
   }
-  if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
-  if (args[0] == "sample") return runSample(argc - 1, argv + 1);
-  if (args[0] == "report") return runReport(argc - 1, argv + 1);
+  if (args[0] == "--version") {
+    std::cout << "quadra " QUADRA_VERSION_STRING "\n";
+    return 0;
+  }
+  const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
+  if (args[0] == "render") return renderCommand(commandArgs);
+  if (args[0] == "sample") return runSample(commandArgs);
+  if (args[0] == "report") return runReport(commandArgs);
   throw Error("unknown command '" + args[0] + "' (commands: render, sample, report)");
 }
 

@@ -16,7 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
+#include "cli_options.h"
+#include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "io/image_io.h"
@@ -60,37 +61,20 @@ struct ReportOptions {
   std::string outDir = "out";
 };
 
-ReportOptions parseReport(const std::vector<std::string>& args) {
-  ReportOptions options;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (i + 1 >= args.size()) throw Error(arg + ": missing value");
-    const std::string& value = args[++i];
-    if (arg == "--size")
-      options.size = parseInteger(arg, value, 1, 8192);
-    else if (arg == "--lookups")
-      options.lookups = parseInteger(arg, value, 36, 1 << 24);
-    else if (arg == "--seed")
-      options.seed = std::uint64_t(parseInteger(arg, value, 0, 2147483647));
-    else if (arg == "--threads")
-      options.threads = parseInteger(arg, value, 1, 1024);
-    else if (arg == "--aniso")
-      options.maxAniso = parseInteger(arg, value, 1, 64);
-    else if (arg == "--texture")
-      options.texturePath = value;
-    else if (arg == "--out-dir")
-      options.outDir = value;
-    else if (arg == "--isa") {
-      if (value != "auto") {
-        options.isa = parseIsa(value);
-        if (!options.isa)
-          throw Error(arg + ": unknown ISA '" + value + "' (auto, scalar, sse2, avx2, avx512)");
-      }
-    } else
-      throw Error("report textures: unknown option '" + arg +
-                  "' (see quadra report textures --help)");
-  }
-  return options;
+// nullopt: --help printed the usage.
+std::optional<ReportOptions> parseReport(const std::vector<std::string>& args) {
+  ReportOptions report;
+  CommandOptions options("report textures", kReportUsage);
+  options.integer("--size", report.size, 1, 8192);
+  options.integer("--lookups", report.lookups, 36, 1 << 24);
+  addSeedOption(options, report.seed);
+  addThreadsOption(options, report.threads);
+  addAnisoOption(options, report.maxAniso);
+  options.text("--texture", report.texturePath);
+  options.text("--out-dir", report.outDir);
+  addIsaOption(options, report.isa);
+  if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  return report;
 }
 
 struct TestTexture {
@@ -300,25 +284,23 @@ std::string svgText(const std::vector<FilterRow>& rows, const std::string& subti
 
 }  // namespace
 
-int runReport(int argc, const char* const* argv) {
-  const std::vector<std::string> all(argv + 1, argv + argc);
-  if (!all.empty() && all[0] == "sat-precision")
-    return runSatPrecisionReport({all.begin() + 1, all.end()});
-  if (!all.empty() && all[0] == "stability")
-    return runStabilityReport({all.begin() + 1, all.end()});
-  for (const std::string& a : all)
-    if (a == "--help" || a == "-h") {
-      std::cout << kReportUsage;
-      return 0;
-    }
-  if (all.empty() || all[0] != "textures")
+int runReport(const std::vector<std::string>& args) {
+  const std::string subject = args.empty() ? "" : args[0];
+  const std::vector<std::string> rest(args.begin() + (args.empty() ? 0 : 1), args.end());
+  if (subject == "sat-precision") return runSatPrecisionReport(rest);
+  if (subject == "stability") return runStabilityReport(rest);
+  if (subject == "--help" || subject == "-h") {
+    std::cout << kReportUsage;
+    return 0;
+  }
+  if (subject != "textures")
     throw Error(
         "report: expected a subject, 'textures', 'sat-precision' or 'stability' (see quadra "
         "report textures --help)");
-  const ReportOptions options = parseReport({all.begin() + 1, all.end()});
-  const Isa isa = options.isa.value_or(detectBestIsa());
-  if (!isaSupported(isa))
-    throw Error(std::string("--isa ") + isaName(isa) + ": this CPU does not support it");
+  const std::optional<ReportOptions> parsed = parseReport(rest);
+  if (!parsed) return 0;
+  const ReportOptions& options = *parsed;
+  const Isa isa = supportedIsa(options.isa);
   const std::filesystem::path outDir(options.outDir);
   std::error_code ec;
   std::filesystem::create_directories(outDir, ec);

@@ -8,12 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <iostream>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
+#include "cli_options.h"
+#include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "lab/texture/test_textures.h"
@@ -114,26 +114,12 @@ void measureTables(const char* name, const Image& image, int boxes, std::uint64_
 int runSatPrecisionReport(const std::vector<std::string>& args) {
   int size = 8192, boxes = 2000, threads = 0;
   std::uint64_t seed = 1;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--help" || args[i] == "-h") {
-      std::cout << kUsage;
-      return 0;
-    }
-    if (i + 1 >= args.size()) throw Error(args[i] + ": missing value");
-    const std::string& arg = args[i];
-    const std::string& value = args[++i];
-    if (arg == "--size")
-      size = parseInteger(arg, value, 16, 16384);
-    else if (arg == "--boxes")
-      boxes = parseInteger(arg, value, 1, 1 << 20);
-    else if (arg == "--seed")
-      seed = std::uint64_t(parseInteger(arg, value, 0, 2147483647));
-    else if (arg == "--threads")
-      threads = parseInteger(arg, value, 1, 1024);
-    else
-      throw Error("report sat-precision: unknown option '" + arg +
-                  "' (see quadra report sat-precision --help)");
-  }
+  CommandOptions options("report sat-precision", kUsage);
+  options.integer("--size", size, 16, 16384);
+  options.integer("--boxes", boxes, 1, 1 << 20);
+  addSeedOption(options, seed);
+  addThreadsOption(options, threads);
+  if (options.parse(args) == Parsed::HelpShown) return 0;
 
   const Executor executor(threads);
   std::printf("sat-precision: %dx%d textures (seed %llu), %d boxes per bucket\n\n", size, size,

@@ -10,12 +10,12 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
-#include <iostream>
 #include <string>
 #include <vector>
 
 #include "api/renderer.h"
-#include "cli_args.h"
+#include "cli_options.h"
+#include "commands.h"
 #include "core/error.h"
 #include "lab/reference/reference_raster.h"
 #include "lab/reference/reference_tracer.h"
@@ -458,24 +458,11 @@ std::string formatBound(const Row& row) {
 
 int runStabilityReport(const std::vector<std::string>& args) {
   Context ctx;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--help" || args[i] == "-h") {
-      std::cout << kUsage;
-      return 0;
-    }
-    if (i + 1 >= args.size()) throw Error("report stability: " + args[i] + ": missing value");
-    const std::string& arg = args[i];
-    const std::string& value = args[++i];
-    if (arg == "--threads")
-      ctx.threads = parseInteger(arg, value, 1, 1024);
-    else if (arg == "--isa" && value != "auto") {
-      ctx.isa = parseIsa(value);
-      if (!ctx.isa) throw Error("--isa " + value + ": expected auto, scalar, sse2, avx2 or avx512");
-    } else if (arg != "--isa")
-      throw Error("report stability: unknown option " + arg + " (see --help)");
-  }
-  if (ctx.isa && !isaSupported(*ctx.isa))
-    throw Error(std::string("--isa ") + isaName(*ctx.isa) + ": this CPU does not support it");
+  CommandOptions options("report stability", kUsage);
+  addThreadsOption(options, ctx.threads);
+  addIsaOption(options, ctx.isa);
+  if (options.parse(args) == Parsed::HelpShown) return 0;
+  supportedIsa(ctx.isa);  // fails before the first frame
 
   for (const char* name : {"near-plane", "huge-1e6", "huge-1e30", "grazing"})
     perspectiveCase(ctx, name);

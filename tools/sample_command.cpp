@@ -6,14 +6,14 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "cli_args.h"
+#include "cli_options.h"
+#include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "io/image_io.h"
@@ -44,52 +44,25 @@ struct SampleCommand {
   std::optional<Isa> isa;
 };
 
-SampleCommand parseSample(const std::vector<std::string>& args) {
+// nullopt: --help printed the usage.
+std::optional<SampleCommand> parseSample(const std::vector<std::string>& args) {
   SampleCommand cmd;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (i + 1 >= args.size()) throw Error(arg + ": missing value");
-    const std::string& value = args[++i];
-    if (arg == "--texture")
-      cmd.texturePath = value;
-    else if (arg == "--in")
-      cmd.inPath = value;
-    else if (arg == "--out")
-      cmd.outPath = value;
-    else if (arg == "--filter") {
-      Filter f;
-      if (!parseFilter(value, f))
-        throw Error(arg + ": unknown filter '" + value + "' (" + filterNames() + ")");
-      cmd.filtering.filter = f;
-    } else if (arg == "--aniso")
-      cmd.filtering.maxAniso = parseInteger(arg, value, 1, 64);
-    else if (arg == "--lod-bias")
-      cmd.filtering.lodBias = float(parseNumber(arg, value));
-    else if (arg == "--min-lod")
-      cmd.filtering.minLod = float(parseNumber(arg, value));
-    else if (arg == "--max-lod")
-      cmd.filtering.maxLod = float(parseNumber(arg, value));
-    else if (arg == "--wrap") {
-      if (!parseWrap(value, cmd.wrap))
-        throw Error(arg + ": unknown wrap mode '" + value + "' (repeat, mirror, clamp, border)");
-    } else if (arg == "--format") {
-      if (!parseFormat(value, cmd.format))
-        throw Error(arg + ": unknown texel format '" + value +
-                    "' (rgba32f, rgba16f, rgba8, rgba8srgb)");
-    } else if (arg == "--threads")
-      cmd.threads = parseInteger(arg, value, 1, 1024);
-    else if (arg == "--isa") {
-      if (value != "auto") {
-        cmd.isa = parseIsa(value);
-        if (!cmd.isa)
-          throw Error(arg + ": unknown ISA '" + value + "' (auto, scalar, sse2, avx2, avx512)");
-      }
-    } else
-      throw Error("sample: unknown option '" + arg + "' (see quadra sample --help)");
-  }
+  CommandOptions options("sample", kSampleUsage);
+  options.text("--texture", cmd.texturePath);
+  options.text("--in", cmd.inPath);
+  options.text("--out", cmd.outPath);
+  addFilterOptions(options, cmd.filtering.filter, cmd.filtering.maxAniso, cmd.filtering.lodBias);
+  addLodRangeOptions(options, cmd.filtering.minLod, cmd.filtering.maxLod);
+  options.value("--wrap", [&](const std::string& option, const std::string& value) {
+    if (!parseWrap(value, cmd.wrap))
+      throw Error(option + ": unknown wrap mode '" + value + "' (repeat, mirror, clamp, border)");
+  });
+  addTexelFormatOption(options, "--format", cmd.format);
+  addThreadsOption(options, cmd.threads);
+  addIsaOption(options, cmd.isa);
+  if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (cmd.texturePath.empty()) throw Error("sample: --texture is required");
   if (!cmd.filtering.filter) throw Error("sample: --filter is required");
-  if (std::fabs(cmd.filtering.lodBias) > 32.0f) throw Error("--lod-bias: must lie in -32..32");
   if (cmd.filtering.minLod < 0.0f || cmd.filtering.minLod > cmd.filtering.maxLod)
     throw Error("--min-lod/--max-lod: need 0 <= min <= max");
   if (cmd.inPath.empty()) throw Error("sample: --in is required");
@@ -176,17 +149,11 @@ void writeValues(const std::string& path, const std::vector<float>& rgba) {
 
 }  // namespace
 
-int runSample(int argc, const char* const* argv) {
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  for (const std::string& a : args)
-    if (a == "--help" || a == "-h") {
-      std::cout << kSampleUsage;
-      return 0;
-    }
-  const SampleCommand cmd = parseSample(args);
-  const Isa isa = cmd.isa.value_or(detectBestIsa());
-  if (!isaSupported(isa))
-    throw Error(std::string("--isa ") + isaName(isa) + ": this CPU does not support it");
+int runSample(const std::vector<std::string>& args) {
+  const std::optional<SampleCommand> parsed = parseSample(args);
+  if (!parsed) return 0;
+  const SampleCommand& cmd = *parsed;
+  const Isa isa = supportedIsa(cmd.isa);
   SamplerState state;
   state.wrapU = state.wrapV = cmd.wrap;
   auto image = std::make_shared<Image>(readImage(cmd.texturePath));

@@ -1,0 +1,108 @@
+// The one option parser of the quadra commands, and the options several
+// commands share (filtering, threads, ISA, texel formats, seed), so that each
+// option's name, range and error message exist once. Every failure is an
+// Error naming the option or the command.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "simd/isa.h"
+#include "texture/sampler_state.h"
+#include "texture/texel_format.h"
+
+namespace quadra {
+
+double parseNumber(const std::string& option, const std::string& text);
+int parseInteger(const std::string& option, const std::string& text, int lo, int hi);
+bool endsWithIgnoringCase(const std::string& text, const std::string& suffix);
+
+enum class Parsed : std::uint8_t { Run, HelpShown };
+
+// One command's options. Declare them, then parse: handlers run in
+// command-line order, but only once the whole line is well formed, so an
+// unknown option or a missing value is named as such wherever it stands
+// instead of surfacing as some other option's bad value. An argument starting
+// with "--" is always an option name, never a value.
+class CommandOptions {
+ public:
+  using ValueHandler = std::function<void(const std::string& option, const std::string& value)>;
+  using PositionalHandler = std::function<void(const std::string& argument)>;
+
+  // `command` as typed after "quadra" (e.g. "report textures"), for messages;
+  // `usage` is what --help and -h print.
+  CommandOptions(std::string command, std::string usage);
+
+  void value(const std::string& name, ValueHandler handler);
+  void flag(const std::string& name, std::function<void()> handler);
+  // Arguments that are not options; a command without this handler takes none.
+  void positional(PositionalHandler handler);
+
+  void integer(const std::string& name, int& target, int lo, int hi);
+  void text(const std::string& name, std::string& target);
+  // One of `names`, each standing for a value; `what` names the kind in the
+  // error ("depth mode").
+  template <typename T>
+  void choice(const std::string& name, const std::string& what,
+              std::initializer_list<std::pair<const char*, T>> names, T& target) {
+    const std::vector<std::pair<const char*, T>> known(names);
+    value(name, [known, what, &target](const std::string& option, const std::string& text) {
+      std::vector<std::string> spellings;
+      for (const auto& [spelling, meaning] : known) {
+        if (text == spelling) {
+          target = meaning;
+          return;
+        }
+        spellings.push_back(spelling);
+      }
+      throwUnknownChoice(option, what, text, spellings);
+    });
+  }
+
+  // Precedence: --help or -h anywhere, then an undeclared "--" option
+  // anywhere, then the first missing value or unexpected argument, then the
+  // handlers' own errors in command-line order.
+  Parsed parse(const std::vector<std::string>& args) const;
+
+ private:
+  struct Option {
+    bool takesValue = false;
+    ValueHandler handler;  // flags ignore the value
+  };
+  [[noreturn]] static void throwUnknownChoice(const std::string& option, const std::string& what,
+                                              const std::string& text,
+                                              const std::vector<std::string>& spellings);
+  void declare(const std::string& name, bool takesValue, ValueHandler handler);
+  const Option* find(const std::string& name) const;
+
+  std::string command_, usage_;
+  std::vector<std::pair<std::string, Option>> options_;
+  PositionalHandler positional_;
+};
+
+// The filter group: --filter, --aniso and --lod-bias (within -32..32).
+void addFilterOptions(CommandOptions& options, std::optional<Filter>& filter, int& maxAniso,
+                      float& lodBias);
+// --aniso alone, for a command that measures every filter.
+void addAnisoOption(CommandOptions& options, int& maxAniso);
+// --min-lod and --max-lod; the command checks 0 <= min <= max once all are parsed.
+void addLodRangeOptions(CommandOptions& options, float& minLod, float& maxLod);
+
+void addThreadsOption(CommandOptions& options, int& threads);
+// auto (nullopt: the best the CPU has) or a path by name.
+void addIsaOption(CommandOptions& options, std::optional<Isa>& isa);
+// The requested path, or the best the CPU has; an Error when the CPU lacks it.
+Isa supportedIsa(const std::optional<Isa>& requested);
+void addSeedOption(CommandOptions& options, std::uint64_t& seed);
+
+void addTexelFormatOption(CommandOptions& options, const std::string& name, TexelFormat& format);
+// Also "auto" (nullopt: the command's own choice of storage).
+void addTexelFormatOrAutoOption(CommandOptions& options, const std::string& name,
+                                std::optional<TexelFormat>& format);
+
+}  // namespace quadra

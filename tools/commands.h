@@ -1,0 +1,19 @@
+// The quadra commands behind the entry point (quadra_main.cpp), each given
+// the arguments after its own name.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace quadra {
+
+// `quadra sample` (sample_command.cpp).
+int runSample(const std::vector<std::string>& args);
+// `quadra report SUBJECT` (report_command.cpp); args start with the subject.
+int runReport(const std::vector<std::string>& args);
+// `quadra report sat-precision` (report_sat_precision.cpp).
+int runSatPrecisionReport(const std::vector<std::string>& args);
+// `quadra report stability` (report_stability.cpp).
+int runStabilityReport(const std::vector<std::string>& args);
+
+}  // namespace quadra
