@@ -142,8 +142,8 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
 }
 
 // Lane by lane as in SSE2: the AVX2 gather of the same lanes measured no
-// faster on the AMD EPYC (Zen 5) VM (README "Texel storage"), and gathers are
-// microcode-mitigated on many Intel parts.
+// faster on the AMD EPYC (Zen 5) VM when this was chosen (commit 03e5d0f),
+// and gathers are microcode-mitigated on many Intel parts.
 QUADRA_TRANSPOSE_INLINE __m256 lookupCodes(const float* table, __m256 codes) {
   alignas(32) std::int32_t code[8];
   _mm256_store_si256(reinterpret_cast<__m256i*>(code), _mm256_castps_si256(codes));
@@ -214,7 +214,8 @@ QUADRA_TRANSPOSE_INLINE void transposeTexelPairs(const std::uint8_t* const pair[
 // In registers, no gather: each two-register permute looks up 32 entries by
 // the code's low 5 bits, and three blends on bits 5, 6, 7 pick among the
 // eight results. Measured faster than the gather and than lane-by-lane
-// lookups on the AMD EPYC (Zen 5) VM (README "Texel storage").
+// lookups on the AMD EPYC (Zen 5) VM when this was chosen (commit 03e5d0f);
+// today's cost per lookup is in docs/texel-storage.md.
 QUADRA_TRANSPOSE_INLINE __m512 lookupCodes(const float* table, __m512 codes) {
   const __m512i index = _mm512_castps_si512(codes);
   __m512 part[8];

@@ -201,7 +201,7 @@ QUADRA_LANE_INLINE Rgba<L> decodeSrgb8(const TextureView& view,
 // whole, decoded and transposed in registers (simd/texel_pairs.h). The
 // gather variant (TexelRead<Rgba32F, true>) is the alternative the sampler
 // benchmark measures per ISA; the pair loads won on both AVX2 and AVX-512 on
-// an Intel Xeon and an AMD EPYC (Zen 5) VM (README "Texel storage"), and
+// an Intel Xeon and an AMD EPYC (Zen 5) VM (docs/texel-storage.md), and
 // gathers are microcode-mitigated on many Intel parts, so they are the default.
 template <class L, class R>
 QUADRA_LANE_INLINE void fetchRowPairs(const TextureView& view, const LevelGeometry<L>& g,

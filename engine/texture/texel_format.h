@@ -17,7 +17,7 @@
 // gathers the kernels pay more for it than the half bandwidth saves, even from
 // DRAM (AVX-512, one thread, ns per trilinear lookup, L1 / DRAM texture:
 // rgba16f 8.8 / 12.9, rgba8srgb 14.3 / 18.8; frames of builtin:alpha-quads
-// 32.5 against 49.6 ms, README "Texel storage"). rgba16f keeps an 8-bit
+// 32.5 against 49.6 ms, docs/texel-storage.md). rgba16f keeps an 8-bit
 // source's steps too (its coarsest half step, 2^-11 near 1, is 18x finer than
 // the source's 0.0089 there); rgba8srgb is the choice when memory counts:
 // half of rgba16f, and lossless for 8-bit sources.
