@@ -45,8 +45,8 @@ bool isOptionName(const std::string& arg) {
 
 }  // namespace
 
-CommandOptions::CommandOptions(std::string command, std::string usage)
-    : command_(std::move(command)), usage_(std::move(usage)) {}
+CommandOptions::CommandOptions(std::string command, std::string usage, std::string program)
+    : command_(std::move(command)), usage_(std::move(usage)), program_(std::move(program)) {}
 
 void CommandOptions::declare(const std::string& name, bool takesValue, ValueHandler handler) {
   QUADRA_CHECK(isOptionName(name) && !find(name));
@@ -96,7 +96,7 @@ Parsed CommandOptions::parse(const std::vector<std::string>& args) const {
       std::cout << usage_;
       return Parsed::HelpShown;
     }
-  const std::string seeHelp = "' (see quadra " + command_ + " --help)";
+  const std::string seeHelp = "' (see " + program_ + " " + command_ + " --help)";
   for (const std::string& arg : args)
     if (isOptionName(arg) && !find(arg))
       throw Error(command_ + ": unknown option '" + arg + seeHelp);

@@ -34,9 +34,10 @@ class CommandOptions {
   using ValueHandler = std::function<void(const std::string& option, const std::string& value)>;
   using PositionalHandler = std::function<void(const std::string& argument)>;
 
-  // `command` as typed after "quadra" (e.g. "report textures"), for messages;
-  // `usage` is what --help and -h print.
-  CommandOptions(std::string command, std::string usage);
+  // `command` as typed after the program's name (e.g. "report textures"), for
+  // messages; `usage` is what --help and -h print; `program` is the binary
+  // (a peer renderer has its own).
+  CommandOptions(std::string command, std::string usage, std::string program = "quadra");
 
   void value(const std::string& name, ValueHandler handler);
   void flag(const std::string& name, std::function<void()> handler);
@@ -80,7 +81,7 @@ class CommandOptions {
   void declare(const std::string& name, bool takesValue, ValueHandler handler);
   const Option* find(const std::string& name) const;
 
-  std::string command_, usage_;
+  std::string command_, usage_, program_;
   std::vector<std::pair<std::string, Option>> options_;
   PositionalHandler positional_;
 };

@@ -1,13 +1,10 @@
 // quadra command-line tool: the entry point and `quadra render` (DESIGN.md
 // "Contracts") on glTF files and built-in scenes. Every failure is one line on stderr and a
 // non-zero exit; outputs are written only after a frame succeeded.
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,7 +16,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
-#include "scene/gltf_loader.h"
+#include "render_options.h"
 
 namespace quadra {
 namespace {
@@ -60,19 +57,6 @@ std::string usage() {
   return kUsage + list + "\n";
 }
 
-glm::vec3 parseVector(const std::string& option, const std::string& text) {
-  glm::vec3 v;
-  std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t comma = text.find(',', start);
-    if ((i < 2) != (comma != std::string::npos))
-      throw Error(option + ": '" + text + "' must be three numbers x,y,z");
-    v[i] = float(parseNumber(option, text.substr(start, comma - start)));
-    start = comma + 1;
-  }
-  return v;
-}
-
 struct RenderCommand {
   std::string scenePath = "builtin:showcase";
   LoadOptions load;
@@ -80,8 +64,7 @@ struct RenderCommand {
   RendererConfig config;
   int frames = 1;
   std::vector<std::string> outputs;
-  std::optional<glm::vec3> eye, target, up;
-  std::optional<float> fovyDegrees, znear, zfar;
+  CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
 
@@ -95,28 +78,9 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
     cmd.scenePath = scene;
     sceneGiven = true;
   });
-  options.integer("--width", cmd.settings.width, 1, kMaxViewportSize);
-  options.integer("--height", cmd.settings.height, 1, kMaxViewportSize);
+  addSizeOptions(options, cmd.settings.width, cmd.settings.height);
   options.integer("--scene", cmd.load.sceneIndex, 0, 1 << 20);
-  for (auto [name, target] : {std::pair{"--eye", &cmd.eye}, std::pair{"--target", &cmd.target},
-                              std::pair{"--up", &cmd.up}})
-    options.value(name, [target](const std::string& option, const std::string& value) {
-      *target = parseVector(option, value);
-    });
-  options.value("--fovy", [&](const std::string& option, const std::string& value) {
-    cmd.fovyDegrees = float(parseNumber(option, value));
-    if (!(*cmd.fovyDegrees > 0.0f && *cmd.fovyDegrees < 180.0f))
-      throw Error(option + ": '" + value + "' must be between 0 and 180 degrees");
-  });
-  options.value("--near", [&](const std::string& option, const std::string& value) {
-    cmd.znear = float(parseNumber(option, value));
-    if (!(*cmd.znear > 0.0f)) throw Error(option + ": '" + value + "' must be positive");
-  });
-  options.value("--far", [&](const std::string& option, const std::string& value) {
-    cmd.zfar = float(parseNumber(option, value));
-    if (*cmd.zfar < 0.0f)
-      throw Error(option + ": '" + value + "' must be 0 (infinite) or positive");
-  });
+  addCameraOptions(options, cmd.camera);
   addFilterOptions(options, cmd.settings.filter, cmd.settings.maxAniso, cmd.settings.lodBias);
   addTexelFormatOrAutoOption(options, "--texture-format", cmd.textureFormat);
   options.choice("--depth", "depth mode",
@@ -127,49 +91,15 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);
-  options.value("--out", [&](const std::string&, const std::string& value) {
-    if (!endsWithIgnoringCase(value, ".exr") && !endsWithIgnoringCase(value, ".png"))
-      throw Error(value + ": unsupported output format (use .exr or .png)");
-    cmd.outputs.push_back(value);
-  });
+  addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   return cmd;
 }
 
 Scene loadScene(const RenderCommand& cmd) {
-  const std::string prefix = "builtin:";
-  Scene scene;
-  if (cmd.scenePath.rfind(prefix, 0) == 0) {
-    scene = makeBuiltinScene(cmd.scenePath.substr(prefix.size()));
-  } else {
-    std::vector<std::string> notes;
-    scene = loadGltf(cmd.scenePath, cmd.load, &notes);
-    for (const std::string& note : notes) std::cerr << "quadra: note: " << note << "\n";
-  }
+  Scene scene = loadSceneArgument(cmd.scenePath, cmd.load, "quadra");
   if (cmd.textureFormat) setTextureStorage(scene, *cmd.textureFormat);
   return scene;
-}
-
-Camera chooseCamera(const Scene& scene, const RenderCommand& cmd) {
-  Camera camera = firstCameraOrDefault(scene);
-  if (cmd.eye || cmd.target || cmd.up) {
-    const glm::vec3 position(camera.world[3]);
-    const glm::vec3 forward = -glm::normalize(glm::vec3(camera.world[2]));
-    const glm::vec3 eye = cmd.eye.value_or(position);
-    const glm::vec3 target = cmd.target.value_or(eye + forward);
-    const glm::vec3 up = cmd.up.value_or(glm::normalize(glm::vec3(camera.world[1])));
-    if (glm::length(target - eye) == 0.0f) throw Error("--target: must differ from --eye");
-    camera.world = lookAtWorld(eye, target, up);
-  }
-  if (cmd.fovyDegrees) {
-    camera.type = Camera::Type::Perspective;
-    camera.yfov = *cmd.fovyDegrees * 3.14159265358979f / 180.0f;
-  }
-  if (cmd.znear) camera.znear = *cmd.znear;
-  if (cmd.zfar) camera.zfar = *cmd.zfar;
-  if (camera.zfar > 0.0f && camera.zfar <= camera.znear)
-    throw Error("--far: the far plane must lie beyond the near plane");
-  return camera;
 }
 
 int renderCommand(const std::vector<std::string>& args) {
@@ -178,7 +108,7 @@ int renderCommand(const std::vector<std::string>& args) {
   const RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
   const Scene scene = loadScene(cmd);
-  const Camera camera = chooseCamera(scene, cmd);
+  const Camera camera = chooseCamera(scene, cmd.camera);
 
   Frame frame;
   FrameStats stats = renderer.render(scene, camera, cmd.settings, frame);  // warm-up
@@ -194,14 +124,11 @@ int renderCommand(const std::vector<std::string>& args) {
     writeFrame(frame, path);
     std::cout << "quadra wrote " << path << "\n";
   }
-  std::vector<double> sorted = times;
-  std::sort(sorted.begin(), sorted.end());
-  const std::size_t n = sorted.size();
-  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  const FrameTimeSummary summary = summarizeFrameTimes(times);
   std::printf(
       "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
       "isa=%s frames=%d drawn=%zu culled=%zu clipped=%zu\n",
-      median, sorted.front(), sorted.back(), stats.trianglesIn, cmd.settings.width,
+      summary.median, summary.min, summary.max, stats.trianglesIn, cmd.settings.width,
       cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), cmd.frames,
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
