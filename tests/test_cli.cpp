@@ -3,82 +3,18 @@
 // errors with a non-zero exit and no output file left behind.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_helpers.h"
 #include "io/image_io.h"
+#include "render_options.h"
 
 namespace quadra {
 namespace {
-
-namespace fs = std::filesystem;
-
-struct RunResult {
-  int exitCode = -1;
-  std::string out, err;
-};
-
-// One directory per test process: CTest runs the cases in parallel.
-fs::path testDir() {
-  const fs::path dir = fs::temp_directory_path() / ("quadra_cli_test_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-RunResult run(const std::string& arguments) {
-  const fs::path dir = testDir();
-  const std::string outFile = (dir / "stdout.txt").string(),
-                    errFile = (dir / "stderr.txt").string();
-  const std::string command = std::string(QUADRA_CLI_PATH) + " " + arguments + " >" + outFile +
-                              " 2>" + errFile + " </dev/null";
-  const int status = std::system(command.c_str());
-  RunResult r;
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(outFile), e(errFile);
-  std::stringstream os, es;
-  os << o.rdbuf();
-  es << e.rdbuf();
-  r.out = os.str();
-  r.err = es.str();
-  return r;
-}
-
-// key=value pairs of the line starting with `prefix`.
-std::map<std::string, std::string> keyValues(const std::string& text, const std::string& prefix) {
-  std::map<std::string, std::string> pairs;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind(prefix, 0) != 0) continue;
-    std::istringstream words(line.substr(prefix.size()));
-    for (std::string word; words >> word;) {
-      const std::size_t eq = word.find('=');
-      if (eq != std::string::npos) pairs[word.substr(0, eq)] = word.substr(eq + 1);
-    }
-  }
-  return pairs;
-}
-
-fs::path tempPath(const std::string& name) {
-  const fs::path dir = testDir();
-  fs::remove(dir / name);
-  return dir / name;
-}
-
-void expectOneLineError(const RunResult& r, const std::string& mentions) {
-  EXPECT_NE(r.exitCode, 0);
-  EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
-  ASSERT_FALSE(r.err.empty());
-  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
-}
 
 TEST(Cli, RenderPrintsTheFrameLineAndWritesBothFormats) {
   const fs::path exr = tempPath("cli.exr"), png = tempPath("cli.png");
@@ -87,7 +23,7 @@ TEST(Cli, RenderPrintsTheFrameLineAndWritesBothFormats) {
           "--filter trilinear --out " +
           exr.string() + " --out " + png.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto line = keyValues(r.out, "quadra frame_ms ");
+  const auto line = lineKeyValues(r.out, "quadra frame_ms ");
   for (const char* key : {"median", "min", "max", "triangles", "width", "height", "threads"})
     EXPECT_TRUE(line.count(key)) << key << " missing in: " << r.out;
   EXPECT_EQ(line.at("width"), "96");
@@ -165,7 +101,7 @@ TEST(Cli, SampleReadsLookupsAndWritesValuesInOrder) {
       run("sample --texture " + tex.string() + " --filter bilinear --wrap clamp --in " +
           in.string() + " --out " + out.string() + " --threads 1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto line = keyValues(r.out, "quadra sample_ns ");
+  const auto line = lineKeyValues(r.out, "quadra sample_ns ");
   for (const char* key : {"per_lookup", "lookups", "threads", "isa"}) EXPECT_TRUE(line.count(key));
   EXPECT_EQ(line.at("lookups"), "3");
   std::ifstream values(out);
@@ -291,7 +227,7 @@ TEST(Cli, SharedOptionsSayTheSameWhicheverCommandHasThem) {
     SCOPED_TRACE(c.command);
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --threads 0"),
                      "--threads: '0' must be a whole number in 1..1024", c.written);
-    if (c.command == "report sat-precision") continue;  // has no --isa
+    if (c.command == "report sat-precision" || c.command == "report frames") continue;  // no --isa
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --isa mmx"),
                      "--isa: unknown ISA 'mmx' (auto, scalar, sse2, avx2, avx512)", c.written);
   }

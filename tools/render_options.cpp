@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <sstream>
 
 #include "api/camera.h"
 #include "api/renderer.h"
@@ -95,6 +96,21 @@ Camera chooseCamera(const Scene& scene, const CameraOverrides& overrides) {
   if (camera.zfar > 0.0f && camera.zfar <= camera.znear)
     throw Error("--far: the far plane must lie beyond the near plane");
   return camera;
+}
+
+std::map<std::string, std::string> lineKeyValues(const std::string& output,
+                                                 const std::string& prefix) {
+  std::map<std::string, std::string> pairs;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) != 0) continue;
+    std::istringstream words(line.substr(prefix.size()));
+    for (std::string word; words >> word;) {
+      const std::size_t eq = word.find('=');
+      if (eq != std::string::npos) pairs[word.substr(0, eq)] = word.substr(eq + 1);
+    }
+  }
+  return pairs;
 }
 
 FrameTimeSummary summarizeFrameTimes(std::vector<double> times) {

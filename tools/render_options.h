@@ -5,6 +5,7 @@
 // `… frame_ms median=… min=… max=…` line.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +40,11 @@ void addCameraOptions(CommandOptions& options, CameraOverrides& overrides);
 // The scene's first camera (or the default framing) with the overrides
 // applied; an Error when they contradict each other.
 Camera chooseCamera(const Scene& scene, const CameraOverrides& overrides);
+
+// The key=value pairs of the line of `output` that starts with `prefix`
+// ("quadra frame_ms "), for a caller that reads a render's report back.
+std::map<std::string, std::string> lineKeyValues(const std::string& output,
+                                                 const std::string& prefix);
 
 // Frame times (ms) as the frame_ms line reports them.
 struct FrameTimeSummary {
