@@ -166,8 +166,9 @@ std::vector<CommandLineCase> everyCommand() {
   writeFrame(texture, tex.string());
   std::ofstream(in) << "u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,0,0,0,0\n";
   const fs::path png = tempPath("parse.png"), csv = tempPath("parse_values.csv"),
-                 reportDir = testDir() / "parse_report";
+                 reportDir = testDir() / "parse_report", framesDir = testDir() / "parse_frames";
   fs::remove_all(reportDir);
+  fs::remove_all(framesDir);
   return {
       {"render", "builtin:checker-plane --width 32", "--height 32 --out " + png.string(), png},
       {"sample", "--texture " + tex.string() + " --filter bilinear",
@@ -175,6 +176,8 @@ std::vector<CommandLineCase> everyCommand() {
       {"report textures", "--size 8 --lookups 36", "--out-dir " + reportDir.string(), reportDir},
       {"report sat-precision", "--size 16", "--boxes 1", {}},
       {"report stability", "--threads 2", "--isa auto", {}},
+      {"report frames", "--scenes builtin:checker-plane --width 32",
+       "--height 32 --rounds 1 --frames 1 --out-dir " + framesDir.string(), framesDir},
   };
 }
 

@@ -1,9 +1,13 @@
 // quadra against Mesa's llvmpipe (issue 12): the peer renderer
-// quadra-llvmpipe (tools/peer/) draws the frames quadra draws. The peer's
-// tests skip where it was not built (no libosmesa6-dev, or a sanitizer build).
+// quadra-llvmpipe (tools/peer/) draws the frames quadra draws, and `quadra
+// report frames` runs both and prints one row per scene. The peer's tests
+// skip where it was not built (no libosmesa6-dev, or a sanitizer build).
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -131,6 +135,69 @@ TEST(LlvmpipePeer, BadOptionsAreOneLineErrors) {
   const RunResult help = runPeer("render --help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_EQ(help.out.rfind("usage: quadra-llvmpipe render ", 0), 0u) << help.out;
+}
+
+// The cells of the table row that starts with "| label |".
+std::vector<std::string> tableRow(const std::string& out, const std::string& label) {
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("| " + label + " |", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::istringstream parts(line.substr(1));
+    for (std::string cell; std::getline(parts, cell, '|');)
+      cells.push_back(cell.substr(1, cell.size() - 2));
+    return cells;
+  }
+  return {};
+}
+
+TEST(ReportFrames, PrintsARowForEachRendererAndWritesTheCsv) {
+  const fs::path dir = testDir() / "report_frames";
+  fs::remove_all(dir);
+  const RunResult r =
+      run("report frames --scenes builtin:showcase --width 64 --height 36 --rounds 1 --frames 1 "
+          "--threads 2 --out-dir " +
+          dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const std::vector<std::string> row = tableRow(r.out, "builtin:showcase");
+  ASSERT_FALSE(row.empty()) << r.out;
+  EXPECT_EQ(row[1], "9,066");
+  const std::regex number("[0-9]+(\\.[0-9]+)?");
+  if (kHavePeer) {
+    // scene, triangles, quadra ms, llvmpipe ms, ratio, quadra e2e s,
+    // llvmpipe e2e s, e2e ratio, PSNR dB, max diff
+    ASSERT_EQ(row.size(), 10u) << r.out;
+    for (std::size_t i = 2; i < row.size(); ++i)
+      EXPECT_TRUE(std::regex_match(row[i], number)) << i << ": '" << row[i] << "'";
+    EXPECT_NE(r.out.find("Geometric mean over 1 scenes: frame ratio "), std::string::npos);
+    EXPECT_TRUE(fs::exists(dir / "frames" / "builtin-showcase.llvmpipe.exr"));
+  } else {
+    EXPECT_NE(r.out.find("llvmpipe: not measured"), std::string::npos) << r.out;
+    ASSERT_EQ(row.size(), 4u) << r.out;
+  }
+  EXPECT_TRUE(fs::exists(dir / "frames" / "builtin-showcase.quadra.exr"));
+  std::ifstream csv(dir / "frames.csv");
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("scene,triangles,quadra_ms,llvmpipe_ms,ratio,", 0), 0u) << header;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line.rfind("builtin:showcase,9066,", 0), 0u) << line;
+}
+
+TEST(ReportFrames, BadOptionsAreOneLineErrorsAndWriteNothing) {
+  const fs::path dir = testDir() / "report_frames_never";
+  fs::remove_all(dir);
+  const std::string outDir = " --out-dir " + dir.string();
+  expectOneLineError(run("report frames --bogus" + outDir),
+                     "report frames: unknown option '--bogus' (see quadra report frames --help)");
+  expectOneLineError(run("report frames --scenes builtin:nope" + outDir),
+                     "--scenes: unknown built-in scene 'builtin:nope'");
+  expectOneLineError(run("report frames --scenes builtin:showcase,NoSuchModel" + outDir),
+                     "--scenes: 'NoSuchModel' is neither");
+  expectOneLineError(run("report frames --scenes builtin:showcase,,builtin:showcase" + outDir),
+                     "--scenes: empty entry");
+  expectOneLineError(run("report frames --rounds 0" + outDir), "--rounds");
+  EXPECT_FALSE(fs::exists(dir));
 }
 
 }  // namespace
