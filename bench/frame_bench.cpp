@@ -1,11 +1,14 @@
 // Whole-frame cost at 1920x1080, trilinear: built-in scenes and shared sample
-// models at 1 and 2 threads, in ms/frame with triangles/s and pixels/s, next
-// to a do-nothing baseline that shows the harness's own overhead.
+// models at 1 and 2 threads, in ms/frame with triangles/s, pixels/s and the
+// stages of api/renderer.h StageTimes (ms per frame), next to a do-nothing
+// baseline that shows the harness's own overhead.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "api/renderer.h"
 #include "lab/scene/builtin_scenes.h"
@@ -28,6 +31,17 @@ Scene loadBenchScene(const std::string& source) {
   return loadGltf(path.string());
 }
 
+// Each stage of `total` paired with the same stage of `part`, in StageTimes' order.
+std::array<std::pair<double*, double>, 7> stageFields(StageTimes& total, const StageTimes& part) {
+  return {{{&total.draws, part.draws},
+           {&total.vertex, part.vertex},
+           {&total.setup, part.setup},
+           {&total.bin, part.bin},
+           {&total.raster, part.raster},
+           {&total.shade, part.shade},
+           {&total.resolve, part.resolve}}};
+}
+
 // state.range(0) is the thread count. Loading, renderer construction and one
 // warm-up frame (which also builds the mip chains) stay outside the timing.
 void frameTime(benchmark::State& state, const std::string& source) {
@@ -48,12 +62,20 @@ void frameTime(benchmark::State& state, const std::string& source) {
   settings.filter = Filter::Trilinear;
   Frame frame;
   renderer.render(scene, camera, settings, frame);
+  StageTimes sum;
   for (auto _ : state) {
-    renderer.render(scene, camera, settings, frame);
+    const StageTimes t = renderer.render(scene, camera, settings, frame).stages;
     benchmark::DoNotOptimize(frame.rgba.data());
     benchmark::ClobberMemory();
+    for (auto [total, part] : stageFields(sum, t)) *total += part;
   }
   const double frames = double(state.iterations());
+  // The same stages `quadra render --stats` prints, as the mean ms per frame.
+  const char* const names[] = {"draws_ms",  "vertex_ms", "setup_ms",  "bin_ms",
+                               "raster_ms", "shade_ms",  "resolve_ms"};
+  int i = 0;
+  for (auto [total, part] : stageFields(sum, sum))
+    state.counters[names[i++]] = benchmark::Counter(*total / frames);
   state.counters["triangles/s"] =
       benchmark::Counter(frames * double(scene.triangleCount()), benchmark::Counter::kIsRate);
   state.counters["pixels/s"] =

@@ -48,6 +48,8 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --frames K             K timed frames after one warm-up (default 1)
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
+  --stats                also print where the time went: "quadra stages_ms load=... draws=...
+                         vertex=... setup=... bin=... raster=... shade=... resolve=... write=..."
 Prints "quadra frame_ms median=... min=... max=... triangles=... width=... height=...
 threads=..." after rendering.
 built-in scenes: )";
@@ -64,6 +66,7 @@ struct RenderCommand {
   RenderSettings settings;
   RendererConfig config;
   int frames = 1;
+  bool stats = false;
   std::vector<std::string> outputs;
   CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
@@ -92,6 +95,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);
+  options.flag("--stats", [&] { cmd.stats = true; });
   addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   return cmd;
@@ -103,28 +107,54 @@ Scene loadScene(const RenderCommand& cmd) {
   return scene;
 }
 
+// One line of key=value pairs: loading and writing once, each frame stage's
+// median over the timed frames (api/renderer.h StageTimes says how a parallel
+// pass is split among its stages).
+void printStages(double loadMs, const std::vector<StageTimes>& frames, double writeMs) {
+  const auto stage = [&](double StageTimes::*field) {
+    std::vector<double> values;
+    for (const StageTimes& t : frames) values.push_back(t.*field);
+    return summarizeFrameTimes(values).median;
+  };
+  std::printf(
+      "quadra stages_ms load=%.3f draws=%.3f vertex=%.3f setup=%.3f bin=%.3f raster=%.3f "
+      "shade=%.3f resolve=%.3f write=%.3f\n",
+      loadMs, stage(&StageTimes::draws), stage(&StageTimes::vertex), stage(&StageTimes::setup),
+      stage(&StageTimes::bin), stage(&StageTimes::raster), stage(&StageTimes::shade),
+      stage(&StageTimes::resolve), writeMs);
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 int renderCommand(const std::vector<std::string>& args) {
   const std::optional<RenderCommand> parsed = parseRender(args);
   if (!parsed) return 0;
   const RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
+  const auto loadStart = std::chrono::steady_clock::now();
   const Scene scene = loadScene(cmd);
+  const double loadMs = millisecondsSince(loadStart);
   const Camera camera = chooseCamera(scene, cmd.camera);
 
   Frame frame;
   FrameStats stats = renderer.render(scene, camera, cmd.settings, frame);  // warm-up
   std::vector<double> times;
+  std::vector<StageTimes> stages;
   for (int i = 0; i < cmd.frames; ++i) {
     const auto start = std::chrono::steady_clock::now();
     stats = renderer.render(scene, camera, cmd.settings, frame);
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    times.push_back(millisecondsSince(start));
+    stages.push_back(stats.stages);
   }
+  const auto writeStart = std::chrono::steady_clock::now();
   for (const std::string& path : cmd.outputs) {
     writeFrame(frame, path);
     std::cout << "quadra wrote " << path << "\n";
   }
+  const double writeMs = millisecondsSince(writeStart);
   const FrameTimeSummary summary = summarizeFrameTimes(times);
   std::printf(
       "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
@@ -134,6 +164,7 @@ int renderCommand(const std::vector<std::string>& args) {
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
       stats.clipped);
+  if (cmd.stats) printStages(loadMs, stages, writeMs);
   return 0;
 }
 

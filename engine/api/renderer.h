@@ -59,7 +59,22 @@ struct RenderSettings {
   DebugView debugView = DebugView::None;
 };
 
-// Counts of what the front end did with the frame's triangles.
+// Where a frame's time went, in ms of wall time. Setup and bin run in one
+// parallel pass over the front-end chunks, and raster, shade and resolve in
+// one task per tile: such a pass's wall time is split among its stages in
+// proportion to the thread time each took, so the stages add up to the frame.
+struct StageTimes {
+  double draws = 0.0;   // the draw list, with texture levels built on first use
+  double vertex = 0.0;  // vertex stage
+  double setup = 0.0;   // clip and triangle setup
+  double bin = 0.0;
+  double raster = 0.0;  // tile stage: coverage and depth (and shading, until it has its own pass)
+  double shade = 0.0;   // tile stage: shading pass
+  double resolve = 0.0;
+};
+
+// Counts of what the front end did with the frame's triangles, and where the
+// frame's time went.
 struct FrameStats {
   std::size_t trianglesIn = 0;     // submitted (instances x triangles)
   std::size_t trianglesDrawn = 0;  // set up and binned (after clipping splits)
@@ -68,6 +83,7 @@ struct FrameStats {
   std::size_t droppedDegenerate = 0;  // zero area after snapping (or clipped onto the eye)
   std::size_t droppedInvalid = 0;     // NaN or Inf in a position or an attribute read
   std::size_t clipped = 0;            // needed clipping against near/far/guard band
+  StageTimes stages;
 };
 
 class Renderer {

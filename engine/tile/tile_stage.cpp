@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/parallel.h"
+#include "core/stage_clock.h"
 #include "tile/tile_resolve.h"
 
 namespace quadra {
@@ -20,7 +21,9 @@ void clearTile(TileBuffers& tile, const glm::vec4& clearColor, float clearDepth)
 
 void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& draws,
                 const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                const glm::vec4& clearColor, float clearDepth, TileBuffers& tile, Frame& frame) {
+                const glm::vec4& clearColor, float clearDepth, TileBuffers& tile, Frame& frame,
+                TileTimes& times) {
+  const double start = stageClockMs();
   tile.originX = (tileIndex % grid.tilesX) * kTileSize;
   tile.originY = (tileIndex / grid.tilesX) * kTileSize;
   tile.width = std::min(kTileSize, grid.width - tile.originX);
@@ -35,7 +38,10 @@ void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& dr
           .rasterize(t, &chunk.setup.planes[t.firstPlane], draws[t.draw].shade, tile);
     }
   }
+  const double rastered = stageClockMs();
   resolveTile(tile, frame);
+  times.raster = rastered - start;
+  times.resolve = stageClockMs() - rastered;
 }
 
 }  // namespace
@@ -43,11 +49,13 @@ void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& dr
 void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
                  const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
                  const glm::vec4& clearColor, float clearDepth, const Executor& executor,
-                 Frame& frame) {
+                 Frame& frame, std::vector<TileTimes>& times) {
+  times.assign(std::size_t(grid.tileCount()), TileTimes{});
   executor.parallelFor(std::size_t(grid.tileCount()), 1, [&](std::size_t begin, std::size_t end) {
     auto tile = std::make_unique<TileBuffers>();
     for (std::size_t t = begin; t < end; ++t)
-      renderTile(int(t), grid, draws, chunks, kernels, clearColor, clearDepth, *tile, frame);
+      renderTile(int(t), grid, draws, chunks, kernels, clearColor, clearDepth, *tile, frame,
+                 times[t]);
   });
 }
 
