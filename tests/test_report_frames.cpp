@@ -197,6 +197,8 @@ TEST(ReportFrames, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(run("report frames --scenes builtin:showcase,,builtin:showcase" + outDir),
                      "--scenes: empty entry");
   expectOneLineError(run("report frames --rounds 0" + outDir), "--rounds");
+  expectOneLineError(run("report frames --llvmpipe-framebuffer rgba8" + outDir),
+                     "--llvmpipe-framebuffer: unknown framebuffer 'rgba8' (rgba32f, srgba8)");
   EXPECT_FALSE(fs::exists(dir));
 }
 

@@ -39,6 +39,7 @@ namespace fs = std::filesystem;
 constexpr const char* kFramesUsage =
     R"(usage: quadra report frames [--width W] [--height H] [--threads N] [--frames K]
                             [--rounds R] [--scenes LIST] [--assets DIR] [--out-dir DIR]
+                            [--llvmpipe-framebuffer rgba32f|srgba8]
   --width W --height H  frame size (default 1920x1080)
   --threads N           threads of both renderers (default: all cores)
   --frames K            timed frames per timing run, after one warm-up (default 5)
@@ -49,6 +50,9 @@ constexpr const char* kFramesUsage =
   --assets DIR          the sample models, DIR/<Model>/glTF/<Model>.gltf
                         (default: ../shared/assets beside the source tree)
   --out-dir DIR         where frames.csv and the images (DIR/frames/) go (default out)
+  --llvmpipe-framebuffer rgba32f|srgba8
+                        llvmpipe's colour buffer: rgba32f (default) holds what quadra's
+                        frame holds; srgba8 is llvmpipe's cheapest target
 Each scene is rendered by `quadra render` and, where it was built beside this
 quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and unlit
 shading), as separate processes with the same options, taking turns at going first.
@@ -67,6 +71,7 @@ struct FramesOptions {
   std::string scenes;
   std::string assets = QUADRA_ASSETS_DIR;
   std::string outDir = "out";
+  std::string peerFramebuffer = "rgba32f";  // quadra-llvmpipe --framebuffer
 };
 
 std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
@@ -79,6 +84,9 @@ std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
   parser.text("--scenes", options.scenes);
   parser.text("--assets", options.assets);
   parser.text("--out-dir", options.outDir);
+  parser.choice("--llvmpipe-framebuffer", "framebuffer",
+                {{"rgba32f", std::string("rgba32f")}, {"srgba8", std::string("srgba8")}},
+                options.peerFramebuffer);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -146,6 +154,7 @@ std::vector<SceneEntry> chooseScenes(const FramesOptions& options) {
 struct Contender {
   std::string name;
   fs::path program;
+  std::vector<std::string> options;  // its own, after the shared ones
 };
 
 struct Measurements {
@@ -177,6 +186,7 @@ std::map<std::string, std::string> runRender(const Contender& contender, const S
                                         "--threads", std::to_string(options.threads),
                                         "--frames",  std::to_string(frames)};
   if (!output.empty()) arguments.insert(arguments.end(), {"--out", output.string()});
+  arguments.insert(arguments.end(), contender.options.begin(), contender.options.end());
   const ProcessResult run = runProcess(contender.program, arguments, scratch);
   if (run.exitCode != 0)
     throw Error(scene.label + ": " + contender.program.filename().string() +
@@ -260,10 +270,11 @@ int runFramesReport(const std::vector<std::string>& args) {
     throw Error(options.outDir + ": cannot create the output directory");
 
   const fs::path self = executablePath();
-  std::vector<Contender> contenders = {{"quadra", self}};
+  std::vector<Contender> contenders = {{"quadra", self, {}}};
   const fs::path peer = self.parent_path() / "quadra-llvmpipe";
   const bool havePeer = fs::is_regular_file(peer, ec) && ::access(peer.c_str(), X_OK) == 0;
-  if (havePeer) contenders.push_back({"llvmpipe", peer});
+  if (havePeer)
+    contenders.push_back({"llvmpipe", peer, {"--framebuffer", options.peerFramebuffer}});
 
   std::vector<SceneResult> results;
   for (const SceneEntry& scene : scenes)
@@ -317,8 +328,9 @@ int runFramesReport(const std::vector<std::string>& args) {
       return peerLine.count(key) ? peerLine.at(key) : std::string("unknown");
     };
     out << "llvmpipe: Mesa " << value("mesa") << ", " << value("vector_bits")
-        << "-bit vectors, LP_NUM_THREADS=" << options.threads
-        << ", OpenGL 4.5 through OSMesa, RGBA32F colour + 32-bit float depth, each frame read "
+        << "-bit vectors, LP_NUM_THREADS=" << options.threads << ", OpenGL 4.5 through OSMesa, "
+        << (options.peerFramebuffer == "srgba8" ? "8-bit sRGB" : "RGBA32F")
+        << " colour + 32-bit float depth, each frame read "
            "back. Ratio: quadra / llvmpipe (below 1: quadra is faster). PSNR (peak 1) and max: "
            "R, G, B of the two linear EXR images.\n\n";
     out << "| scene | triangles | quadra ms | llvmpipe ms | ratio | quadra e2e s | llvmpipe e2e s "
