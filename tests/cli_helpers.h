@@ -14,6 +14,9 @@
 #include <sstream>
 #include <string>
 
+#include "io/image_io.h"
+#include "render_options.h"
+
 namespace quadra {
 
 namespace fs = std::filesystem;
@@ -65,6 +68,27 @@ inline void expectOneLineError(const RunResult& r, const std::string& mentions) 
   EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
   ASSERT_FALSE(r.err.empty());
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
+}
+
+// The render contract (DESIGN.md "Contracts"), whichever renderer ran
+// `render builtin:checker-plane --width 96 --height 54 --frames 3 --threads 2
+// --out EXR --out PNG`: a frame line after `prefix` with what it rendered,
+// and both files at that size.
+inline void expectCheckerPlaneFrame(const RunResult& r, const std::string& prefix,
+                                    const fs::path& exr, const fs::path& png) {
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto line = lineKeyValues(r.out, prefix);
+  for (const char* key : {"median", "min", "max", "triangles", "width", "height", "threads"})
+    ASSERT_TRUE(line.count(key)) << key << " missing in: " << r.out;
+  EXPECT_EQ(line.at("width"), "96");
+  EXPECT_EQ(line.at("height"), "54");
+  EXPECT_EQ(line.at("threads"), "2");
+  EXPECT_EQ(line.at("triangles"), "2");
+  EXPECT_LE(std::stod(line.at("min")), std::stod(line.at("median")));
+  EXPECT_LE(std::stod(line.at("median")), std::stod(line.at("max")));
+  const Image fromExr = readImage(exr.string()), fromPng = readImage(png.string());
+  EXPECT_EQ(fromExr.width, 96);
+  EXPECT_EQ(fromPng.height, 54);
 }
 
 }  // namespace quadra

@@ -4,12 +4,29 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
+#include <new>
 
 #include "core/error.h"
 
 namespace quadra {
+
+int runMain(const char* program, int argc, char** argv,
+            const std::function<int(const std::vector<std::string>& args)>& run) {
+  try {
+    return run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: out of memory\n", program);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  }
+  return 1;
+}
 
 double parseNumber(const std::string& option, const std::string& text) {
   char* end = nullptr;

@@ -22,6 +22,11 @@ double parseNumber(const std::string& option, const std::string& text);
 int parseInteger(const std::string& option, const std::string& text, int lo, int hi);
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix);
 
+// main()'s body for a quadra program: returns run(args)'s status, and turns
+// any failure into one line on stderr, "program: message", and status 1.
+int runMain(const char* program, int argc, char** argv,
+            const std::function<int(const std::vector<std::string>& args)>& run);
+
 enum class Parsed : std::uint8_t { Run, HelpShown };
 
 // One command's options. Declare them, then parse: handlers run in

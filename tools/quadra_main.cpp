@@ -76,14 +76,8 @@ struct RenderCommand {
 std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   RenderCommand cmd;
   CommandOptions options("render", usage());
-  bool sceneGiven = false;
-  options.positional([&](const std::string& scene) {
-    if (sceneGiven) throw Error("render: more than one scene given ('" + scene + "')");
-    cmd.scenePath = scene;
-    sceneGiven = true;
-  });
+  addSceneOptions(options, cmd.scenePath, cmd.load);
   addSizeOptions(options, cmd.settings.width, cmd.settings.height);
-  options.integer("--scene", cmd.load.sceneIndex, 0, 1 << 20);
   addCameraOptions(options, cmd.camera);
   addFilterOptions(options, cmd.settings.filter, cmd.settings.maxAniso, cmd.settings.lodBias);
   addTexelFormatOrAutoOption(options, "--texture-format", cmd.textureFormat);
@@ -168,8 +162,7 @@ int renderCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
-int run(int argc, char** argv) {
-  const std::vector<std::string> args(argv + 1, argv + argc);
+int run(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << usage();
     return args.empty() ? 2 : 0;
@@ -189,14 +182,5 @@ int run(int argc, char** argv) {
 }  // namespace quadra
 
 int main(int argc, char** argv) {
-  try {
-    return quadra::run(argc, argv);
-  } catch (const quadra::Error& e) {
-    std::fprintf(stderr, "quadra: %s\n", e.what());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "quadra: out of memory\n");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "quadra: %s\n", e.what());
-  }
-  return 1;
+  return quadra::runMain("quadra", argc, argv, quadra::run);
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "api/camera.h"
@@ -39,6 +40,16 @@ glm::vec3 parseVector(const std::string& option, const std::string& text) {
 }
 
 }  // namespace
+
+void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& load) {
+  const auto given = std::make_shared<bool>(false);
+  options.positional([&scene, given](const std::string& argument) {
+    if (*given) throw Error("render: more than one scene given ('" + argument + "')");
+    scene = argument;
+    *given = true;
+  });
+  options.integer("--scene", load.sceneIndex, 0, 1 << 20);
+}
 
 void addSizeOptions(CommandOptions& options, int& width, int& height) {
   options.integer("--width", width, 1, kMaxViewportSize);

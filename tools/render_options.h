@@ -25,6 +25,8 @@ constexpr const char* kBuiltinScenePrefix = "builtin:";
 Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
                         const std::string& program);
 
+// SCENE, the one positional argument, and --scene N (which glTF scene).
+void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& load);
 // --width and --height, each 1..kMaxViewportSize.
 void addSizeOptions(CommandOptions& options, int& width, int& height);
 // --out FILE.exr|FILE.png, repeatable: the files the last frame is written to.
