@@ -44,6 +44,12 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --depth standard|reversed
                          depth buffer: standard (0 near, LESS) or reversed (1 near, GREATER)
   --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
+  --derivatives analytic|quad
+                         texture footprints: the triangles' exact derivatives at each pixel
+                         (default) or 2x2 quad differences, as GPUs take them
+  --opaque-shading two-pass|forward
+                         opaque draws: visibility pass then shading of the visible pixels
+                         (default), or shaded as rasterized; the same image either way
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
                          kernel path (default auto: the best this CPU has)
@@ -127,6 +133,12 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                  cmd.settings.depth);
   options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}},
                  cmd.settings.shading);
+  options.choice("--derivatives", "derivative mode",
+                 {{"analytic", DerivativeMode::Analytic}, {"quad", DerivativeMode::Quad}},
+                 cmd.settings.derivatives);
+  options.choice("--opaque-shading", "opaque shading",
+                 {{"two-pass", OpaqueShading::TwoPass}, {"forward", OpaqueShading::Forward}},
+                 cmd.settings.opaqueShading);
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);

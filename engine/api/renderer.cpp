@@ -97,6 +97,12 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     g.texcoordSet = 0;
   }
 
+  s.derivatives = settings.derivatives;
+  s.twoPass = s.alphaMode != AlphaMode::Blend && s.blend == BlendMode::Replace && s.depthTest &&
+              s.depthWrite && s.output == ShadeOutput::Color &&
+              s.derivatives == DerivativeMode::Analytic &&
+              settings.opaqueShading == OpaqueShading::TwoPass;
+
   // Interpolate only what the shading reads.
   AttributeLayout& a = g.attributes;
   if (s.textured || s.output != ShadeOutput::Color) a.texcoord = a.count, a.count += 2;
