@@ -86,11 +86,31 @@ struct BlockEdges {
   }
 };
 
-// Coverage of the 8x8 block whose top-left pixel is (px, py) in the window:
-// bit (row*8 + column), limited to validMask, whose rows lie in
-// [rowBegin, rowEnd). Exact: integer edge functions (window/window_space.h).
+// The pixels of an 8x8 block inside both the tile's viewport part and the
+// triangle's bbox: rows [rowBegin, rowEnd), columns [columnBegin, columnEnd),
+// and as a mask, bit (row*8 + column). A small triangle's is a few bits, and
+// the coverage loop visits only those.
+struct BlockRange {
+  int rowBegin, rowEnd, columnBegin, columnEnd;
+  std::uint64_t mask;
+  BlockRange(int bx, int by, int xBegin, int xEnd, int yBegin, int yEnd)
+      : rowBegin(std::max(yBegin - by, 0)),
+        rowEnd(std::min(yEnd - by, kBlockSize)),
+        columnBegin(std::max(xBegin - bx, 0)),
+        columnEnd(std::min(xEnd - bx, kBlockSize)) {
+    const std::uint64_t rowBits = ((1u << columnEnd) - 1u) & ~((1u << columnBegin) - 1u);
+    constexpr std::uint64_t kFirstColumn = 0x0101010101010101u;  // bit 0 of every row
+    const std::uint64_t rows = kFirstColumn * rowBits;           // rowBits in every row
+    const std::uint64_t below = rowEnd == kBlockSize ? ~0ull : (1ull << (rowEnd * kBlockSize)) - 1;
+    mask = rows & below & ~((1ull << (rowBegin * kBlockSize)) - 1);
+  }
+};
+
+// Coverage of the 8x8 block whose top-left pixel is (px, py) in the window,
+// within `range`: bit (row*8 + column). Exact: integer edge functions
+// (window/window_space.h).
 std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, int px, int py,
-                            std::uint64_t validMask, int rowBegin, int rowEnd) {
+                            const BlockRange& range) {
   std::int64_t corner[3];
   bool full = true;
   for (int e = 0; e < 3; ++e) {
@@ -98,30 +118,19 @@ std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, in
     if (corner[e] + edges.highOffset[e] <= 0) return 0;
     full = full && corner[e] + edges.lowOffset[e] > 0;
   }
-  if (full) return validMask;
+  if (full) return range.mask;
   std::uint64_t mask = 0;
-  for (int row = rowBegin; row < rowEnd; ++row) {
+  for (int row = range.rowBegin; row < range.rowEnd; ++row) {
     std::int64_t start[3];
     for (int e = 0; e < 3; ++e) start[e] = corner[e] + edges.rowStep[e] * row;
     std::uint64_t bits = 0;
-    for (int c = 0; c < kBlockSize; ++c) {
+    for (int c = range.columnBegin; c < range.columnEnd; ++c) {
       const bool inside = (start[0] + edges.column[0][c] > 0) &
                           (start[1] + edges.column[1][c] > 0) & (start[2] + edges.column[2][c] > 0);
       bits |= std::uint64_t(inside) << c;
     }
     mask |= bits << (row * kBlockSize);
   }
-  return mask & validMask;
-}
-
-// Pixels of the block inside both the tile's viewport part and the triangle's bbox.
-std::uint64_t blockValidMask(int bx, int by, int xBegin, int xEnd, int yBegin, int yEnd) {
-  std::uint64_t rowBits = 0;
-  for (int column = 0; column < kBlockSize; ++column)
-    if (bx + column >= xBegin && bx + column < xEnd) rowBits |= 1u << column;
-  std::uint64_t mask = 0;
-  for (int row = 0; row < kBlockSize; ++row)
-    if (by + row >= yBegin && by + row < yEnd) mask |= rowBits << (row * kBlockSize);
   return mask;
 }
 
@@ -323,13 +332,13 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, const TileBuf
 
   for (int by = yBegin & ~(kBlockSize - 1); by < yEnd; by += kBlockSize) {
     for (int bx = xBegin & ~(kBlockSize - 1); bx < xEnd; bx += kBlockSize) {
-      const std::uint64_t valid = blockValidMask(bx, by, xBegin, xEnd, yBegin, yEnd);
+      const BlockRange range(bx, by, xBegin, xEnd, yBegin, yEnd);
       const std::uint64_t coverage =
-          blockCoverage(t, edges, tile.originX + bx, tile.originY + by, valid,
-                        std::max(yBegin - by, 0), std::min(yEnd - by, kBlockSize));
+          blockCoverage(t, edges, tile.originX + bx, tile.originY + by, range);
       if (coverage == 0) continue;
-      for (int gy = 0; gy < kBlockSize; gy += 2) {
-        for (int gx = 0; gx < kBlockSize; gx += kGroupWidth) {
+      for (int gy = range.rowBegin & ~1; gy < range.rowEnd; gy += 2) {
+        for (int gx = range.columnBegin / kGroupWidth * kGroupWidth; gx < range.columnEnd;
+             gx += kGroupWidth) {
           const int shift = gy * kBlockSize + gx;
           const std::uint32_t packed = std::uint32_t((coverage >> shift) & kRowBits) |
                                        std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits)
