@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <OpenEXR/ImfThreading.h>
+
 #include "api/camera.h"
 #include "api/renderer.h"
 #include "cli_options.h"
@@ -221,6 +223,10 @@ int renderCommand(const std::vector<std::string>& args) {
   if (!parsed) return 0;
   const RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
+  // OpenEXR compresses scanline blocks on its own process-wide pool, off by
+  // default; the tool (not the library, which keeps no global state) sizes it
+  // to the render's threads.
+  Imf::setGlobalThreadCount(renderer.threadCount());
   const auto loadStart = std::chrono::steady_clock::now();
   const Scene scene = loadScene(cmd);
   const double loadMs = millisecondsSince(loadStart);

@@ -190,6 +190,7 @@ void writePng(const Frame& frame, const std::string& path) {
   image.width = png_uint_32(frame.width);
   image.height = png_uint_32(frame.height);
   image.format = PNG_FORMAT_RGBA;
+  image.flags = PNG_IMAGE_FLAG_FAST;
   const int ok = png_image_write_to_stdio(&image, file, 0, bytes.data(), 0, nullptr);
   const std::string message = ok ? "" : image.message;
   png_image_free(&image);
