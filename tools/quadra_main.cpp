@@ -58,8 +58,9 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --frames K             K timed frames after one warm-up (default 1)
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
-  --stats                also print where the time went: "quadra stages_ms load=... draws=...
-                         vertex=... setup=... bin=... raster=... shade=... resolve=... write=..."
+  --stats                also print where the time went: "quadra stages_ms load=... first_frame=...
+                         draws=... vertex=... setup=... bin=... raster=... shade=... resolve=...
+                         write=..."
 Prints "quadra frame_ms median=... min=... max=... triangles=... width=... height=...
 threads=..." after rendering.
 built-in scenes: )";
@@ -196,21 +197,23 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-// One line of key=value pairs: loading and writing once, each frame stage's
-// median over the timed frames (api/renderer.h StageTimes says how a parallel
-// pass is split among its stages).
-void printStages(double loadMs, const std::vector<StageTimes>& frames, double writeMs) {
+// One line of key=value pairs: loading, the warm-up frame (which also builds
+// the texture levels its filters read) and writing once each, and each frame
+// stage's median over the timed frames (api/renderer.h StageTimes says how a
+// parallel pass is split among its stages).
+void printStages(double loadMs, double firstFrameMs, const std::vector<StageTimes>& frames,
+                 double writeMs) {
   const auto stage = [&](double StageTimes::*field) {
     std::vector<double> values;
     for (const StageTimes& t : frames) values.push_back(t.*field);
     return median(values);
   };
   std::printf(
-      "quadra stages_ms load=%.3f draws=%.3f vertex=%.3f setup=%.3f bin=%.3f raster=%.3f "
-      "shade=%.3f resolve=%.3f write=%.3f\n",
-      loadMs, stage(&StageTimes::draws), stage(&StageTimes::vertex), stage(&StageTimes::setup),
-      stage(&StageTimes::bin), stage(&StageTimes::raster), stage(&StageTimes::shade),
-      stage(&StageTimes::resolve), writeMs);
+      "quadra stages_ms load=%.3f first_frame=%.3f draws=%.3f vertex=%.3f setup=%.3f bin=%.3f "
+      "raster=%.3f shade=%.3f resolve=%.3f write=%.3f\n",
+      loadMs, firstFrameMs, stage(&StageTimes::draws), stage(&StageTimes::vertex),
+      stage(&StageTimes::setup), stage(&StageTimes::bin), stage(&StageTimes::raster),
+      stage(&StageTimes::shade), stage(&StageTimes::resolve), writeMs);
 }
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
@@ -233,7 +236,9 @@ int renderCommand(const std::vector<std::string>& args) {
   const Camera camera = chooseCamera(scene, cmd);
 
   Frame frame;
+  const auto firstStart = std::chrono::steady_clock::now();
   FrameStats stats = renderer.render(scene, camera, cmd.settings, frame);  // warm-up
+  const double firstFrameMs = millisecondsSince(firstStart);
   std::vector<double> times;
   std::vector<StageTimes> stages;
   for (int i = 0; i < cmd.frames; ++i) {
@@ -257,7 +262,7 @@ int renderCommand(const std::vector<std::string>& args) {
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
       stats.clipped);
-  if (cmd.stats) printStages(loadMs, stages, writeMs);
+  if (cmd.stats) printStages(loadMs, firstFrameMs, stages, writeMs);
   return 0;
 }
 
