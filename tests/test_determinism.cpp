@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "api/renderer.h"
+#include "core/error.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 #include "render_helpers.h"
@@ -171,6 +172,31 @@ TEST(Determinism, EveryIsaMatchesScalar) {
     }
   }
   if (compared == 0) GTEST_SKIP() << "this CPU has no SIMD path to compare";
+}
+
+// Depth is resolved only when asked; the colour does not depend on it, and
+// an EXR (whose Z channel needs it) refuses a depthless frame by name.
+TEST(Determinism, FrameWithoutDepthHasTheSameColour) {
+  const Scene scene = makeBuiltinScene("showcase");
+  RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  const Frame withDepth = renderOnce(scene, firstCameraOrDefault(scene), settings);
+  settings.frameDepth = false;
+  const Frame colourOnly = renderOnce(scene, firstCameraOrDefault(scene), settings);
+  EXPECT_TRUE(colourOnly.depth.empty());
+  ASSERT_EQ(withDepth.depth.size(), std::size_t(kWidth) * kHeight);
+  EXPECT_TRUE(sameBits(colourOnly.rgba, withDepth.rgba));
+  const ScratchDir dir("quadra_no_depth");
+  const std::string exr = (dir.path() / "no_depth.exr").string();
+  try {
+    writeFrame(colourOnly, exr);
+    ADD_FAILURE() << "a frame without depth was written as EXR";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no depth"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(exr));
+  writeFrame(colourOnly, (dir.path() / "no_depth.png").string());  // PNG needs none
 }
 
 // Opaque and masked draws shade in two passes (visibility, then the visible

@@ -152,6 +152,10 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
     cmd.outputs.push_back(value);
   });
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  // Depth is resolved only for what reads it: the EXR's Z channel.
+  cmd.settings.frameDepth = std::any_of(cmd.outputs.begin(), cmd.outputs.end(), [](const auto& p) {
+    return endsWithIgnoringCase(p, ".exr");
+  });
   return cmd;
 }
 

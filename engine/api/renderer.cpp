@@ -231,7 +231,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   out.width = settings.width;
   out.height = settings.height;
   out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
-  out.depth.resize(std::size_t(out.width) * std::size_t(out.height));
+  out.depth.resize(settings.frameDepth ? std::size_t(out.width) * std::size_t(out.height) : 0);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
   renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out,
               impl_->tileTimes);

@@ -68,6 +68,9 @@ struct RenderSettings {
   // from 2x2 quad differences as GPUs take them; Quad shades forward.
   DerivativeMode derivatives = DerivativeMode::Analytic;
   OpaqueShading opaqueShading = OpaqueShading::TwoPass;
+  // Fill Frame::depth (the EXR Z channel); off, the frame's depth stays empty
+  // and resolve writes a fifth less memory.
+  bool frameDepth = true;
 };
 
 // Where a frame's time went, in ms of wall time. Setup and bin run in one

@@ -95,6 +95,9 @@ void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
   if (frame.rgba.size() != pixels * 4) {
     throw makeError(path, "frame colour buffer does not match its size");
   }
+  if (needsDepth && frame.depth.empty()) {
+    throw makeError(path, "the frame has no depth for the Z channel (render it with frameDepth)");
+  }
   if (needsDepth && frame.depth.size() != pixels) {
     throw makeError(path, "frame depth buffer does not match its size");
   }
