@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <OpenEXR/ImfThreading.h>
+
 #include "api/camera.h"
 #include "api/renderer.h"
 #include "cli_options.h"
@@ -42,14 +44,21 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --depth standard|reversed
                          depth buffer: standard (0 near, LESS) or reversed (1 near, GREATER)
   --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
+  --derivatives analytic|quad
+                         texture footprints: the triangles' exact derivatives at each pixel
+                         (default) or 2x2 quad differences, as GPUs take them
+  --opaque-shading two-pass|forward
+                         opaque draws: visibility pass then shading of the visible pixels
+                         (default), or shaded as rasterized; the same image either way
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
                          kernel path (default auto: the best this CPU has)
   --frames K             K timed frames after one warm-up (default 1)
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
-  --stats                also print where the time went: "quadra stages_ms load=... draws=...
-                         vertex=... setup=... bin=... raster=... shade=... resolve=... write=..."
+  --stats                also print where the time went: "quadra stages_ms load=... first_frame=...
+                         draws=... vertex=... setup=... bin=... raster=... shade=... resolve=...
+                         write=..."
 Prints "quadra frame_ms median=... min=... max=... triangles=... width=... height=...
 threads=..." after rendering.
 built-in scenes: )";
@@ -86,12 +95,19 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                  cmd.settings.depth);
   options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}},
                  cmd.settings.shading);
+  options.choice("--derivatives", "derivative mode",
+                 {{"analytic", DerivativeMode::Analytic}, {"quad", DerivativeMode::Quad}},
+                 cmd.settings.derivatives);
+  options.choice("--opaque-shading", "opaque shading",
+                 {{"two-pass", OpaqueShading::TwoPass}, {"forward", OpaqueShading::Forward}},
+                 cmd.settings.opaqueShading);
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);
   options.flag("--stats", [&] { cmd.stats = true; });
   addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   return cmd;
 }
 
@@ -101,21 +117,23 @@ Scene loadScene(const RenderCommand& cmd) {
   return scene;
 }
 
-// One line of key=value pairs: loading and writing once, each frame stage's
-// median over the timed frames (api/renderer.h StageTimes says how a parallel
-// pass is split among its stages).
-void printStages(double loadMs, const std::vector<StageTimes>& frames, double writeMs) {
+// One line of key=value pairs: loading, the warm-up frame (which also builds
+// the texture levels its filters read) and writing once each, and each frame
+// stage's median over the timed frames (api/renderer.h StageTimes says how a
+// parallel pass is split among its stages).
+void printStages(double loadMs, double firstFrameMs, const std::vector<StageTimes>& frames,
+                 double writeMs) {
   const auto stage = [&](double StageTimes::*field) {
     std::vector<double> values;
     for (const StageTimes& t : frames) values.push_back(t.*field);
     return summarizeFrameTimes(values).median;
   };
   std::printf(
-      "quadra stages_ms load=%.3f draws=%.3f vertex=%.3f setup=%.3f bin=%.3f raster=%.3f "
-      "shade=%.3f resolve=%.3f write=%.3f\n",
-      loadMs, stage(&StageTimes::draws), stage(&StageTimes::vertex), stage(&StageTimes::setup),
-      stage(&StageTimes::bin), stage(&StageTimes::raster), stage(&StageTimes::shade),
-      stage(&StageTimes::resolve), writeMs);
+      "quadra stages_ms load=%.3f first_frame=%.3f draws=%.3f vertex=%.3f setup=%.3f bin=%.3f "
+      "raster=%.3f shade=%.3f resolve=%.3f write=%.3f\n",
+      loadMs, firstFrameMs, stage(&StageTimes::draws), stage(&StageTimes::vertex),
+      stage(&StageTimes::setup), stage(&StageTimes::bin), stage(&StageTimes::raster),
+      stage(&StageTimes::shade), stage(&StageTimes::resolve), writeMs);
 }
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
@@ -128,13 +146,19 @@ int renderCommand(const std::vector<std::string>& args) {
   if (!parsed) return 0;
   const RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
+  // OpenEXR compresses scanline blocks on its own process-wide pool, off by
+  // default; the tool (not the library, which keeps no global state) sizes it
+  // to the render's threads.
+  Imf::setGlobalThreadCount(renderer.threadCount());
   const auto loadStart = std::chrono::steady_clock::now();
   const Scene scene = loadScene(cmd);
   const double loadMs = millisecondsSince(loadStart);
   const Camera camera = chooseCamera(scene, cmd.camera);
 
   Frame frame;
+  const auto firstStart = std::chrono::steady_clock::now();
   FrameStats stats = renderer.render(scene, camera, cmd.settings, frame);  // warm-up
+  const double firstFrameMs = millisecondsSince(firstStart);
   std::vector<double> times;
   std::vector<StageTimes> stages;
   for (int i = 0; i < cmd.frames; ++i) {
@@ -158,7 +182,7 @@ int renderCommand(const std::vector<std::string>& args) {
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
       stats.clipped);
-  if (cmd.stats) printStages(loadMs, stages, writeMs);
+  if (cmd.stats) printStages(loadMs, firstFrameMs, stages, writeMs);
   return 0;
 }
 

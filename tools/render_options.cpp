@@ -64,6 +64,11 @@ void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs)
   });
 }
 
+bool outputsNeedDepth(const std::vector<std::string>& outputs) {
+  return std::any_of(outputs.begin(), outputs.end(),
+                     [](const std::string& path) { return endsWithIgnoringCase(path, ".exr"); });
+}
+
 void addCameraOptions(CommandOptions& options, CameraOverrides& overrides) {
   for (auto [name, target] :
        {std::pair{"--eye", &overrides.eye}, std::pair{"--target", &overrides.target},

@@ -32,6 +32,10 @@ void addSizeOptions(CommandOptions& options, int& width, int& height);
 // --out FILE.exr|FILE.png, repeatable: the files the last frame is written to.
 void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs);
 
+// Whether a frame must carry depth for these outputs: an EXR's Z channel
+// does, a PNG does not. Depth is produced only for what reads it.
+bool outputsNeedDepth(const std::vector<std::string>& outputs);
+
 // --eye, --target, --up, --fovy, --near, --far: each set one overrides that
 // part of the scene's first camera.
 struct CameraOverrides {

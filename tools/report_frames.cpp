@@ -4,7 +4,7 @@
 // (tools/peer/, found beside this quadra) as separate processes with the same
 // arguments, over R rounds, the two taking turns at going first: a timing run
 // (K timed frames after a warm-up; its median frame time; the frame written
-// as EXR in the first round) and an end-to-end run (--frames 1 writing a PNG,
+// as EXR) and an end-to-end run (--frames 1 writing a PNG,
 // timed from spawn to exit). It prints a markdown table of the medians over
 // the rounds and of the two images' difference, then the geometric means of
 // the ratios, and writes DIR/frames.csv.
@@ -173,9 +173,8 @@ std::string firstLine(const std::string& text) {
   return text.substr(0, text.find('\n'));
 }
 
-// Runs `program render SCENE …` (writing `output` unless empty) and returns
-// its frame_ms line; an Error names the scene, the renderer and its own
-// message when the run fails.
+// Runs `program render SCENE … --out output` and returns its frame_ms line; an Error names the
+// scene, the renderer and its own message when the run fails.
 std::map<std::string, std::string> runRender(const Contender& contender, const SceneEntry& scene,
                                              const FramesOptions& options, int frames,
                                              const fs::path& output, const fs::path& scratch,
@@ -185,7 +184,7 @@ std::map<std::string, std::string> runRender(const Contender& contender, const S
                                         "--height",  std::to_string(options.height),
                                         "--threads", std::to_string(options.threads),
                                         "--frames",  std::to_string(frames)};
-  if (!output.empty()) arguments.insert(arguments.end(), {"--out", output.string()});
+  arguments.insert(arguments.end(), {"--out", output.string()});
   arguments.insert(arguments.end(), contender.options.begin(), contender.options.end());
   const ProcessResult run = runProcess(contender.program, arguments, scratch);
   if (run.exitCode != 0)
@@ -295,11 +294,10 @@ int runFramesReport(const std::vector<std::string>& args) {
         for (const std::size_t c : order) {
           const Contender& contender = contenders[c];
           Measurements& measured = result.byContender[c];
-          // The EXR for the comparison is written once, in the first round.
+          // Every timing run writes the EXR, so every round times the same
+          // work: both renderers produce depth for its Z channel.
           const fs::path image =
-              endToEnd || round == 0
-                  ? imageDir / (stem + "." + contender.name + (endToEnd ? ".png" : ".exr"))
-                  : fs::path();
+              imageDir / (stem + "." + contender.name + (endToEnd ? ".png" : ".exr"));
           double seconds = 0.0;
           const auto line = runRender(contender, result.scene, options,
                                       endToEnd ? 1 : options.frames, image, outDir, seconds);

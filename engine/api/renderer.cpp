@@ -109,6 +109,12 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     g.texcoordSet = 0;
   }
 
+  s.derivatives = settings.derivatives;
+  s.twoPass = s.alphaMode != AlphaMode::Blend && s.blend == BlendMode::Replace && s.depthTest &&
+              s.depthWrite && s.output == ShadeOutput::Color &&
+              s.derivatives == DerivativeMode::Analytic &&
+              settings.opaqueShading == OpaqueShading::TwoPass;
+
   // Interpolate only what the shading reads.
   AttributeLayout& a = g.attributes;
   if (s.textured || s.output != ShadeOutput::Color) a.texcoord = a.count, a.count += 2;
@@ -245,7 +251,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   out.width = settings.width;
   out.height = settings.height;
   out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
-  out.depth.resize(std::size_t(out.width) * std::size_t(out.height));
+  out.depth.resize(settings.frameDepth ? std::size_t(out.width) * std::size_t(out.height) : 0);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
   renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out,
               impl_->tileTimes);

@@ -40,10 +40,18 @@ enum class DebugView : std::uint8_t {
   CoverageCount,  // R = number of triangles covering the pixel; no depth test
   TexCoord,       // R, G = perspective-correct TEXCOORD_0 at the pixel centre; A = 1
   // R, G, B, A = du/dx, dv/dx, du/dy, dv/dy of TEXCOORD_0 as the sampler gets
-  // them (one footprint per 2x2 quad, from its top-left pixel, helper lanes
-  // included), in normalized texture units per pixel; depth-tested.
+  // them (RenderSettings::derivatives: exact at each pixel centre, or one
+  // footprint per 2x2 quad from its top-left pixel, helper lanes included),
+  // in normalized texture units per pixel; depth-tested.
   Derivatives,
 };
+
+// How opaque and masked draws are shaded. TwoPass: a visibility pass keeps
+// each sample's nearest triangle, then only the visible pixels are shaded,
+// packed densely into SIMD lanes. Forward: each triangle is shaded as it is
+// rasterized (every covered pixel that passes the depth test so far). Both
+// write the same bits; Forward is there for measurement and tests.
+enum class OpaqueShading : std::uint8_t { TwoPass, Forward };
 
 struct RenderSettings {
   int width = 1920;
@@ -57,6 +65,13 @@ struct RenderSettings {
   // frame's depth (and the EXR Z channel) then holds reversed depth.
   DepthMode depth = DepthMode::Standard;
   DebugView debugView = DebugView::None;
+  // Texture footprints from the triangles' exact derivatives (default) or
+  // from 2x2 quad differences as GPUs take them; Quad shades forward.
+  DerivativeMode derivatives = DerivativeMode::Analytic;
+  OpaqueShading opaqueShading = OpaqueShading::TwoPass;
+  // Fill Frame::depth (the EXR Z channel); off, the frame's depth stays empty
+  // and resolve writes a fifth less memory.
+  bool frameDepth = true;
 };
 
 // Where a frame's time went, in ms of wall time. Setup and bin run in one

@@ -15,7 +15,7 @@ namespace quadra {
 void resolveTile(const TileBuffers& tile, Frame& frame) {
   const std::size_t stride = std::size_t(frame.width);
   float* const rgba = frame.rgba.data();
-  float* const depth = frame.depth.data();
+  float* const depth = frame.depth.empty() ? nullptr : frame.depth.data();
   QUADRA_CHECK(reinterpret_cast<std::uintptr_t>(rgba) % 16 == 0);  // streaming stores
   for (int y = 0; y < tile.height; y += 2) {
     const bool secondRow = y + 1 < tile.height;
@@ -32,6 +32,7 @@ void resolveTile(const TileBuffers& tile, Frame& frame) {
                              secondRow ? rgba + (row1 + x) * 4 : nullptr,
                              secondRow && secondColumn ? rgba + (row1 + x + 1) * 4 : nullptr};
       simd::transposeToPixelsStreaming(in, out);
+      if (depth == nullptr) continue;  // the frame holds no depth
       depth[row0 + x] = tile.depth[quad];
       if (secondColumn) depth[row0 + x + 1] = tile.depth[quad + 1];
       if (secondRow) {

@@ -367,6 +367,11 @@ void GlSceneRenderer::render(const Camera& camera) {
     glReadPixels(0, 0, settings_.width, settings_.height, GL_RGBA, GL_UNSIGNED_BYTE,
                  colorBytes_.data());
   }
+  if (settings_.frameDepth) {
+    depth_.resize(values / 4);
+    glReadPixels(0, 0, settings_.width, settings_.height, GL_DEPTH_COMPONENT, GL_FLOAT,
+                 depth_.data());
+  }
 }
 
 void GlSceneRenderer::lastFrame(Frame& frame) const {
@@ -380,9 +385,7 @@ void GlSceneRenderer::lastFrame(Frame& frame) const {
       frame.rgba[i] =
           i % 4 == 3 ? float(colorBytes_[i]) * kUnorm8Scale : srgb8ToLinear(colorBytes_[i]);
   }
-  frame.depth.resize(std::size_t(settings_.width) * std::size_t(settings_.height));
-  glReadPixels(0, 0, settings_.width, settings_.height, GL_DEPTH_COMPONENT, GL_FLOAT,
-               frame.depth.data());
+  frame.depth = depth_;
   throwOnGlError("reading the frame back");
 }
 

@@ -43,6 +43,9 @@ struct PeerSettings {
   // Unset: as quadra stores it by default (quadra's loader's choice).
   std::optional<TexelFormat> textureFormat;
   PeerFramebuffer framebuffer = PeerFramebuffer::Rgba32F;
+  // Read depth back with every frame too, as quadra resolves it with every
+  // frame whose output has a Z channel (RenderSettings::frameDepth).
+  bool frameDepth = false;
 };
 
 // The filters llvmpipe has: nearest, bilinear, nearest-mip, trilinear, aniso.
@@ -58,12 +61,12 @@ class GlSceneRenderer {
   GlSceneRenderer(const GlSceneRenderer&) = delete;
   GlSceneRenderer& operator=(const GlSceneRenderer&) = delete;
 
-  // Draws one frame and reads its colour back into memory, so it returns once
-  // llvmpipe has finished the frame (quadra's frame time also ends with the
-  // frame in memory).
+  // Draws one frame and reads its colour (and with frameDepth its depth) back
+  // into memory, so it returns once llvmpipe has finished the frame
+  // (quadra's frame time also ends with the frame in memory).
   void render(const Camera& camera);
   // The last frame as quadra's Frame holds it: premultiplied linear RGBA
-  // float and window depth in [0, 1], row 0 at the top.
+  // float and, with frameDepth, window depth in [0, 1]; row 0 at the top.
   void lastFrame(Frame& frame) const;
 
  private:
@@ -99,6 +102,7 @@ class GlSceneRenderer {
   std::vector<DrawState> draws_;          // one per scene instance
   std::vector<float> colorFloat_;         // the last frame read back, Rgba32F
   std::vector<std::uint8_t> colorBytes_;  // the last frame read back, Srgba8
+  std::vector<float> depth_;              // the last frame's depth, with frameDepth
 };
 
 }  // namespace quadra

@@ -79,6 +79,7 @@ std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
   options.integer("--frames", cmd.frames, 1, 100000);
   addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   if (cmd.settings.filter && !peerSupportsFilter(*cmd.settings.filter))
     throw Error(std::string("--filter ") + filterName(*cmd.settings.filter) +
                 ": llvmpipe has no such filter (nearest, bilinear, nearest-mip, trilinear, aniso)");
