@@ -83,6 +83,42 @@ void frameTime(benchmark::State& state, const std::string& source) {
   state.SetLabel(source + " isa=" + isaName(renderer.isa()));
 }
 
+// How a frame scales: builtin:dense-mesh:N against its triangle count at
+// 1080p, and builtin:dense-mesh against the pixel count, 2 threads. Google
+// Benchmark fits the complexity (BigO) over the runs of each.
+void scalingRun(benchmark::State& state, const std::string& source, int width, int height,
+                std::int64_t complexityN) {
+  const Scene scene = loadBenchScene(source);
+  const Camera camera = firstCameraOrDefault(scene);
+  RendererConfig config;
+  config.threads = 2;
+  Renderer renderer(config);
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.filter = Filter::Trilinear;
+  Frame frame;
+  renderer.render(scene, camera, settings, frame);
+  for (auto _ : state) {
+    renderer.render(scene, camera, settings, frame);
+    benchmark::DoNotOptimize(frame.rgba.data());
+  }
+  state.SetComplexityN(complexityN);
+  state.counters["triangles"] = double(scene.triangleCount());
+  state.counters["pixels"] = double(width) * height;
+  state.SetLabel(source + " " + std::to_string(width) + "x" + std::to_string(height));
+}
+
+void scalingTriangles(benchmark::State& state) {
+  scalingRun(state, "builtin:dense-mesh:" + std::to_string(state.range(0)), kWidth, kHeight,
+             state.range(0));
+}
+
+void scalingPixels(benchmark::State& state) {
+  const int height = int(state.range(0)), width = height * 16 / 9;
+  scalingRun(state, "builtin:dense-mesh", width, height, std::int64_t(width) * height);
+}
+
 // The harness alone: what an empty timed loop costs.
 void baseline(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(state.iterations());
@@ -97,6 +133,24 @@ void baseline(benchmark::State& state) {
       ->Unit(benchmark::kMillisecond)
 
 BENCHMARK(baseline)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(scalingTriangles)
+    ->ArgName("triangles")
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Arg(10000000)
+    ->Complexity()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(scalingPixels)
+    ->ArgName("height")
+    ->Arg(720)
+    ->Arg(1080)
+    ->Arg(2160)
+    ->Arg(4320)
+    ->Complexity()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 QUADRA_FRAME_BENCHMARK(checker_plane, "builtin:checker-plane");
 QUADRA_FRAME_BENCHMARK(alpha_quads, "builtin:alpha-quads");
 QUADRA_FRAME_BENCHMARK(dense_mesh, "builtin:dense-mesh");

@@ -217,31 +217,43 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
     transformVertices(draws[d].geometry, viewport, executor, vertices[d]);
   const double vertexDone = stageClockMs();
 
-  // Clip, setup and bin, in fixed-size chunks of each draw's triangles.
-  struct ChunkRange {
+  // Clip, setup and bin, in chunks of kChunkTriangles consecutive triangles
+  // of the draw list, which may span draws: chunk count, bin memory and the
+  // tile stage's walk over the chunks grow with triangles, not with draws.
+  struct DrawRange {
     std::uint32_t draw;
     std::size_t first, last;
   };
-  std::vector<ChunkRange> ranges;
+  std::vector<DrawRange> ranges;
+  std::vector<std::size_t> chunkStart;  // first range of each chunk, then the end
+  std::size_t filled = 0;               // triangles in the chunk being filled
   for (std::uint32_t d = 0; d < draws.size(); ++d) {
     const std::size_t triangles = draws[d].geometry.mesh->indices.size() / 3;
-    for (std::size_t first = 0; first < triangles; first += kChunkTriangles)
-      ranges.push_back({d, first, std::min(first + kChunkTriangles, triangles)});
+    for (std::size_t first = 0; first < triangles;) {
+      if (filled == 0) chunkStart.push_back(ranges.size());
+      const std::size_t last = std::min(first + (kChunkTriangles - filled), triangles);
+      ranges.push_back({d, first, last});
+      filled = (filled + last - first) % kChunkTriangles;
+      first = last;
+    }
   }
+  chunkStart.push_back(ranges.size());
   const TileGrid grid = TileGrid::forViewport(settings.width, settings.height);
   std::vector<FrontEndChunk>& chunks = impl_->chunks;
-  chunks.resize(ranges.size());
-  executor.parallelFor(ranges.size(), 1, [&](std::size_t begin, std::size_t end) {
+  chunks.resize(chunkStart.size() - 1);
+  executor.parallelFor(chunks.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
-      const ChunkRange& r = ranges[c];
       FrontEndChunk& chunk = chunks[c];
-      const double chunkStart = stageClockMs();
+      const double started = stageClockMs();
       chunk.setup.clear();
-      setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
-                     chunk.setup);
+      for (std::size_t i = chunkStart[c]; i < chunkStart[c + 1]; ++i) {
+        const DrawRange& r = ranges[i];
+        setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
+                       chunk.setup);
+      }
       const double setUp = stageClockMs();
       binTriangles(chunk.setup.triangles, grid, chunk.bins);
-      chunk.setupMs = setUp - chunkStart;
+      chunk.setupMs = setUp - started;
       chunk.binMs = stageClockMs() - setUp;
     }
   });
