@@ -124,8 +124,34 @@ inline void encodeOne(const float rgba[4], std::uint8_t* out) {
   }
 }
 
+// Halves for a run of floats (NaN stored as +0, as encodeOne does), written
+// without branches so the compiler vectorizes it: the three cases of halfOf
+// are all computed and the right one selected. Denormal halves come from one
+// float addition whose rounding (to nearest even, the default mode) does the
+// work: x + 0.5 puts the half denormal's units in the low mantissa bits.
+void encodeHalves(const float* in, std::size_t count, std::uint8_t* out) {
+  constexpr std::uint32_t kRoundsToInfinity = 0x477FF000;  // 65520
+  constexpr std::uint32_t kSmallestNormal = 0x38800000;    // 2^-14
+  constexpr std::uint32_t kInfinityBits = 0x7F800000;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t bits = bitsOf(in[i]);
+    const std::uint32_t magnitude = bits & 0x7FFFFFFFu;
+    const std::uint32_t sign = (bits >> 16) & 0x8000u;
+    const std::uint32_t normal =
+        (magnitude + 0x0FFFu + ((magnitude >> 13) & 1u) - ((127u - 15u) << 23)) >> 13;
+    const std::uint32_t denormal = bitsOf(floatOf(magnitude) + 0.5f) - 0x3F000000u;
+    std::uint32_t half = magnitude < kSmallestNormal ? denormal : normal;
+    half = magnitude >= kRoundsToInfinity ? 0x7C00u : half;
+    half |= sign;
+    half = magnitude > kInfinityBits ? 0u : half;
+    const std::uint16_t value = std::uint16_t(half);
+    std::memcpy(out + 2 * i, &value, 2);
+  }
+}
+
 template <TexelFormat kFormat>
 void encodeRun(const float* rgba, std::size_t count, std::uint8_t* out) {
+  if constexpr (kFormat == TexelFormat::Rgba16F) return encodeHalves(rgba, 4 * count, out);
   constexpr std::size_t kBytes = kFormat == TexelFormat::Rgba32F   ? 16
                                  : kFormat == TexelFormat::Rgba16F ? 8
                                                                    : 4;
