@@ -35,14 +35,20 @@ constexpr int kGroupWidth = 2 * kQuads;  // pixels per row in one lane group
 // Lane k of a group is pixel (2*(k/4) + k%2, (k/2)%2) relative to the group.
 struct LaneOffsets {
   F x, y;
+  I xi, yi;
   LaneOffsets() {
     alignas(64) float xs[L::kWidth], ys[L::kWidth];
+    alignas(64) std::int32_t xis[L::kWidth], yis[L::kWidth];
     for (int k = 0; k < L::kWidth; ++k) {
-      xs[k] = float(2 * (k / 4) + k % 2);
-      ys[k] = float((k / 2) % 2);
+      xis[k] = 2 * (k / 4) + k % 2;
+      yis[k] = (k / 2) % 2;
+      xs[k] = float(xis[k]);
+      ys[k] = float(yis[k]);
     }
     x = F::load_aligned(xs);
     y = F::load_aligned(ys);
+    xi = I::load_aligned(xis);
+    yi = I::load_aligned(yis);
   }
 };
 
@@ -110,7 +116,7 @@ struct BlockRange {
 
 // Coverage of the 8x8 block whose top-left pixel is (px, py) in the window,
 // within `range`: bit (row*8 + column). Exact: integer edge functions
-// (window/window_space.h).
+// (window/window_space.h). For triangles too long for LaneEdges.
 std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, int px, int py,
                             const BlockRange& range) {
   std::int64_t corner[3];
@@ -135,6 +141,69 @@ std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, in
   }
   return mask;
 }
+
+// A triangle's edge functions in 32-bit lanes, in the lanes' own pixel order:
+// coverage without a bit per pixel to gather into lanes. Taken when every
+// edge has |a| + |b| < 2^27 (under 2048 px of extent, 16.8 fixed point
+// squared): over a block that an edge crosses, |E| <= |E(corner)| +
+// 7(|a| + |b|) <= 14(|a| + |b|) < 2^31, so the lanes hold E exactly, and an
+// edge positive over the whole block drops out of that block's test.
+struct LaneEdges {
+  std::int64_t low[3], high[3];  // min / max of E - E(corner) over a block
+  std::int32_t a[3], b[3];
+  I offset[3];  // E - E(group corner) at each lane's pixel
+
+  static bool fits(const TriangleRecord& t) {
+    for (const EdgeFunction& f : t.edges)
+      if (std::abs(f.a) + std::abs(f.b) >= (std::int64_t(1) << 27)) return false;
+    return true;
+  }
+
+  LaneEdges(const TriangleRecord& t, const LaneOffsets& lane) {
+    const std::int64_t span = kBlockSize - 1;
+    for (int e = 0; e < 3; ++e) {
+      const EdgeFunction& f = t.edges[e];
+      low[e] = std::min<std::int64_t>(0, f.a * span) + std::min<std::int64_t>(0, f.b * span);
+      high[e] = std::max<std::int64_t>(0, f.a * span) + std::max<std::int64_t>(0, f.b * span);
+      a[e] = std::int32_t(f.a), b[e] = std::int32_t(f.b);
+      offset[e] = I(a[e]) * lane.xi + I(b[e]) * lane.yi;
+    }
+  }
+};
+
+// One block's coverage from LaneEdges: the edges that cross the block, each
+// with its values at the lanes of the block's first group.
+class BlockLaneCoverage {
+ public:
+  // False when the block lies outside an edge. (px, py): the block's top-left
+  // pixel in the window.
+  bool start(const TriangleRecord& t, const LaneEdges& edges, int px, int py) {
+    crossing_ = 0;
+    for (int e = 0; e < 3; ++e) {
+      const std::int64_t corner = t.edges[e].at(px, py);
+      if (corner + edges.high[e] <= 0) return false;
+      if (corner + edges.low[e] > 0) continue;  // inside over the whole block
+      base_[crossing_] = I(std::int32_t(corner)) + edges.offset[e];
+      a_[crossing_] = edges.a[e], b_[crossing_] = edges.b[e];
+      ++crossing_;
+    }
+    return true;
+  }
+
+  // The lanes of the group at (gx, gy) in the block that the triangle covers.
+  M group(int gx, int gy) const {
+    if (crossing_ == 0) return F(0.0f) == F(0.0f);
+    I value = base_[0] + I(a_[0] * gx + b_[0] * gy);
+    for (int k = 1; k < crossing_; ++k)
+      value = simd::min(value, base_[k] + I(a_[k] * gx + b_[k] * gy));
+    return simd::toFloat(value) > F(0.0f);  // int to float keeps the sign and zero
+  }
+
+ private:
+  int crossing_ = 0;
+  I base_[3];
+  std::int32_t a_[3], b_[3];
+};
 
 // A plane over lanes: the value at tile-local pixel centre (x, y) is
 // c + dx*x + dy*y, with its coefficients broadcast (one triangle) or gathered
@@ -395,40 +464,67 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
   const int yEnd = std::min(t.maxY - tile.originY + 1, tile.height);
   if (xBegin >= xEnd || yBegin >= yEnd) return;
 
-  const BlockEdges edges(t);
+  static const LaneOffsets lane;  // const after construction; per ISA namespace
   const BlockDepthTest depthTest(shader.planes.depth, shader.shade);
   const bool depthWritten = shader.depthWritten();
-  static const LaneOffsets lane;  // const after construction; per ISA namespace
-  constexpr std::uint32_t kRowBits = (1u << kGroupWidth) - 1;
   constexpr int kGroupsPerBlock = kBlockSize * kBlockSize / L::kWidth;
 
-  for (int by = yBegin & ~(kBlockSize - 1); by < yEnd; by += kBlockSize) {
-    for (int bx = xBegin & ~(kBlockSize - 1); bx < xEnd; bx += kBlockSize) {
+  // The groups of one block inside `range` that coverOf(gx, gy, x, y) finds
+  // covered go to the shader; the block's depth bounds follow what it wrote.
+  const auto shadeBlock = [&](int bx, int by, int block, const BlockRange& range,
+                              const auto& coverOf) {
+    // Only a block the viewport's edge crosses has lanes to mask beyond it:
+    // elsewhere the triangle's own edges keep it inside its bbox.
+    const bool clipped = bx + kBlockSize > tile.width || by + kBlockSize > tile.height;
+    F low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
+    int visited = 0;
+    for (int gy = range.rowBegin & ~1; gy < range.rowEnd; gy += 2) {
+      for (int gx = range.columnBegin / kGroupWidth * kGroupWidth; gx < range.columnEnd;
+           gx += kGroupWidth) {
+        const F x = lane.x + F(float(bx + gx)), y = lane.y + F(float(by + gy));
+        M cover = coverOf(gx, gy);
+        if (clipped) cover = cover & (x < F(float(tile.width))) & (y < F(float(tile.height)));
+        if (!simd::any(cover)) continue;
+        const F depth = shader.shadeGroup(x, y, cover, TileBuffers::index(bx + gx, by + gy));
+        low = simd::min(low, depth), high = simd::max(high, depth);
+        ++visited;
+      }
+    }
+    if (depthWritten && visited > 0)
+      updateBlockDepth(tile, block, low, high, visited == kGroupsPerBlock);
+  };
+
+  const int byFirst = yBegin & ~(kBlockSize - 1), bxFirst = xBegin & ~(kBlockSize - 1);
+  if (LaneEdges::fits(t)) {
+    const LaneEdges edges(t, lane);
+    BlockLaneCoverage coverage;
+    for (int by = byFirst; by < yEnd; by += kBlockSize) {
+      for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
+        const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+        if (depthTest.hidden(bx, by, block, tile)) continue;
+        if (!coverage.start(t, edges, tile.originX + bx, tile.originY + by)) continue;
+        shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
+                   [&](int gx, int gy) { return coverage.group(gx, gy); });
+      }
+    }
+    return;
+  }
+  const BlockEdges edges(t);
+  constexpr std::uint32_t kRowBits = (1u << kGroupWidth) - 1;
+  for (int by = byFirst; by < yEnd; by += kBlockSize) {
+    for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
       const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
       if (depthTest.hidden(bx, by, block, tile)) continue;
       const BlockRange range(bx, by, xBegin, xEnd, yBegin, yEnd);
       const std::uint64_t coverage =
           blockCoverage(t, edges, tile.originX + bx, tile.originY + by, range);
       if (coverage == 0) continue;
-      F low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
-      int visited = 0;
-      for (int gy = range.rowBegin & ~1; gy < range.rowEnd; gy += 2) {
-        for (int gx = range.columnBegin / kGroupWidth * kGroupWidth; gx < range.columnEnd;
-             gx += kGroupWidth) {
-          const int shift = gy * kBlockSize + gx;
-          const std::uint32_t packed = std::uint32_t((coverage >> shift) & kRowBits) |
-                                       std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits)
-                                           << kGroupWidth;
-          if (packed == 0) continue;
-          const F depth =
-              shader.shadeGroup(lane.x + F(float(bx + gx)), lane.y + F(float(by + gy)),
-                                groupMask(packed), TileBuffers::index(bx + gx, by + gy));
-          low = simd::min(low, depth), high = simd::max(high, depth);
-          ++visited;
-        }
-      }
-      if (depthWritten && visited > 0)
-        updateBlockDepth(tile, block, low, high, visited == kGroupsPerBlock);
+      shadeBlock(bx, by, block, range, [&](int gx, int gy) {
+        const int shift = gy * kBlockSize + gx;
+        return groupMask(std::uint32_t((coverage >> shift) & kRowBits) |
+                         std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits)
+                             << kGroupWidth);
+      });
     }
   }
 }
