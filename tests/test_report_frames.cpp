@@ -36,14 +36,15 @@ RunResult runPeer(const std::string&) {
 
 // The same scene and options through both renderers (`peerOptions` for the
 // peer alone); their images' difference. quadra takes its texture footprints
-// from 2x2 quads, as llvmpipe does: its default exact footprints choose other
-// mip levels on purpose (41.5 dB apart on checker-plane), which would hide
-// the peer's own mistakes.
+// from 2x2 quads and its trilinear level as GL defines it, as llvmpipe does:
+// its default exact footprints and box-matched level choose other mip levels
+// on purpose (41.5 dB apart on checker-plane), which would hide the peer's
+// own mistakes.
 ImageDifference renderBoth(const std::string& scene, const std::string& size,
                            const std::string& peerOptions = "") {
   const fs::path mine = tempPath("both_quadra.exr"), peer = tempPath("both_llvmpipe.exr");
   const RunResult q = run("render " + scene + " " + size +
-                          " --derivatives quad --threads 2 --out " + mine.string());
+                          " --derivatives quad --lod gl --threads 2 --out " + mine.string());
   EXPECT_EQ(q.exitCode, 0) << q.err;
   const RunResult l = runPeer("render " + scene + " " + size + " " + peerOptions +
                               " --threads 2 --out " + peer.string());

@@ -39,6 +39,9 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          texture filter for every texture (default: each glTF sampler's)
   --aniso N              max anisotropy, default 16
   --lod-bias B           added to every texture lookup's LOD (default 0)
+  --lod box|gl           trilinear's level: nearer the pixel's box footprint (default,
+                         0.2 below GL's; closer to the ideal image) or OpenGL's
+                         log2 of the footprint, as GPUs choose it
   --texture-format auto|rgba32f|rgba16f|rgba8|rgba8srgb
                          texel storage (default auto: rgba16f for 8-bit images, else rgba32f)
   --depth standard|reversed
@@ -89,6 +92,8 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   addSizeOptions(options, cmd.settings.width, cmd.settings.height);
   addCameraOptions(options, cmd.camera);
   addFilterOptions(options, cmd.settings.filter, cmd.settings.maxAniso, cmd.settings.lodBias);
+  options.choice("--lod", "LOD rule", {{"box", LodRule::Box}, {"gl", LodRule::Gl}},
+                 cmd.settings.lodRule);
   addTexelFormatOrAutoOption(options, "--texture-format", cmd.textureFormat);
   options.choice("--depth", "depth mode",
                  {{"standard", DepthMode::Standard}, {"reversed", DepthMode::Reversed}},

@@ -82,6 +82,7 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   if (s.textured) {
     FilterSettings filtering(settings.filter, settings.maxAniso);
     filtering.lodBias = settings.lodBias;
+    filtering.lodRule = settings.lodRule;
     s.texture = makeTextureView(*scene.textures.at(std::size_t(material.baseColorTexture)),
                                 filtering, &frame.executor);
   }

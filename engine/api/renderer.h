@@ -59,6 +59,9 @@ struct RenderSettings {
   std::optional<Filter> filter;  // unset: each texture's glTF sampler decides
   int maxAniso = 16;
   float lodBias = 0.0f;  // added to every texture lookup's LOD
+  // Trilinear's level: nearer the pixel's box footprint (default), or GL's λ
+  // for GPU-matching output (texture/sampler_state.h LodRule).
+  LodRule lodRule = LodRule::Box;
   Shading shading = Shading::Unlit;
   glm::vec4 clearColor{0.0f};  // premultiplied linear
   // Reversed: depth 1 at near and 0 at far, test GREATER, clear to 0; the

@@ -65,4 +65,27 @@ std::string filterNames();
 const char* wrapName(WrapMode w);
 bool parseWrap(const std::string& name, WrapMode& out);
 
+// How trilinear filtering chooses its level λ from the footprint's longer
+// side ρ (level-0 texels per pixel):
+// - Box (default): λ = log2(ρ) + kBoxLodOffset, nearer the level whose
+//   prefilter matches the pixel's own box footprint, which quadra's ideal
+//   image averages (the area filter; lab/texture/ground_truth.h);
+// - Gl: λ = log2(ρ), as OpenGL and GPUs define it, for GPU-matching output.
+// At GL's λ a level's texel (2^λ wide) and the bilinear tent add 4^λ/4 of
+// variance per axis where the pixel's box has ρ²/12, so trilinear frames come
+// out blurrier than the box ideal (an offset of -0.79 would match the two;
+// aliasing and anisotropic footprints want less). Frames against the area
+// filter's, 1920x1080, PSNR by offset 0 / -0.2 / -0.3 / -0.6: checker-plane
+// 25.97 / 26.77 / 27.09 / 27.55 dB, dense-mesh 43.42 / 44.56 / 45.00 / 45.65,
+// WaterBottle 59.24 / 61.18 / 62.02 (Mesa's llvmpipe, GL's λ with its own
+// rounding: 26.08, 43.60, 59.35). Against the box ground truth per lookup
+// (`quadra report textures`, 2048 lookups per texture) trilinear's RMSE
+// goes 0.0403 / 0.0385 / 0.0381 / 0.0391, every texture's and scale
+// bucket's at or below GL's at -0.2 but for footprints under 2:1 (0.0249 ->
+// 0.0264): -0.2 is the largest offset that costs the checker texture
+// nothing (0.0494 -> 0.0493; 0.0501 at -0.3). Nearest-mip keeps GL's λ: its
+// rounding to a level leaves it worse on the checker at any offset.
+enum class LodRule { Box, Gl };
+constexpr float kBoxLodOffset = -0.2f;
+
 }  // namespace quadra

@@ -24,7 +24,10 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
   view.maxAniso = settings.maxAniso;
   view.gatherTexels = settings.gatherTexels;
-  view.setLodControls(settings.lodBias, settings.minLod, settings.maxLod);
+  const float ruleOffset = view.minFilter == Filter::Trilinear && settings.lodRule == LodRule::Box
+                               ? kBoxLodOffset
+                               : 0.0f;
+  view.setLodControls(settings.lodBias + ruleOffset, settings.minLod, settings.maxLod);
   view.format = texture.storage();
   view.srgbTable = srgb8ToLinearTable();
   view.levels[0] = texture.sampledLevel0(executor).view();

@@ -31,6 +31,7 @@ struct FilterSettings {
   float lodBias = 0.0f;
   float minLod = 0.0f;
   float maxLod = 1000.0f;
+  LodRule lodRule = LodRule::Box;
   // Hardware gathers for float texels (TextureView::gatherTexels): off, as
   // measured faster on every ISA here; for benchmarks.
   bool gatherTexels = false;
