@@ -48,7 +48,8 @@ std::optional<OiioPeer> loadOiioPeer(const std::string& file, std::string& whyNo
     if (std::filesystem::exists(place, ec)) return openPeer(place, whyNot);
   }
   whyNot = std::string(kOiioPeerFile) + " is neither beside this quadra nor in " +
-           places[1].parent_path().string();
+           places[1].parent_path().string() +
+           " (install libopenimageio-dev and rebuild to compare)";
   return std::nullopt;
 }
 

@@ -309,9 +309,7 @@ int runReport(const std::vector<std::string>& args) {
   } else {
     std::string whyNot;
     oiio = loadOiioPeer(options.oiioPeer, whyNot);
-    if (!oiio)
-      externalNote = "OpenImageIO: not measured: " + whyNot +
-                     " (install libopenimageio-dev and rebuild to compare).\n";
+    if (!oiio) externalNote = "OpenImageIO: not measured: " + whyNot + ".\n";
   }
   if (oiio) {
     for (const std::string& label : OiioTexture::labels(options.maxAniso)) {
