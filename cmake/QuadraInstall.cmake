@@ -31,6 +31,12 @@ endforeach()
 install(TARGETS quadra_engine EXPORT quadraTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 # The command-line tool, for offline users of the installed package.
 install(TARGETS quadra RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# And the OpenImageIO module its `report textures` loads, where it was built
+# (tools/CMakeLists.txt), in the folder that tools/CMakeLists.txt tells
+# quadra to look in (QUADRA_OIIO_PEER_INSTALL_DIR).
+if(TARGET quadra_oiio_peer)
+  install(TARGETS quadra_oiio_peer LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/quadra)
+endif()
 install(EXPORT quadraTargets NAMESPACE quadra:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/quadra)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/quadraConfig.cmake.in
   ${CMAKE_BINARY_DIR}/quadraConfig.cmake INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/quadra)

@@ -1,49 +1,69 @@
-// OpenImageIO's TextureSystem as the report's outside reference (oiio_reference.h).
+// Loading quadra_oiio_peer.so and calling it through its C table
+// (oiio_reference.h, peer/texture_peer_abi.h).
 #include "oiio_reference.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-#include <OpenImageIO/texture.h>
+#include <dlfcn.h>
+
+#include <array>
 
 #include "core/error.h"
+#include "subprocess.h"
 
 namespace quadra {
 
-std::string oiioVersion() {
-  return OIIO_VERSION_STRING;
+namespace {
+
+std::optional<OiioPeer> openPeer(const std::filesystem::path& file, std::string& whyNot) {
+  // RTLD_LOCAL: OpenImageIO's symbols stay out of quadra's namespace;
+  // RTLD_NOW: a missing dependency fails here, not in the middle of the report.
+  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    whyNot = dlerror();
+    return std::nullopt;
+  }
+  const auto entry =
+      reinterpret_cast<QuadraTexturePeerEntry>(dlsym(handle, QUADRA_TEXTURE_PEER_ENTRY));
+  const QuadraTexturePeer* table = entry ? entry() : nullptr;
+  if (!table) {
+    whyNot = file.string() + ": no " + QUADRA_TEXTURE_PEER_ENTRY + " entry point";
+  } else if (table->abi != QUADRA_TEXTURE_PEER_ABI) {
+    whyNot = file.string() + ": built for peer ABI " + std::to_string(table->abi) +
+             ", this quadra takes " + std::to_string(QUADRA_TEXTURE_PEER_ABI);
+  } else {
+    return OiioPeer{file, table};
+  }
+  dlclose(handle);  // nothing of it ran but the entry point
+  return std::nullopt;
 }
 
-struct OiioTexture::State {
-  std::filesystem::path file;
-  OIIO::TextureSystem* system = nullptr;
-  OIIO::TextureSystem::TextureHandle* handle = nullptr;
-  int maxAniso = 16;
-};
+}  // namespace
 
-OiioTexture::OiioTexture(const Image& image, const std::filesystem::path& scratchFile, int maxAniso)
-    : state_(std::make_unique<State>()) {
-  state_->file = scratchFile;
-  state_->maxAniso = maxAniso;
-  const OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
-  const OIIO::ImageBuf source(spec, const_cast<float*>(image.rgba.data()));
-  OIIO::ImageSpec config;
-  config.tile_width = config.tile_height = 64;
-  config.format = OIIO::TypeDesc::FLOAT;
-  config.attribute("wrapmodes", "periodic,periodic");
-  config.attribute("maketx:filtername", "box");
-  if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, source,
-                                        scratchFile.string(), config))
-    throw Error(scratchFile.string() + ": OpenImageIO make_texture failed: " + OIIO::geterror());
-  state_->system = OIIO::TextureSystem::create(false);
-  state_->system->attribute("max_memory_MB", 4096.0f);
-  state_->handle = state_->system->get_texture_handle(OIIO::ustring(scratchFile.string()));
-  if (!state_->handle) throw Error(scratchFile.string() + ": OpenImageIO cannot open it");
+std::optional<OiioPeer> loadOiioPeer(const std::string& file, std::string& whyNot) {
+  if (!file.empty()) return openPeer(file, whyNot);
+  const std::filesystem::path bin = executablePath().parent_path();
+  const std::array<std::filesystem::path, 2> places = {
+      bin / kOiioPeerFile, (bin / QUADRA_OIIO_PEER_INSTALL_DIR / kOiioPeerFile).lexically_normal()};
+  for (const std::filesystem::path& place : places) {
+    std::error_code ec;
+    if (std::filesystem::exists(place, ec)) return openPeer(place, whyNot);
+  }
+  whyNot = std::string(kOiioPeerFile) + " is neither beside this quadra nor in " +
+           places[1].parent_path().string() +
+           " (install libopenimageio-dev and rebuild to compare)";
+  return std::nullopt;
+}
+
+OiioTexture::OiioTexture(const OiioPeer& peer, const Image& image,
+                         const std::filesystem::path& scratchFile, int maxAniso)
+    : table_(peer.table) {
+  std::array<char, 1024> error{};
+  texture_ = table_->create(image.width, image.height, image.rgba.data(), scratchFile.c_str(),
+                            maxAniso, error.data(), error.size());
+  if (!texture_) throw Error(error.data());
 }
 
 OiioTexture::~OiioTexture() {
-  if (state_->system) OIIO::TextureSystem::destroy(state_->system);
-  std::error_code ignored;
-  std::filesystem::remove(state_->file, ignored);
+  table_->destroy(texture_);
 }
 
 std::vector<std::string> OiioTexture::labels(int maxAniso) {
@@ -51,21 +71,14 @@ std::vector<std::string> OiioTexture::labels(int maxAniso) {
 }
 
 std::vector<BatchLookup> OiioTexture::lookups() const {
-  const auto make = [this](OIIO::TextureOpt::MipMode mode) -> BatchLookup {
+  const auto make = [this](int mode) -> BatchLookup {
     return [this, mode](const LookupBatch& batch, std::size_t begin, std::size_t end, float* rgba) {
-      OIIO::TextureOpt options;
-      options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
-      options.interpmode = OIIO::TextureOpt::InterpBilinear;
-      options.mipmode = mode;
-      options.anisotropic = state_->maxAniso;
-      OIIO::TextureSystem::Perthread* thread = state_->system->get_perthread_info();
-      for (std::size_t i = begin; i < end; ++i)
-        state_->system->texture(state_->handle, thread, options, batch.u[i], batch.v[i],
-                                batch.dudx[i], batch.dvdx[i], batch.dudy[i], batch.dvdy[i], 4,
-                                rgba + 4 * i);
+      table_->lookup(texture_, mode, end - begin, batch.u + begin, batch.v + begin,
+                     batch.dudx + begin, batch.dvdx + begin, batch.dudy + begin, batch.dvdy + begin,
+                     rgba + 4 * begin);
     };
   };
-  return {make(OIIO::TextureOpt::MipModeTrilinear), make(OIIO::TextureOpt::MipModeAniso)};
+  return {make(QUADRA_PEER_TRILINEAR), make(QUADRA_PEER_ANISOTROPIC)};
 }
 
 }  // namespace quadra

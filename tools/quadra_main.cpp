@@ -153,8 +153,9 @@ int renderCommand(const std::vector<std::string>& args) {
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
   // OpenEXR compresses scanline blocks on its own process-wide pool, off by
   // default; the tool (not the library, which keeps no global state) sizes it
-  // to the render's threads.
-  Imf::setGlobalThreadCount(renderer.threadCount());
+  // to the render's threads. Only when an output is EXR (the outputs that
+  // need depth): a PNG-only render has no use for the pool's threads.
+  if (outputsNeedDepth(cmd.outputs)) Imf::setGlobalThreadCount(renderer.threadCount());
   const auto loadStart = std::chrono::steady_clock::now();
   const Scene scene = loadScene(cmd);
   const double loadMs = millisecondsSince(loadStart);

@@ -25,12 +25,9 @@
 #include "lab/texture/ground_truth.h"
 #include "lab/texture/test_textures.h"
 #include "lab/texture/texture_error.h"
+#include "oiio_reference.h"
 #include "report_output.h"
 #include "texture/texture_sampler.h"
-
-#if defined(QUADRA_HAVE_OIIO)
-#include "oiio_reference.h"
-#endif
 
 namespace quadra {
 namespace {
@@ -38,6 +35,7 @@ namespace {
 constexpr const char* kReportUsage =
     R"(usage: quadra report textures [--size N] [--lookups N] [--seed S] [--threads N] [--isa ISA]
                               [--aniso N] [--texture FILE.png|FILE.exr] [--out-dir DIR]
+                              [--oiio-peer FILE|none]
   --size N       generated textures are N x N (default 512)
   --lookups N    footprints per texture (default 4096)
   --seed S       footprint set and noise seed (default 1)
@@ -47,6 +45,10 @@ constexpr const char* kReportUsage =
   --aniso N      max anisotropy of the aniso filter (default 16)
   --texture FILE also measure on this texture (PNG read as sRGB, EXR as linear)
   --out-dir DIR  where textures.csv and textures.svg go (default out)
+  --oiio-peer FILE|none
+                 the OpenImageIO module measured beside quadra's filters (default:
+                 quadra_oiio_peer.so beside quadra, or in the install's lib/quadra);
+                 none: quadra's filters only
 Textures are sampled with repeat wrapping. Error: RMSE and max abs over R, G, B
 against the average of the bilinear level-0 texture over each pixel footprint.
 )";
@@ -60,6 +62,7 @@ struct ReportOptions {
   int maxAniso = 16;
   std::string texturePath;
   std::string outDir = "out";
+  std::string oiioPeer;  // empty: the default places; "none": not measured
 };
 
 // nullopt: --help printed the usage.
@@ -73,6 +76,7 @@ std::optional<ReportOptions> parseReport(const std::vector<std::string>& args) {
   addAnisoOption(options, report.maxAniso);
   options.text("--texture", report.texturePath);
   options.text("--out-dir", report.outDir);
+  options.text("--oiio-peer", report.oiioPeer);
   addIsaOption(options, report.isa);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   return report;
@@ -297,21 +301,28 @@ int runReport(const std::vector<std::string>& args) {
     rows.push_back(row);
   }
 
-#if defined(QUADRA_HAVE_OIIO)
-  for (const std::string& label : OiioTexture::labels(options.maxAniso)) {
-    FilterRow row;
-    row.external = true;
-    row.label = label;
-    rows.push_back(row);
+  // OpenImageIO's module is loaded here, by the one report that uses it.
+  std::string externalNote;
+  std::optional<OiioPeer> oiio;
+  if (options.oiioPeer == "none") {
+    externalNote = "OpenImageIO: not measured (--oiio-peer none).\n";
+  } else {
+    std::string whyNot;
+    oiio = loadOiioPeer(options.oiioPeer, whyNot);
+    if (!oiio) externalNote = "OpenImageIO: not measured: " + whyNot + ".\n";
   }
-  const std::string externalNote =
-      "OpenImageIO " + oiioVersion() +
-      " TextureSystem: the same footprints, one texture() call per lookup, a float texture "
-      "made by make_texture (64x64 tiles, box mips, periodic), bilinear interpolation.\n";
-#else
-  const std::string externalNote =
-      "OpenImageIO: not built in (install libopenimageio-dev and rebuild to compare).\n";
-#endif
+  if (oiio) {
+    for (const std::string& label : OiioTexture::labels(options.maxAniso)) {
+      FilterRow row;
+      row.external = true;
+      row.label = label;
+      rows.push_back(row);
+    }
+    externalNote =
+        std::string(oiio->table->name) + " " + oiio->table->version +
+        " TextureSystem: the same footprints, one texture() call per lookup, a float texture "
+        "made by make_texture (64x64 tiles, box mips, periodic), bilinear interpolation.\n";
+  }
 
   SamplerState state;  // repeat: footprints cross the wrap seams
   const GroundTruthOptions truthOptions;
@@ -337,11 +348,12 @@ int runReport(const std::vector<std::string>& args) {
     // One lookup function per row, in row order: quadra's samplers, and the
     // external rows' lookups in the order their labels were given.
     std::vector<BatchLookup> external;
-#if defined(QUADRA_HAVE_OIIO)
-    const OiioTexture oiio(*texture.image, outDir / ("oiio-" + texture.name + ".exr"),
-                           options.maxAniso);
-    external = oiio.lookups();
-#endif
+    std::optional<OiioTexture> oiioTexture;
+    if (oiio) {
+      oiioTexture.emplace(*oiio, *texture.image, outDir / ("oiio-" + texture.name + ".exr"),
+                          options.maxAniso);
+      external = oiioTexture->lookups();
+    }
     std::vector<std::unique_ptr<TextureSampler>> samplers(rows.size());
     std::vector<BatchLookup> timed;
     for (std::size_t f = 0, nextExternal = 0; f < rows.size(); ++f) {
