@@ -1,11 +1,14 @@
 // Whole-frame cost at 1920x1080, trilinear: built-in scenes and shared sample
-// models at 1 and 2 threads, in ms/frame with triangles/s and pixels/s, next
-// to a do-nothing baseline that shows the harness's own overhead.
+// models at 1 and 2 threads, in ms/frame with triangles/s, pixels/s and the
+// stages of api/renderer.h StageTimes (ms per frame), next to a do-nothing
+// baseline that shows the harness's own overhead.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "api/renderer.h"
 #include "lab/scene/builtin_scenes.h"
@@ -28,6 +31,17 @@ Scene loadBenchScene(const std::string& source) {
   return loadGltf(path.string());
 }
 
+// Each stage of `total` paired with the same stage of `part`, in StageTimes' order.
+std::array<std::pair<double*, double>, 7> stageFields(StageTimes& total, const StageTimes& part) {
+  return {{{&total.draws, part.draws},
+           {&total.vertex, part.vertex},
+           {&total.setup, part.setup},
+           {&total.bin, part.bin},
+           {&total.raster, part.raster},
+           {&total.shade, part.shade},
+           {&total.resolve, part.resolve}}};
+}
+
 // state.range(0) is the thread count. Loading, renderer construction and one
 // warm-up frame (which also builds the mip chains) stay outside the timing.
 void frameTime(benchmark::State& state, const std::string& source) {
@@ -48,17 +62,61 @@ void frameTime(benchmark::State& state, const std::string& source) {
   settings.filter = Filter::Trilinear;
   Frame frame;
   renderer.render(scene, camera, settings, frame);
+  StageTimes sum;
   for (auto _ : state) {
-    renderer.render(scene, camera, settings, frame);
+    const StageTimes t = renderer.render(scene, camera, settings, frame).stages;
     benchmark::DoNotOptimize(frame.rgba.data());
     benchmark::ClobberMemory();
+    for (auto [total, part] : stageFields(sum, t)) *total += part;
   }
   const double frames = double(state.iterations());
+  // The same stages `quadra render --stats` prints, as the mean ms per frame.
+  const char* const names[] = {"draws_ms",  "vertex_ms", "setup_ms",  "bin_ms",
+                               "raster_ms", "shade_ms",  "resolve_ms"};
+  int i = 0;
+  for (auto [total, part] : stageFields(sum, sum))
+    state.counters[names[i++]] = benchmark::Counter(*total / frames);
   state.counters["triangles/s"] =
       benchmark::Counter(frames * double(scene.triangleCount()), benchmark::Counter::kIsRate);
   state.counters["pixels/s"] =
       benchmark::Counter(frames * kWidth * kHeight, benchmark::Counter::kIsRate);
   state.SetLabel(source + " isa=" + isaName(renderer.isa()));
+}
+
+// How a frame scales: builtin:dense-mesh:N against its triangle count at
+// 1080p, and builtin:dense-mesh against the pixel count, 2 threads. Google
+// Benchmark fits the complexity (BigO) over the runs of each.
+void scalingRun(benchmark::State& state, const std::string& source, int width, int height,
+                std::int64_t complexityN) {
+  const Scene scene = loadBenchScene(source);
+  const Camera camera = firstCameraOrDefault(scene);
+  RendererConfig config;
+  config.threads = 2;
+  Renderer renderer(config);
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.filter = Filter::Trilinear;
+  Frame frame;
+  renderer.render(scene, camera, settings, frame);
+  for (auto _ : state) {
+    renderer.render(scene, camera, settings, frame);
+    benchmark::DoNotOptimize(frame.rgba.data());
+  }
+  state.SetComplexityN(complexityN);
+  state.counters["triangles"] = double(scene.triangleCount());
+  state.counters["pixels"] = double(width) * height;
+  state.SetLabel(source + " " + std::to_string(width) + "x" + std::to_string(height));
+}
+
+void scalingTriangles(benchmark::State& state) {
+  scalingRun(state, "builtin:dense-mesh:" + std::to_string(state.range(0)), kWidth, kHeight,
+             state.range(0));
+}
+
+void scalingPixels(benchmark::State& state) {
+  const int height = int(state.range(0)), width = height * 16 / 9;
+  scalingRun(state, "builtin:dense-mesh", width, height, std::int64_t(width) * height);
 }
 
 // The harness alone: what an empty timed loop costs.
@@ -75,6 +133,24 @@ void baseline(benchmark::State& state) {
       ->Unit(benchmark::kMillisecond)
 
 BENCHMARK(baseline)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(scalingTriangles)
+    ->ArgName("triangles")
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Arg(10000000)
+    ->Complexity()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(scalingPixels)
+    ->ArgName("height")
+    ->Arg(720)
+    ->Arg(1080)
+    ->Arg(2160)
+    ->Arg(4320)
+    ->Complexity()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 QUADRA_FRAME_BENCHMARK(checker_plane, "builtin:checker-plane");
 QUADRA_FRAME_BENCHMARK(alpha_quads, "builtin:alpha-quads");
 QUADRA_FRAME_BENCHMARK(dense_mesh, "builtin:dense-mesh");

@@ -27,6 +27,19 @@ QUADRA_TRANSPOSE_INLINE void transposeToPixelsStreaming(const float* const in[4]
   if (out[3]) _mm_stream_ps(out[3], a);
 }
 
+// A whole 2x2 quad's planar channels (4 floats each, 16-byte aligned) → its
+// two pixels in each of two frame rows (each 16-byte aligned).
+QUADRA_TRANSPOSE_INLINE void transposeQuadToRowsStreaming(const float* r, const float* g,
+                                                          const float* b, const float* a,
+                                                          float* row0, float* row1) {
+  __m128 p00 = _mm_load_ps(r), p10 = _mm_load_ps(g), p01 = _mm_load_ps(b), p11 = _mm_load_ps(a);
+  _MM_TRANSPOSE4_PS(p00, p10, p01, p11);
+  _mm_stream_ps(row0, p00);
+  _mm_stream_ps(row0 + 4, p10);
+  _mm_stream_ps(row1, p01);
+  _mm_stream_ps(row1 + 4, p11);
+}
+
 // Orders streaming stores before whatever the thread does next.
 QUADRA_TRANSPOSE_INLINE void streamFence() {
   _mm_sfence();

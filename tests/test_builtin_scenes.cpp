@@ -339,5 +339,19 @@ TEST(BuiltinScenes, ShowcaseExercisesTheFeatures) {
   }
 }
 
+// builtin:dense-mesh:N, for scaling measurements: about N triangles of the
+// same sphere (8 k^2 with k = round(sqrt(N / 8))), and only numbers in range.
+TEST(BuiltinScenes, DenseMeshTakesATriangleCount) {
+  for (const double n : {10000.0, 100000.0, 1000000.0}) {
+    const Scene scene = makeBuiltinScene("dense-mesh:" + std::to_string(int(n)));
+    const double k = std::round(std::sqrt(n / 8.0));
+    EXPECT_EQ(double(scene.triangleCount()), 8.0 * k * k) << n;
+    EXPECT_NEAR(double(scene.triangleCount()), n, 0.02 * n);
+  }
+  EXPECT_EQ(makeBuiltinScene("dense-mesh").triangleCount(), 2000000u);
+  for (const char* bad : {"dense-mesh:", "dense-mesh:x", "dense-mesh:1e9", "dense-mesh:4"})
+    EXPECT_THROW(makeBuiltinScene(bad), Error) << bad;
+}
+
 }  // namespace
 }  // namespace quadra

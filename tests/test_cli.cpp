@@ -101,6 +101,30 @@ TEST(Cli, RenderPrintsTheFrameLineAndWritesBothFormats) {
   EXPECT_EQ(fromPng.height, 54);
 }
 
+TEST(Cli, StatsPrintEveryStageAsANumber) {
+  const fs::path png = tempPath("stats.png");
+  const RunResult r = run(
+      "render builtin:showcase --width 96 --height 54 --frames 3 --stats --out " + png.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto stages = keyValues(r.out, "quadra stages_ms ");
+  const char* const keys[] = {"load", "first_frame", "draws", "vertex",  "setup",
+                              "bin",  "raster",      "shade", "resolve", "write"};
+  EXPECT_EQ(stages.size(), std::size(keys)) << r.out;
+  for (const char* key : keys) {
+    ASSERT_TRUE(stages.count(key)) << key << " missing in: " << r.out;
+    std::size_t used = 0;
+    const double ms = std::stod(stages.at(key), &used);
+    EXPECT_EQ(used, stages.at(key).size()) << key << "=" << stages.at(key);
+    EXPECT_GE(ms, 0.0) << key;
+  }
+  EXPECT_GT(std::stod(stages.at("raster")), 0.0);
+  EXPECT_GT(std::stod(stages.at("write")), 0.0);  // a PNG was written
+  // Without --stats the line is not printed.
+  EXPECT_TRUE(
+      keyValues(run("render builtin:showcase --width 16 --height 16").out, "quadra stages_ms ")
+          .empty());
+}
+
 TEST(Cli, CameraOverridesChangeTheImage) {
   const fs::path a = tempPath("cam_a.exr"), b = tempPath("cam_b.exr");
   ASSERT_EQ(run("render builtin:checker-plane --width 64 --height 36 --out " + a.string()).exitCode,

@@ -11,12 +11,15 @@
 #include <iterator>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "api/renderer.h"
+#include "core/error.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 #include "render_helpers.h"
+#include "scene/gltf_loader.h"
 
 namespace quadra {
 namespace {
@@ -169,6 +172,71 @@ TEST(Determinism, EveryIsaMatchesScalar) {
     }
   }
   if (compared == 0) GTEST_SKIP() << "this CPU has no SIMD path to compare";
+}
+
+// Depth is resolved only when asked; the colour does not depend on it, and
+// an EXR (whose Z channel needs it) refuses a depthless frame by name.
+TEST(Determinism, FrameWithoutDepthHasTheSameColour) {
+  const Scene scene = makeBuiltinScene("showcase");
+  RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  const Frame withDepth = renderOnce(scene, firstCameraOrDefault(scene), settings);
+  settings.frameDepth = false;
+  const Frame colourOnly = renderOnce(scene, firstCameraOrDefault(scene), settings);
+  EXPECT_TRUE(colourOnly.depth.empty());
+  ASSERT_EQ(withDepth.depth.size(), std::size_t(kWidth) * kHeight);
+  EXPECT_TRUE(sameBits(colourOnly.rgba, withDepth.rgba));
+  const ScratchDir dir("quadra_no_depth");
+  const std::string exr = (dir.path() / "no_depth.exr").string();
+  try {
+    writeFrame(colourOnly, exr);
+    ADD_FAILURE() << "a frame without depth was written as EXR";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no depth"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(exr));
+  writeFrame(colourOnly, (dir.path() / "no_depth.png").string());  // PNG needs none
+}
+
+// Opaque and masked draws shade in two passes (visibility, then the visible
+// pixels packed into lanes) or forward; both run one colour function on the
+// same planes, so every pixel must come out the same bits, on every path,
+// however the pixels were packed.
+TEST(Determinism, TwoPassShadingWritesWhatForwardShadingWrites) {
+  std::vector<std::pair<std::string, Scene>> scenes;
+  for (const std::string name : {"showcase", "checker-plane", "alpha-quads", "random-triangles",
+                                 "near-plane", "subpixel-plane"})
+    scenes.emplace_back(name, makeBuiltinScene(name));
+  // Real models: many draws per tile, masked and blended materials.
+  for (const std::string model :
+       {"MetalRoughSpheresNoTextures", "GlassVaseFlowers", "AlphaBlendModeTest"}) {
+    const std::filesystem::path path =
+        std::filesystem::path(QUADRA_ASSETS_DIR) / model / "glTF" / (model + ".gltf");
+    if (std::filesystem::exists(path)) scenes.emplace_back(model, loadGltf(path.string()));
+  }
+  int compared = 0;
+  for (const auto& [name, scene] : scenes) {
+    for (const Shading shading : {Shading::Unlit, Shading::Lit}) {
+      for (const Isa isa : supportedIsas()) {
+        SCOPED_TRACE(name + (shading == Shading::Lit ? " lit " : " unlit ") + isaName(isa));
+        RenderSettings settings;
+        settings.width = kWidth;
+        settings.height = kHeight;
+        settings.shading = shading;
+        settings.filter = Filter::Anisotropic;
+        FrameStats twoPassStats;
+        const Frame twoPass =
+            renderOnce(scene, firstCameraOrDefault(scene), settings, 2, isa, &twoPassStats);
+        ASSERT_TRUE(hasVisiblePixels(twoPass));
+        EXPECT_GT(twoPassStats.stages.shade, 0.0);  // the shading pass ran
+        settings.opaqueShading = OpaqueShading::Forward;
+        expectSameFrame(renderOnce(scene, firstCameraOrDefault(scene), settings, 2, isa), twoPass);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 0);
 }
 
 }  // namespace

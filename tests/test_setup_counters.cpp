@@ -3,6 +3,7 @@
 // nothing, and a good triangle beside them still draws exactly its pixels.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -97,6 +98,40 @@ TEST(SetupCounters, DoubleSidedKeepsBackFaces) {
   const Counted kept = renderTriangles(back, true);
   EXPECT_EQ(kept.stats.trianglesDrawn, 1u);
   EXPECT_GT(kept.coverage, 0.0);
+}
+
+// The stage times account for the frame: none negative, and together no more
+// than the render call's own wall time (they are measured inside it).
+TEST(FrameStats, StagesAreWithinTheFrame) {
+  Scene scene;
+  Mesh mesh;
+  for (int i = 0; i < 3000; ++i) {
+    const float x = float(i % 60) - 30.0f, y = float(i / 60) - 25.0f;
+    mesh.positions.insert(mesh.positions.end(), {{x, y, 0}, {x + 1.5f, y, 0}, {x, y + 1.5f, 0}});
+  }
+  for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) mesh.indices.push_back(i);
+  scene.meshes.push_back(mesh);
+  scene.instances.push_back({0, glm::mat4(1.0f)});
+  RendererConfig config;
+  config.threads = 2;
+  Renderer renderer(config);
+  Frame frame;
+  RenderSettings settings;
+  settings.width = settings.height = kSize;
+  for (int round = 0; round < 3; ++round) {
+    const auto start = std::chrono::steady_clock::now();
+    const StageTimes t = renderer.render(scene, pixelCamera(), settings, frame).stages;
+    const double wall =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const double parts[] = {t.draws, t.vertex, t.setup, t.bin, t.raster, t.shade, t.resolve};
+    double sum = 0.0;
+    for (double part : parts) {
+      EXPECT_GE(part, 0.0);
+      sum += part;
+    }
+    EXPECT_LE(sum, wall * (1.0 + 1e-9)) << "round " << round;
+    EXPECT_GT(t.raster, 0.0);
+  }
 }
 
 }  // namespace

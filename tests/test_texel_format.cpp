@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "texture/texel_format.h"
 
@@ -72,6 +74,40 @@ TEST(TexelFormat, FloatToHalfRoundsToTheNearestHalfTiesToEven) {
   EXPECT_EQ(floatToHalf(65519.0f), 0x7BFF);  // 65504, the largest half
   EXPECT_EQ(floatToHalf(65520.0f), 0x7C00);  // infinity
   EXPECT_EQ(floatToHalf(std::numeric_limits<float>::quiet_NaN()) & 0x7C00, 0x7C00);
+}
+
+// Texture levels are encoded in runs (encodeTexels, branch-free so it
+// vectorizes); every value must come out as the scalar floatToHalf gives it,
+// NaN as +0: every exponent, the mantissa's rounding bits and neighbours of
+// each half, both signs.
+TEST(TexelFormat, RunsOfHalvesEqualTheScalarConversion) {
+  std::vector<float> values;
+  for (std::uint32_t exponent = 0; exponent < 256; ++exponent)
+    for (const std::uint32_t mantissa :
+         {0x000000u, 0x000001u, 0x000FFFu, 0x001000u, 0x001001u, 0x001FFFu, 0x002000u, 0x003000u,
+          0x3FF000u, 0x3FFFFFu, 0x400000u, 0x7FE000u, 0x7FEFFFu, 0x7FF000u, 0x7FF001u, 0x7FFFFFu})
+      for (const std::uint32_t sign : {0u, 0x80000000u}) {
+        const std::uint32_t bits = sign | exponent << 23 | mantissa;
+        float f;
+        std::memcpy(&f, &bits, 4);
+        values.push_back(f);
+      }
+  std::mt19937 rng(7);
+  for (int i = 0; i < 200000; ++i) {
+    const std::uint32_t bits = rng();
+    float f;
+    std::memcpy(&f, &bits, 4);
+    values.push_back(f);
+  }
+  while (values.size() % 4) values.push_back(0.0f);
+  std::vector<std::uint8_t> encoded(values.size() * 2);
+  encodeTexels(TexelFormat::Rgba16F, values.data(), values.size() / 4, encoded.data());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::uint16_t got;
+    std::memcpy(&got, &encoded[2 * i], 2);
+    const std::uint16_t expected = std::isnan(values[i]) ? 0 : floatToHalf(values[i]);
+    ASSERT_EQ(got, expected) << "value " << values[i] << " (index " << i << ")";
+  }
 }
 
 TEST(TexelFormat, EncodeMapsNanToZeroAndUnorm8RoundsAndClamps) {

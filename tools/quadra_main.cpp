@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <OpenEXR/ImfThreading.h>
+
 #include "api/camera.h"
 #include "api/renderer.h"
 #include "cli_options.h"
@@ -44,12 +46,21 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --depth standard|reversed
                          depth buffer: standard (0 near, LESS) or reversed (1 near, GREATER)
   --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
+  --derivatives analytic|quad
+                         texture footprints: the triangles' exact derivatives at each pixel
+                         (default) or 2x2 quad differences, as GPUs take them
+  --opaque-shading two-pass|forward
+                         opaque draws: visibility pass then shading of the visible pixels
+                         (default), or shaded as rasterized; the same image either way
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
                          kernel path (default auto: the best this CPU has)
   --frames K             K timed frames after one warm-up (default 1)
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
+  --stats                also print where the time went: "quadra stages_ms load=... first_frame=...
+                         draws=... vertex=... setup=... bin=... raster=... shade=... resolve=...
+                         write=..."
 Prints "quadra frame_ms median=... min=... max=... triangles=... width=... height=...
 threads=..." after rendering.
 built-in scenes: )";
@@ -79,6 +90,7 @@ struct RenderCommand {
   RenderSettings settings;
   RendererConfig config;
   int frames = 1;
+  bool stats = false;
   std::vector<std::string> outputs;
   std::optional<glm::vec3> eye, target, up;
   std::optional<float> fovyDegrees, znear, zfar;
@@ -124,15 +136,26 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                  cmd.settings.depth);
   options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}},
                  cmd.settings.shading);
+  options.choice("--derivatives", "derivative mode",
+                 {{"analytic", DerivativeMode::Analytic}, {"quad", DerivativeMode::Quad}},
+                 cmd.settings.derivatives);
+  options.choice("--opaque-shading", "opaque shading",
+                 {{"two-pass", OpaqueShading::TwoPass}, {"forward", OpaqueShading::Forward}},
+                 cmd.settings.opaqueShading);
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);
+  options.flag("--stats", [&] { cmd.stats = true; });
   options.value("--out", [&](const std::string&, const std::string& value) {
     if (!endsWithIgnoringCase(value, ".exr") && !endsWithIgnoringCase(value, ".png"))
       throw Error(value + ": unsupported output format (use .exr or .png)");
     cmd.outputs.push_back(value);
   });
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  // Depth is resolved only for what reads it: the EXR's Z channel.
+  cmd.settings.frameDepth = std::any_of(cmd.outputs.begin(), cmd.outputs.end(), [](const auto& p) {
+    return endsWithIgnoringCase(p, ".exr");
+  });
   return cmd;
 }
 
@@ -172,40 +195,78 @@ Camera chooseCamera(const Scene& scene, const RenderCommand& cmd) {
   return camera;
 }
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// One line of key=value pairs: loading, the warm-up frame (which also builds
+// the texture levels its filters read) and writing once each, and each frame
+// stage's median over the timed frames (api/renderer.h StageTimes says how a
+// parallel pass is split among its stages).
+void printStages(double loadMs, double firstFrameMs, const std::vector<StageTimes>& frames,
+                 double writeMs) {
+  const auto stage = [&](double StageTimes::*field) {
+    std::vector<double> values;
+    for (const StageTimes& t : frames) values.push_back(t.*field);
+    return median(values);
+  };
+  std::printf(
+      "quadra stages_ms load=%.3f first_frame=%.3f draws=%.3f vertex=%.3f setup=%.3f bin=%.3f "
+      "raster=%.3f shade=%.3f resolve=%.3f write=%.3f\n",
+      loadMs, firstFrameMs, stage(&StageTimes::draws), stage(&StageTimes::vertex),
+      stage(&StageTimes::setup), stage(&StageTimes::bin), stage(&StageTimes::raster),
+      stage(&StageTimes::shade), stage(&StageTimes::resolve), writeMs);
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 int renderCommand(const std::vector<std::string>& args) {
   const std::optional<RenderCommand> parsed = parseRender(args);
   if (!parsed) return 0;
   const RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
+  // OpenEXR compresses scanline blocks on its own process-wide pool, off by
+  // default; the tool (not the library, which keeps no global state) sizes it
+  // to the render's threads.
+  Imf::setGlobalThreadCount(renderer.threadCount());
+  const auto loadStart = std::chrono::steady_clock::now();
   const Scene scene = loadScene(cmd);
+  const double loadMs = millisecondsSince(loadStart);
   const Camera camera = chooseCamera(scene, cmd);
 
   Frame frame;
+  const auto firstStart = std::chrono::steady_clock::now();
   FrameStats stats = renderer.render(scene, camera, cmd.settings, frame);  // warm-up
+  const double firstFrameMs = millisecondsSince(firstStart);
   std::vector<double> times;
+  std::vector<StageTimes> stages;
   for (int i = 0; i < cmd.frames; ++i) {
     const auto start = std::chrono::steady_clock::now();
     stats = renderer.render(scene, camera, cmd.settings, frame);
-    times.push_back(
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count());
+    times.push_back(millisecondsSince(start));
+    stages.push_back(stats.stages);
   }
+  const auto writeStart = std::chrono::steady_clock::now();
   for (const std::string& path : cmd.outputs) {
     writeFrame(frame, path);
     std::cout << "quadra wrote " << path << "\n";
   }
-  std::vector<double> sorted = times;
-  std::sort(sorted.begin(), sorted.end());
-  const std::size_t n = sorted.size();
-  const double median = n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+  const double writeMs = millisecondsSince(writeStart);
   std::printf(
       "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
       "isa=%s frames=%d drawn=%zu culled=%zu clipped=%zu\n",
-      median, sorted.front(), sorted.back(), stats.trianglesIn, cmd.settings.width,
+      median(times), *std::min_element(times.begin(), times.end()),
+      *std::max_element(times.begin(), times.end()), stats.trianglesIn, cmd.settings.width,
       cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), cmd.frames,
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
       stats.clipped);
+  if (cmd.stats) printStages(loadMs, firstFrameMs, stages, writeMs);
   return 0;
 }
 

@@ -10,6 +10,7 @@
 #include "bin/bins.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/stage_clock.h"
 #include "setup/triangle_setup.h"
 #include "texture/texture_sampler.h"
 #include "tile/tile_stage.h"
@@ -26,6 +27,7 @@ struct Renderer::Impl {
   // fifth of each frame in page faults.
   std::vector<TransformedVertices> vertices;
   std::vector<FrontEndChunk> chunks;
+  std::vector<TileTimes> tileTimes;
   explicit Impl(int threads, Isa isa) : executor(threads), kernels(selectTileKernels(isa)) {}
 };
 
@@ -95,6 +97,12 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     g.texcoordSet = 0;
   }
 
+  s.derivatives = settings.derivatives;
+  s.twoPass = s.alphaMode != AlphaMode::Blend && s.blend == BlendMode::Replace && s.depthTest &&
+              s.depthWrite && s.output == ShadeOutput::Color &&
+              s.derivatives == DerivativeMode::Analytic &&
+              settings.opaqueShading == OpaqueShading::TwoPass;
+
   // Interpolate only what the shading reads.
   AttributeLayout& a = g.attributes;
   if (s.textured || s.output != ShadeOutput::Color) a.texcoord = a.count, a.count += 2;
@@ -146,6 +154,14 @@ void checkSettings(const RenderSettings& s) {
                 " is out of range (1..64)");
 }
 
+// A parallel pass's wall time split between two of its stages in proportion
+// to the thread time each took (StageTimes).
+void splitWallTime(double wall, double threadA, double threadB, double& a, double& b) {
+  const double total = threadA + threadB;
+  a = total > 0.0 ? wall * threadA / total : 0.0;
+  b = wall - a;
+}
+
 }  // namespace
 
 Renderer::Renderer(const RendererConfig& config) {
@@ -169,7 +185,9 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                             const RenderSettings& settings, Frame& out) {
   checkSettings(settings);
   const Executor& executor = impl_->executor;
+  const double start = stageClockMs();
   const std::vector<Draw> draws = buildDrawList(scene, camera, settings, executor);
+  const double drawsDone = stageClockMs();
 
   // Vertex stage.
   const Viewport viewport{settings.width, settings.height};
@@ -177,42 +195,83 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   vertices.resize(draws.size());
   for (std::size_t d = 0; d < draws.size(); ++d)
     transformVertices(draws[d].geometry, viewport, executor, vertices[d]);
+  const double vertexDone = stageClockMs();
 
-  // Clip, setup and bin, in fixed-size chunks of each draw's triangles.
-  struct ChunkRange {
+  // Clip, setup and bin, in chunks of kChunkTriangles consecutive triangles
+  // of the draw list, which may span draws: chunk count, bin memory and the
+  // tile stage's walk over the chunks grow with triangles, not with draws.
+  struct DrawRange {
     std::uint32_t draw;
     std::size_t first, last;
   };
-  std::vector<ChunkRange> ranges;
+  std::vector<DrawRange> ranges;
+  std::vector<std::size_t> chunkStart;  // first range of each chunk, then the end
+  std::size_t filled = 0;               // triangles in the chunk being filled
   for (std::uint32_t d = 0; d < draws.size(); ++d) {
     const std::size_t triangles = draws[d].geometry.mesh->indices.size() / 3;
-    for (std::size_t first = 0; first < triangles; first += kChunkTriangles)
-      ranges.push_back({d, first, std::min(first + kChunkTriangles, triangles)});
+    for (std::size_t first = 0; first < triangles;) {
+      if (filled == 0) chunkStart.push_back(ranges.size());
+      const std::size_t last = std::min(first + (kChunkTriangles - filled), triangles);
+      ranges.push_back({d, first, last});
+      filled = (filled + last - first) % kChunkTriangles;
+      first = last;
+    }
   }
+  chunkStart.push_back(ranges.size());
   const TileGrid grid = TileGrid::forViewport(settings.width, settings.height);
   std::vector<FrontEndChunk>& chunks = impl_->chunks;
-  chunks.resize(ranges.size());
-  executor.parallelFor(ranges.size(), 1, [&](std::size_t begin, std::size_t end) {
+  chunks.resize(chunkStart.size() - 1);
+  executor.parallelFor(chunks.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
-      const ChunkRange& r = ranges[c];
-      chunks[c].setup.clear();
-      setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
-                     chunks[c].setup);
-      binTriangles(chunks[c].setup.triangles, grid, chunks[c].bins);
+      FrontEndChunk& chunk = chunks[c];
+      const double started = stageClockMs();
+      chunk.setup.clear();
+      for (std::size_t i = chunkStart[c]; i < chunkStart[c + 1]; ++i) {
+        const DrawRange& r = ranges[i];
+        setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
+                       chunk.setup);
+      }
+      const double setUp = stageClockMs();
+      binTriangles(chunk.setup.triangles, grid, chunk.bins);
+      chunk.setupMs = setUp - started;
+      chunk.binMs = stageClockMs() - setUp;
     }
   });
+  const double frontEndDone = stageClockMs();
 
   // Tile stage and resolve.
   out.width = settings.width;
   out.height = settings.height;
   out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
-  out.depth.resize(std::size_t(out.width) * std::size_t(out.height));
+  out.depth.resize(settings.frameDepth ? std::size_t(out.width) * std::size_t(out.height) : 0);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
-  renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out);
+  renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out,
+              impl_->tileTimes);
+  const double tilesDone = stageClockMs();
 
   SetupCounters total;
-  for (const FrontEndChunk& chunk : chunks) total.add(chunk.setup.counters);
+  double setupMs = 0.0, binMs = 0.0;
+  for (const FrontEndChunk& chunk : chunks) {
+    total.add(chunk.setup.counters);
+    setupMs += chunk.setupMs;
+    binMs += chunk.binMs;
+  }
+  TileTimes tiles;
+  for (const TileTimes& t : impl_->tileTimes) {
+    tiles.raster += t.raster;
+    tiles.shade += t.shade;
+    tiles.resolve += t.resolve;
+  }
   FrameStats stats;
+  StageTimes& stages = stats.stages;
+  stages.draws = drawsDone - start;
+  stages.vertex = vertexDone - drawsDone;
+  splitWallTime(frontEndDone - vertexDone, setupMs, binMs, stages.setup, stages.bin);
+  // Three ways: raster and shade against resolve, then raster against shade.
+  double rasterAndShade = 0.0;
+  splitWallTime(tilesDone - frontEndDone, tiles.raster + tiles.shade, tiles.resolve, rasterAndShade,
+                stages.resolve);
+  splitWallTime(rasterAndShade, tiles.raster, tiles.shade, stages.raster, stages.shade);
   stats.trianglesIn = total.in;
   stats.trianglesDrawn = total.drawn;
   stats.culledBackFace = total.backFace;

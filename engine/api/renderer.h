@@ -39,10 +39,18 @@ enum class DebugView : std::uint8_t {
   CoverageCount,  // R = number of triangles covering the pixel; no depth test
   TexCoord,       // R, G = perspective-correct TEXCOORD_0 at the pixel centre; A = 1
   // R, G, B, A = du/dx, dv/dx, du/dy, dv/dy of TEXCOORD_0 as the sampler gets
-  // them (one footprint per 2x2 quad, from its top-left pixel, helper lanes
-  // included), in normalized texture units per pixel; depth-tested.
+  // them (RenderSettings::derivatives: exact at each pixel centre, or one
+  // footprint per 2x2 quad from its top-left pixel, helper lanes included),
+  // in normalized texture units per pixel; depth-tested.
   Derivatives,
 };
+
+// How opaque and masked draws are shaded. TwoPass: a visibility pass keeps
+// each sample's nearest triangle, then only the visible pixels are shaded,
+// packed densely into SIMD lanes. Forward: each triangle is shaded as it is
+// rasterized (every covered pixel that passes the depth test so far). Both
+// write the same bits; Forward is there for measurement and tests.
+enum class OpaqueShading : std::uint8_t { TwoPass, Forward };
 
 struct RenderSettings {
   int width = 1920;
@@ -56,9 +64,31 @@ struct RenderSettings {
   // frame's depth (and the EXR Z channel) then holds reversed depth.
   DepthMode depth = DepthMode::Standard;
   DebugView debugView = DebugView::None;
+  // Texture footprints from the triangles' exact derivatives (default) or
+  // from 2x2 quad differences as GPUs take them; Quad shades forward.
+  DerivativeMode derivatives = DerivativeMode::Analytic;
+  OpaqueShading opaqueShading = OpaqueShading::TwoPass;
+  // Fill Frame::depth (the EXR Z channel); off, the frame's depth stays empty
+  // and resolve writes a fifth less memory.
+  bool frameDepth = true;
 };
 
-// Counts of what the front end did with the frame's triangles.
+// Where a frame's time went, in ms of wall time. Setup and bin run in one
+// parallel pass over the front-end chunks, and raster, shade and resolve in
+// one task per tile: such a pass's wall time is split among its stages in
+// proportion to the thread time each took, so the stages add up to the frame.
+struct StageTimes {
+  double draws = 0.0;   // the draw list, with texture levels built on first use
+  double vertex = 0.0;  // vertex stage
+  double setup = 0.0;   // clip and triangle setup
+  double bin = 0.0;
+  double raster = 0.0;  // tile stage: coverage and depth (and shading, until it has its own pass)
+  double shade = 0.0;   // tile stage: shading pass
+  double resolve = 0.0;
+};
+
+// Counts of what the front end did with the frame's triangles, and where the
+// frame's time went.
 struct FrameStats {
   std::size_t trianglesIn = 0;     // submitted (instances x triangles)
   std::size_t trianglesDrawn = 0;  // set up and binned (after clipping splits)
@@ -67,6 +97,7 @@ struct FrameStats {
   std::size_t droppedDegenerate = 0;  // zero area after snapping (or clipped onto the eye)
   std::size_t droppedInvalid = 0;     // NaN or Inf in a position or an attribute read
   std::size_t clipped = 0;            // needed clipping against near/far/guard band
+  StageTimes stages;
 };
 
 class Renderer {

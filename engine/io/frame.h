@@ -10,8 +10,10 @@ namespace quadra {
 struct Frame {
   int width = 0;
   int height = 0;
-  std::vector<float> rgba;   // width * height * 4, row 0 at the top, premultiplied
-  std::vector<float> depth;  // width * height; 1 = far plane / nothing drawn
+  std::vector<float> rgba;  // width * height * 4, row 0 at the top, premultiplied
+  // width * height, or empty when the render was asked for none
+  // (RenderSettings::frameDepth); 1 = far plane / nothing drawn.
+  std::vector<float> depth;
 };
 
 }  // namespace quadra

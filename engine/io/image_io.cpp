@@ -95,6 +95,9 @@ void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
   if (frame.rgba.size() != pixels * 4) {
     throw makeError(path, "frame colour buffer does not match its size");
   }
+  if (needsDepth && frame.depth.empty()) {
+    throw makeError(path, "the frame has no depth for the Z channel (render it with frameDepth)");
+  }
   if (needsDepth && frame.depth.size() != pixels) {
     throw makeError(path, "frame depth buffer does not match its size");
   }
@@ -190,6 +193,7 @@ void writePng(const Frame& frame, const std::string& path) {
   image.width = png_uint_32(frame.width);
   image.height = png_uint_32(frame.height);
   image.format = PNG_FORMAT_RGBA;
+  image.flags = PNG_IMAGE_FLAG_FAST;
   const int ok = png_image_write_to_stdio(&image, file, 0, bytes.data(), 0, nullptr);
   const std::string message = ok ? "" : image.message;
   png_image_free(&image);

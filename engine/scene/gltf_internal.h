@@ -106,7 +106,8 @@ class MaterialTable {
   int sceneTexture(int gltfTexture, const std::string& what);
   // Linear float pixels, and the storage format that keeps the source's
   // precision: RGBA16F for 8-bit images, RGBA32F for 16-bit ones.
-  std::shared_ptr<const Image> decodeImage(int imageIndex, TexelFormat& storage) const;
+  std::shared_ptr<const Image> decodeImage(int imageIndex, TexelFormat& storage,
+                                           const Executor& executor) const;
 
   struct PendingTexture {
     int image = -1;  // glTF image index

@@ -43,10 +43,67 @@ struct SetupContext {
 
 template <class T>
 SetupVertex makeSetupVertex(const ScreenVertex& s, const T* attributes, int count) {
-  SetupVertex v{
-      snapToSubpixel(s.windowX), snapToSubpixel(s.windowY), s.windowX, s.windowY, s.z, s.invW, {}};
+  SetupVertex v;  // attr[count..] stay unset: nothing reads them
+  v.x = snapToSubpixel(s.windowX), v.y = snapToSubpixel(s.windowY);
+  v.windowX = s.windowX, v.windowY = s.windowY, v.z = s.z, v.invW = s.invW;
   for (int k = 0; k < count; ++k) v.attr[k] = double(attributes[k]) * s.invW;
   return v;
+}
+
+// What the snapped positions alone decide about a triangle, in the order
+// emitTriangle applies it: most triangles of a closed mesh face away or are
+// off screen, and are dropped here before their attributes are touched.
+enum class Cull : std::uint8_t { Keep, Degenerate, BackFace, Outside };
+
+struct SnappedTriangle {
+  std::int64_t x[3], y[3];
+  std::int64_t area() const {
+    return (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  }
+};
+
+// Pixel indices whose centres px + 0.5 lie in [lo, hi] (1/256 units), clamped to [0, limit).
+void pixelSpan(std::int64_t lo, std::int64_t hi, int limit, std::int32_t& first,
+               std::int32_t& last) {
+  const std::int64_t half = kSubpixelScale / 2;
+  // ceil((lo - half) / 256) and floor((hi - half) / 256), with arithmetic shifts.
+  const std::int64_t f = -((half - lo) >> kSubpixelBits);
+  const std::int64_t l = (hi - half) >> kSubpixelBits;
+  first = std::int32_t(std::max<std::int64_t>(f, 0));
+  last = std::int32_t(std::min<std::int64_t>(l, limit - 1));
+}
+
+// The triangle's pixel bbox in the viewport goes to `bbox` (minX .. maxY).
+Cull cullSnapped(const SetupContext& ctx, const SnappedTriangle& t, TriangleRecord& bbox) {
+  const std::int64_t area = t.area();
+  if (area == 0) return Cull::Degenerate;
+  // glTF front faces are counter-clockwise with y up, so negative area here.
+  const bool front = (area < 0) != ctx.geometry.frontIsClockwise;
+  if (!front && ctx.geometry.cullBackFaces) return Cull::BackFace;
+  pixelSpan(std::min({t.x[0], t.x[1], t.x[2]}), std::max({t.x[0], t.x[1], t.x[2]}),
+            ctx.viewport.width, bbox.minX, bbox.maxX);
+  pixelSpan(std::min({t.y[0], t.y[1], t.y[2]}), std::max({t.y[0], t.y[1], t.y[2]}),
+            ctx.viewport.height, bbox.minY, bbox.maxY);
+  if (bbox.minX > bbox.maxX || bbox.minY > bbox.maxY) return Cull::Outside;
+  return Cull::Keep;
+}
+
+// Counts a culled triangle; true when it is kept.
+bool kept(Cull cull, SetupCounters& n) {
+  switch (cull) {
+    case Cull::Degenerate:
+      ++n.degenerate;
+      return false;
+    case Cull::BackFace:
+      ++n.backFace;
+      return false;
+    case Cull::Outside:
+      ++n.outside;  // covers no pixel centre inside the viewport
+      return false;
+    case Cull::Keep:
+      break;
+  }
+  return true;
 }
 
 // Edge from p to q of a triangle with positive area (in y-down window space,
@@ -96,44 +153,14 @@ struct PlaneSolver {
   }
 };
 
-// Pixel indices whose centres px + 0.5 lie in [lo, hi] (1/256 units), clamped to [0, limit).
-void pixelSpan(std::int64_t lo, std::int64_t hi, int limit, std::int32_t& first,
-               std::int32_t& last) {
-  const std::int64_t half = kSubpixelScale / 2;
-  // ceil((lo - half) / 256) and floor((hi - half) / 256), with arithmetic shifts.
-  const std::int64_t f = -((half - lo) >> kSubpixelBits);
-  const std::int64_t l = (hi - half) >> kSubpixelBits;
-  first = std::int32_t(std::max<std::int64_t>(f, 0));
-  last = std::int32_t(std::min<std::int64_t>(l, limit - 1));
-}
-
 void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVertex& v1In,
                   const SetupVertex& v2In) {
-  SetupCounters& n = ctx.out.counters;
-  const std::int64_t area = (v1In.x - v0.x) * (v2In.y - v0.y) - (v2In.x - v0.x) * (v1In.y - v0.y);
-  if (area == 0) {
-    ++n.degenerate;
-    return;
-  }
-  // glTF front faces are counter-clockwise with y up, so negative area here.
-  const bool front = (area < 0) != ctx.geometry.frontIsClockwise;
-  if (!front && ctx.geometry.cullBackFaces) {
-    ++n.backFace;
-    return;
-  }
+  TriangleRecord t;
+  const SnappedTriangle snapped{{v0.x, v1In.x, v2In.x}, {v0.y, v1In.y, v2In.y}};
+  if (!kept(cullSnapped(ctx, snapped, t), ctx.out.counters)) return;
   const SetupVertex* v1 = &v1In;
   const SetupVertex* v2 = &v2In;
-  if (area < 0) std::swap(v1, v2);
-
-  TriangleRecord t;
-  pixelSpan(std::min({v0.x, v1->x, v2->x}), std::max({v0.x, v1->x, v2->x}), ctx.viewport.width,
-            t.minX, t.maxX);
-  pixelSpan(std::min({v0.y, v1->y, v2->y}), std::max({v0.y, v1->y, v2->y}), ctx.viewport.height,
-            t.minY, t.maxY);
-  if (t.minX > t.maxX || t.minY > t.maxY) {
-    ++n.outside;  // covers no pixel centre inside the viewport
-    return;
-  }
+  if (snapped.area() < 0) std::swap(v1, v2);
   const SetupVertex* const v[3] = {&v0, v1, v2};
   t.edges[0] = makeEdge(*v[1], *v[2]);
   t.edges[1] = makeEdge(*v[2], *v[0]);
@@ -149,7 +176,7 @@ void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVer
   plane(v[0]->invW, v[1]->invW, v[2]->invW);
   for (int k = 0; k < ctx.attributeCount; ++k) plane(v[0]->attr[k], v[1]->attr[k], v[2]->attr[k]);
   ctx.out.triangles.push_back(t);
-  ++n.drawn;
+  ++ctx.out.counters.drawn;
 }
 
 // Clips a triangle that leaves near/far or the guard band and emits its fan.
@@ -207,6 +234,13 @@ void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& ver
       emitClipped(ctx, tri, vertices.stride);
       continue;
     }
+    const ScreenVertex &s0 = vertices.screen[i0], &s1 = vertices.screen[i1],
+                       &s2 = vertices.screen[i2];
+    const SnappedTriangle snapped{
+        {snapToSubpixel(s0.windowX), snapToSubpixel(s1.windowX), snapToSubpixel(s2.windowX)},
+        {snapToSubpixel(s0.windowY), snapToSubpixel(s1.windowY), snapToSubpixel(s2.windowY)}};
+    TriangleRecord bbox;
+    if (!kept(cullSnapped(ctx, snapped, bbox), out.counters)) continue;
     const int count = ctx.attributeCount;
     emitTriangle(ctx, makeSetupVertex(vertices.screen[i0], vertices.vertex(i0) + 4, count),
                  makeSetupVertex(vertices.screen[i1], vertices.vertex(i1) + 4, count),

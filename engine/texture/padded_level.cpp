@@ -4,20 +4,29 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "core/parallel.h"
+
 namespace quadra {
 
-PaddedLevel::PaddedLevel(const Image& image, TexelFormat format)
+PaddedLevel::PaddedLevel(const Image& image, TexelFormat format, const Executor* executor)
     : texels(std::size_t(image.width + 1) * std::size_t(image.height) *
              std::size_t(bytesPerTexel(format))),
       width(image.width),
       height(image.height),
       stride(image.width + 1) {
   const std::size_t texelBytes = std::size_t(bytesPerTexel(format));
-  for (int y = 0; y < height; ++y) {
-    std::uint8_t* row = texels.data() + std::size_t(y) * std::size_t(stride) * texelBytes;
-    for (int x = 0; x < width; ++x) encodeTexel(format, image.texel(x, y), row + x * texelBytes);
-    std::copy(row, row + texelBytes, row + std::size_t(width) * texelBytes);
-  }
+  const auto encodeRows = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t y = begin; y < end; ++y) {
+      std::uint8_t* row = texels.data() + y * std::size_t(stride) * texelBytes;
+      encodeTexels(format, image.texel(0, int(y)), std::size_t(width), row);
+      std::copy(row, row + texelBytes, row + std::size_t(width) * texelBytes);
+    }
+  };
+  // Each row is independent, so any split writes the same bytes.
+  if (executor)
+    executor->parallelFor(std::size_t(height), 16, encodeRows);
+  else
+    encodeRows(0, std::size_t(height));
 }
 
 }  // namespace quadra

@@ -17,13 +17,16 @@
 
 namespace quadra {
 
+class Executor;
+
 struct PaddedLevel {
   std::vector<std::uint8_t> texels;  // height rows of stride texels, encoded
   int width = 0;
   int height = 0;
   int stride = 0;  // texels per row: width + 1
 
-  PaddedLevel(const Image& image, TexelFormat format);
+  // Rows are encoded in parallel on `executor` when one is given.
+  PaddedLevel(const Image& image, TexelFormat format, const Executor* executor = nullptr);
   TextureLevel view() const { return {texels.data(), width, height, stride}; }
 };
 

@@ -40,6 +40,13 @@ inline bool needsMips(Filter f) {
          f == Filter::Ewa || f == Filter::Area;
 }
 
+// Where a lookup's footprint (the screen derivatives of u, v) comes from:
+// the exact derivatives of the triangle's attribute planes at the pixel
+// centre (by the quotient rule on a/w and 1/w), or differences across the
+// 2x2 quad from its top-left pixel, helper lanes included, as GPUs take them
+// (for output that matches a GPU's).
+enum class DerivativeMode : std::uint8_t { Analytic, Quad };
+
 // glTF sampler state (the minification filter decides mip use; magnification
 // is nearest or linear).
 struct SamplerState {

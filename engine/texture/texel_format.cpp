@@ -74,7 +74,12 @@ float halfToFloat(std::uint16_t half) {
   return floatOf(bitsOf(value) | (std::uint32_t(half & 0x8000) << 16));
 }
 
-std::uint16_t floatToHalf(float value) {
+namespace {
+
+// Round to nearest even, in integers; inline so encodeTexels' loops carry
+// no call per channel (texture preparation converts every texel of every
+// level).
+inline std::uint16_t halfOf(float value) {
   const std::uint32_t bits = bitsOf(value);
   const std::uint16_t sign = std::uint16_t((bits >> 16) & 0x8000);
   const float magnitude = std::fabs(value);
@@ -91,27 +96,85 @@ std::uint16_t floatToHalf(float value) {
   return sign | std::uint16_t((rounded >> 13) - ((127u - 15u) << 10));
 }
 
-void encodeTexel(TexelFormat format, const float rgba[4], std::uint8_t* out) {
+}  // namespace
+
+std::uint16_t floatToHalf(float value) {
+  return halfOf(value);
+}
+
+namespace {
+
+// One texel in one format, NaN stored as 0; inlined into encodeTexels' loops.
+template <TexelFormat kFormat>
+inline void encodeOne(const float rgba[4], std::uint8_t* out) {
   float clean[4];
   for (int c = 0; c < 4; ++c) clean[c] = std::isnan(rgba[c]) ? 0.0f : rgba[c];
+  if constexpr (kFormat == TexelFormat::Rgba32F) {
+    std::memcpy(out, clean, 16);
+  } else if constexpr (kFormat == TexelFormat::Rgba16F) {
+    for (int c = 0; c < 4; ++c) {
+      const std::uint16_t h = halfOf(clean[c]);
+      std::memcpy(out + 2 * c, &h, 2);
+    }
+  } else if constexpr (kFormat == TexelFormat::Rgba8Unorm) {
+    for (int c = 0; c < 4; ++c) out[c] = unorm8Code(clean[c]);
+  } else {
+    for (int c = 0; c < 3; ++c) out[c] = unorm8Code(linearToSrgb(clean[c]));
+    out[3] = unorm8Code(clean[3]);
+  }
+}
+
+// Halves for a run of floats (NaN stored as +0, as encodeOne does), written
+// without branches so the compiler vectorizes it: the three cases of halfOf
+// are all computed and the right one selected. Denormal halves come from one
+// float addition whose rounding (to nearest even, the default mode) does the
+// work: x + 0.5 puts the half denormal's units in the low mantissa bits.
+void encodeHalves(const float* in, std::size_t count, std::uint8_t* out) {
+  constexpr std::uint32_t kRoundsToInfinity = 0x477FF000;  // 65520
+  constexpr std::uint32_t kSmallestNormal = 0x38800000;    // 2^-14
+  constexpr std::uint32_t kInfinityBits = 0x7F800000;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t bits = bitsOf(in[i]);
+    const std::uint32_t magnitude = bits & 0x7FFFFFFFu;
+    const std::uint32_t sign = (bits >> 16) & 0x8000u;
+    const std::uint32_t normal =
+        (magnitude + 0x0FFFu + ((magnitude >> 13) & 1u) - ((127u - 15u) << 23)) >> 13;
+    const std::uint32_t denormal = bitsOf(floatOf(magnitude) + 0.5f) - 0x3F000000u;
+    std::uint32_t half = magnitude < kSmallestNormal ? denormal : normal;
+    half = magnitude >= kRoundsToInfinity ? 0x7C00u : half;
+    half |= sign;
+    half = magnitude > kInfinityBits ? 0u : half;
+    const std::uint16_t value = std::uint16_t(half);
+    std::memcpy(out + 2 * i, &value, 2);
+  }
+}
+
+template <TexelFormat kFormat>
+void encodeRun(const float* rgba, std::size_t count, std::uint8_t* out) {
+  if constexpr (kFormat == TexelFormat::Rgba16F) return encodeHalves(rgba, 4 * count, out);
+  constexpr std::size_t kBytes = kFormat == TexelFormat::Rgba32F   ? 16
+                                 : kFormat == TexelFormat::Rgba16F ? 8
+                                                                   : 4;
+  for (std::size_t i = 0; i < count; ++i) encodeOne<kFormat>(rgba + 4 * i, out + kBytes * i);
+}
+
+}  // namespace
+
+void encodeTexels(TexelFormat format, const float* rgba, std::size_t count, std::uint8_t* out) {
   switch (format) {
     case TexelFormat::Rgba32F:
-      std::memcpy(out, clean, 16);
-      return;
+      return encodeRun<TexelFormat::Rgba32F>(rgba, count, out);
     case TexelFormat::Rgba16F:
-      for (int c = 0; c < 4; ++c) {
-        const std::uint16_t h = floatToHalf(clean[c]);
-        std::memcpy(out + 2 * c, &h, 2);
-      }
-      return;
+      return encodeRun<TexelFormat::Rgba16F>(rgba, count, out);
     case TexelFormat::Rgba8Unorm:
-      for (int c = 0; c < 4; ++c) out[c] = unorm8Code(clean[c]);
-      return;
+      return encodeRun<TexelFormat::Rgba8Unorm>(rgba, count, out);
     case TexelFormat::Rgba8Srgb:
-      for (int c = 0; c < 3; ++c) out[c] = unorm8Code(linearToSrgb(clean[c]));
-      out[3] = unorm8Code(clean[3]);
-      return;
+      return encodeRun<TexelFormat::Rgba8Srgb>(rgba, count, out);
   }
+}
+
+void encodeTexel(TexelFormat format, const float rgba[4], std::uint8_t* out) {
+  encodeTexels(format, rgba, 1, out);
 }
 
 void decodeTexel(TexelFormat format, const std::uint8_t* in, float rgba[4]) {

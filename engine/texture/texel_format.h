@@ -23,6 +23,7 @@
 // half of rgba16f, and lossless for 8-bit sources.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -41,6 +42,8 @@ bool parseFormat(const std::string& name, TexelFormat& out);
 // for halves) and maps NaN to 0, so stored texels are always numbers;
 // decoding is what every kernel path computes, bit for bit.
 void encodeTexel(TexelFormat format, const float rgba[4], std::uint8_t* out);
+// `count` texels of linear RGBA float, one format branch for the whole run.
+void encodeTexels(TexelFormat format, const float* rgba, std::size_t count, std::uint8_t* out);
 void decodeTexel(TexelFormat format, const std::uint8_t* in, float rgba[4]);
 
 // The UNORM8 decode factor: code * kUnorm8Scale (the kernels multiply by

@@ -19,22 +19,25 @@ const MipChain& Texture::mips(const Executor* executor) const {
   return *mips_;
 }
 
-const PaddedLevel& Texture::sampledLevel0() const {
-  std::call_once(level0Once_, [&] { level0_ = std::make_unique<PaddedLevel>(*image_, storage_); });
+const PaddedLevel& Texture::sampledLevel0(const Executor* executor) const {
+  std::call_once(level0Once_,
+                 [&] { level0_ = std::make_unique<PaddedLevel>(*image_, storage_, executor); });
   return *level0_;
 }
 
 const std::vector<PaddedLevel>& Texture::sampledMipLevels(const Executor* executor) const {
   std::call_once(mipLevelsOnce_, [&] {
     const MipChain& chain = mips(executor);
-    for (int i = 1; i < chain.levelCount(); ++i) mipLevels_.emplace_back(chain.level(i), storage_);
+    for (int i = 1; i < chain.levelCount(); ++i)
+      mipLevels_.emplace_back(chain.level(i), storage_, executor);
   });
   return mipLevels_;
 }
 
 const SummedAreaTable& Texture::summedAreaTable(const Executor* executor) const {
   std::call_once(summedAreaOnce_, [&] {
-    summedArea_ = std::make_unique<SummedAreaTable>(sampledLevel0().view(), storage_, executor);
+    summedArea_ =
+        std::make_unique<SummedAreaTable>(sampledLevel0(executor).view(), storage_, executor);
   });
   return *summedArea_;
 }

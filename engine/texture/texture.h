@@ -40,7 +40,7 @@ class Texture {
   const MipChain& mips(const Executor* executor = nullptr) const;
   // The levels as the sampling kernels read them (texture/padded_level.h),
   // each built once on first use: level 0, and levels 1.. of the chain.
-  const PaddedLevel& sampledLevel0() const;
+  const PaddedLevel& sampledLevel0(const Executor* executor = nullptr) const;
   const std::vector<PaddedLevel>& sampledMipLevels(const Executor* executor = nullptr) const;
   // The summed-area table of the sampled level 0 (texture/summed_area.h),
   // built on first use: 32 bytes per texel, only for the `sat` filter.

@@ -27,7 +27,7 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   view.setLodControls(settings.lodBias, settings.minLod, settings.maxLod);
   view.format = texture.storage();
   view.srgbTable = srgb8ToLinearTable();
-  view.levels[0] = texture.sampledLevel0().view();
+  view.levels[0] = texture.sampledLevel0(executor).view();
   view.levelCount = 1;
   if (needsMips(view.minFilter)) {
     const std::vector<PaddedLevel>& mips = texture.sampledMipLevels(executor);

@@ -1,12 +1,17 @@
-// TileBuffers: one tile's depth and colour while it is being rasterized.
-// Pixels are stored quad by quad (2x2), quads row by row, so a group of 1, 2
-// or 4 horizontally adjacent quads — one SIMD register on any ISA — is a
-// contiguous, aligned run of floats.
+// TileBuffers: one tile's depth, visibility and colour while it is being
+// rendered. Pixels are stored quad by quad (2x2), quads row by row, so a group
+// of 1, 2 or 4 horizontally adjacent quads — one SIMD register on any ISA — is
+// a contiguous, aligned run of floats.
 #pragma once
+
+#include <cstdint>
 
 #include "window/window_space.h"
 
 namespace quadra {
+
+// TileBuffers::visible of a sample no triangle of the visibility pass covers.
+constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
 
 struct alignas(64) TileBuffers {
   static constexpr int kPixels = kTileSize * kTileSize;
@@ -17,6 +22,9 @@ struct alignas(64) TileBuffers {
   static constexpr int kPlaneStride = kPixels + 16;
 
   float depth[kPlaneStride];
+  // Per sample, the tile-local index of the triangle the visibility pass kept
+  // there (tile_kernel.h TileTriangle), or kNoTriangle.
+  std::uint32_t visible[kPlaneStride];
   float color[4][kPlaneStride];  // premultiplied linear R, G, B, A planes
   int originX = 0, originY = 0;  // window position of the tile's top-left pixel
   int width = 0, height = 0;     // pixels of the tile inside the viewport
@@ -25,6 +33,9 @@ struct alignas(64) TileBuffers {
   static int index(int x, int y) {
     return ((y >> 1) * (kTileSize / 2) + (x >> 1)) * 4 + (y & 1) * 2 + (x & 1);
   }
+  // The inverse: pixel (x, y) at a given index.
+  static int xAt(int index) { return ((index >> 2) % (kTileSize / 2)) * 2 + (index & 1); }
+  static int yAt(int index) { return ((index >> 2) / (kTileSize / 2)) * 2 + ((index >> 1) & 1); }
 };
 
 }  // namespace quadra

@@ -1,6 +1,12 @@
 // The tile kernels, compiled once per ISA (tile_kernel_isa.cpp.in) and reached
-// through one table chosen at start-up: rasterize one triangle into one tile.
+// through one table chosen at start-up. Opaque and masked draws go through two
+// passes per tile: visibility (coverage and depth per sample, remembering the
+// triangle that won each sample) and shading (the visible pixels of one draw,
+// packed densely into SIMD lanes whatever their triangles' sizes). Blended
+// draws and test views take the forward path, which shades as it rasterizes.
 #pragma once
+
+#include <cstdint>
 
 #include "setup/triangle_record.h"
 #include "simd/isa.h"
@@ -9,13 +15,60 @@
 
 namespace quadra {
 
+// A triangle the visibility pass kept in a tile: its index in the tile's list
+// is what TileBuffers::visible holds.
+struct TileTriangle {
+  const TriangleRecord* triangle;
+  const Plane* planes;
+  std::uint32_t draw;
+};
+
+// A triangle's plane rebased to a tile: its value at tile-local pixel centre
+// (x, y) is c + dx*x + dy*y. In double, once per triangle and tile, so the
+// per-pixel float evaluation only ever spans one tile.
+inline Plane planeInTile(const Plane& p, const TriangleRecord& t, const TileBuffers& tile) {
+  const double c = double(p.c) + double(p.dx) * double(tile.originX - t.minX) +
+                   double(p.dy) * double(tile.originY - t.minY);
+  return {p.dx, p.dy, float(c)};
+}
+
+// Shading planes of a tile's triangles, rebased to the tile (the value at
+// tile-local pixel centre (x, y) is c + dx*x + dy*y): per triangle, 1/w and
+// then each attribute/w, kShadePlaneStride floats apart.
+constexpr int kMaxShadedAttributes = 9;  // texcoord 2, colour 4, normal 3
+constexpr int kShadePlaneStride = 3 * (1 + kMaxShadedAttributes);
+
+// The visible pixels of one draw in a tile: its whole lane groups (aligned
+// runs of `lanes` pixels, all this draw's) are shaded in place, the rest of
+// its pixels packed into lanes. Either the tile stage lists them (groups,
+// pixels), or with scanTile the kernel finds them by scanning the tile's
+// TileBuffers::visible for ids in [firstTriangle, endTriangle) (a draw's
+// triangles are consecutive; cheaper when one draw has the whole tile).
+constexpr std::uint32_t kMaxScannedTriangles = 1u << 24;  // exact as float ids
+struct ShadeRun {
+  bool scanTile = false;
+  std::uint32_t firstTriangle = 0, endTriangle = 0;
+  const std::uint16_t* groups = nullptr;  // first pixel index of each whole group
+  int groupCount = 0;
+  const std::uint16_t* pixels = nullptr;  // the other pixels, in tile order
+  int pixelCount = 0;
+  const float* planes = nullptr;  // kShadePlaneStride floats per tile triangle
+};
+
 struct TileKernels {
   Isa isa;
   int lanes;  // SIMD width in pixels (4 per quad)
-  // Coverage, depth test, perspective-correct attributes, LOD, texture
-  // sample, blend, for the part of the triangle inside the tile.
+  // Forward path: coverage, depth test, perspective-correct attributes, LOD,
+  // texture sample, blend, for the part of the triangle inside the tile.
   void (*rasterize)(const TriangleRecord& triangle, const Plane* planes, const ShadeState& shade,
                     TileBuffers& tile);
+  // Visibility pass: coverage and depth test (and a masked draw's alpha
+  // test); the samples the triangle wins get its depth and `id`. Returns
+  // whether it won any.
+  bool (*visibility)(const TriangleRecord& triangle, const Plane* planes, const ShadeState& shade,
+                     std::uint32_t id, TileBuffers& tile);
+  // Shading pass: the colour of every pixel of the run, all of one draw.
+  void (*shade)(const ShadeState& shade, const ShadeRun& run, TileBuffers& tile);
 };
 
 // The table for an ISA; the caller has checked isaSupported(isa).

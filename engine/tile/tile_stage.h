@@ -17,15 +17,23 @@ namespace quadra {
 
 class Executor;
 
-// One front-end chunk: triangles in submission order and their bins.
+// One front-end chunk: triangles in submission order and their bins, and the
+// thread time (ms) its setup and binning took.
 struct FrontEndChunk {
   SetupOutput setup;
   TileBins bins;
+  double setupMs = 0.0, binMs = 0.0;
 };
 
+// Thread time (ms) one tile spent in each of its steps.
+struct TileTimes {
+  double raster = 0.0, shade = 0.0, resolve = 0.0;
+};
+
+// times: resized to the tile count, one entry per tile.
 void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
                  const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
                  const glm::vec4& clearColor, float clearDepth, const Executor& executor,
-                 Frame& frame);
+                 Frame& frame, std::vector<TileTimes>& times);
 
 }  // namespace quadra

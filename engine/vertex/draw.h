@@ -55,6 +55,11 @@ struct ShadeState {
   // What the pixels receive; anything but Color is a test view (DebugView),
   // which the tile kernels compile as separate specializations.
   ShadeOutput output = ShadeOutput::Color;
+  DerivativeMode derivatives = DerivativeMode::Analytic;
+  // Visibility and shading passes (tile/tile_kernel.h) instead of the forward
+  // path: opaque and masked draws with analytic derivatives. The renderer puts
+  // every such draw before the forward ones.
+  bool twoPass = false;
   AttributeLayout attributes;
 };
 

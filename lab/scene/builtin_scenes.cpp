@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <numbers>
 
@@ -257,12 +258,14 @@ Scene alphaQuads() {
 
 // Triangle throughput: 2,000,000 small textured triangles on a unit sphere
 // seen from 2.5 units, where it spans about 80% of the view's height.
-Scene denseMesh() {
+// A sphere of 8 k^2 triangles (2k rings of 4k): k = 500 is the 2-million
+// triangle builtin:dense-mesh; builtin:dense-mesh:N picks k for about N.
+Scene denseMesh(int k, const std::string& name) {
   Scene scene;
-  scene.name = "builtin:dense-mesh";
+  scene.name = name;
   Material material;
   material.baseColorTexture = addTexture(scene, makeGradientGridImage(1024));
-  const int mesh = addMesh(scene, makeSphere(501, 2000, addMaterial(scene, material)));
+  const int mesh = addMesh(scene, makeSphere(k + 1, 4 * k, addMaterial(scene, material)));
   scene.instances.push_back({mesh, glm::mat4(1.0f)});
   scene.cameras.push_back(perspectiveCamera({0.0f, 0.0f, 2.5f}, {0.0f, 0.0f, 0.0f}, 60.0f, 0.1f));
   return scene;
@@ -323,7 +326,16 @@ Scene makeBuiltinScene(const std::string& name) {
   if (name == "showcase") return showcase();
   if (name == "checker-plane") return checkerPlane();
   if (name == "alpha-quads") return alphaQuads();
-  if (name == "dense-mesh") return denseMesh();
+  if (name == "dense-mesh") return denseMesh(500, "builtin:dense-mesh");
+  if (name.rfind("dense-mesh:", 0) == 0) {
+    const std::string count = name.substr(std::string("dense-mesh:").size());
+    char* end = nullptr;
+    const double triangles = std::strtod(count.c_str(), &end);
+    if (count.empty() || *end != '\0' || !(triangles >= 8.0 && triangles <= 1e8))
+      throw makeError("builtin:" + name, "the triangle count must be a number in 8..1e8");
+    const int k = std::max(1, int(std::lround(std::sqrt(triangles / 8.0))));
+    return denseMesh(k, "builtin:" + name);
+  }
   if (Scene scene; makeHardCaseScene(name, scene)) return scene;
   std::string known;
   for (const std::string& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;

@@ -11,6 +11,8 @@ namespace quadra {
 
 std::vector<std::string> builtinSceneNames();
 // name without the "builtin:" prefix; throws Error for an unknown name.
+// "dense-mesh:N" is builtin:dense-mesh with about N triangles (8..1e8), for
+// measuring how a frame scales with its triangle count.
 Scene makeBuiltinScene(const std::string& name);
 
 }  // namespace quadra
