@@ -789,12 +789,143 @@ Rgba<L> sampleEachLane(const LaneLookup& lookup) {
           F::load_aligned(out[3])};
 }
 
+namespace ewa {
+
+// exp(-2 x) - exp(-2) for x in [0, 1), else 0: kEwaShape's weight (ewa.h) of
+// r^2 = x. A polynomial of degree 7 fitted at Chebyshev nodes (error below
+// 8e-8 before float rounding), evaluated by Estrin's scheme: exactly rounded
+// operations only, the same bits on every path, where std::exp per sample
+// was the scalar loop's largest cost; a weight table would need a gather
+// per lane (slow on this Zen, docs/texel-storage.md) or a per-ISA permute.
+static_assert(kEwaShape.alpha == 2.0 && kEwaShape.zeroAtRim, "the polynomial is this shape's");
 template <class L>
+QUADRA_LANE_INLINE typename L::F weight(const typename L::F& x) {
+  using F = typename L::F;
+  const F x2 = x * x, x4 = x2 * x2;
+  const F p01 = F(0.999999922f) + x * F(-1.99998992f);
+  const F p23 = F(1.99978404f) + x * F(-1.33155871f);
+  const F p45 = F(0.659425989f) + x * F(-0.25031036f);
+  const F p67 = F(0.067623278f) + x * F(-0.00963902684f);
+  const F e = (p01 + x2 * p23) + x4 * (p45 + x2 * p67);
+  return simd::select(x < F(1.0f), e - F(0.135335283f), F(0.0f));
+}
+
+// Sums of weighted samples in a fixed order whatever the lane width: sample
+// j goes to virtual lane j mod 16 (a register of 16 lanes, two of 8, or four
+// of 4, in turn), and the 16 virtual sums are added by one fixed tree.
+template <class L>
+struct FixedOrderSum {
+  using F = typename L::F;
+  static constexpr int kTurns = 16 / L::kWidth;
+  static_assert(kTurns * L::kWidth == 16, "lane widths divide 16");
+  F sum[kTurns][5];
+  int turn = 0;
+
+  FixedOrderSum() {
+    for (auto& t : sum)
+      for (F& s : t) s = F(0.0f);
+  }
+  void add(const Rgba<L>& c, const F& w) {
+    F* s = sum[turn];
+    s[0] = s[0] + c.r * w, s[1] = s[1] + c.g * w, s[2] = s[2] + c.b * w, s[3] = s[3] + c.a * w;
+    s[4] = s[4] + w;
+    turn = turn + 1 == kTurns ? 0 : turn + 1;
+  }
+  // The weighted mean (0 where no sample weighed anything).
+  void mean(float rgba[4]) const {
+    alignas(64) float lane[5][16];
+    for (int t = 0; t < kTurns; ++t)
+      for (int c = 0; c < 5; ++c) sum[t][c].store_aligned(&lane[c][t * L::kWidth]);
+    for (int half = 8; half >= 1; half /= 2)
+      for (int c = 0; c < 5; ++c)
+        for (int k = 0; k < half; ++k) lane[c][k] = lane[c][k] + lane[c][k + half];
+    for (int c = 0; c < 4; ++c) rgba[c] = lane[4][0] > 0.0f ? lane[c][0] / lane[4][0] : 0.0f;
+  }
+};
+
+// Integer-valued texel coordinates anywhere → inside [0, n) per the wrap
+// mode; `inside` is cleared where the border colour applies.
+template <class L>
+QUADRA_LANE_INLINE typename L::F wrapAnywhere(typename L::F x, const typename L::F& n,
+                                              WrapMode mode, typename L::M& inside) {
+  using F = typename L::F;
+  if (mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat) {
+    const F period = mode == WrapMode::Repeat ? n : n + n;
+    x = x - period * simd::floor(x / period);
+    x = simd::select(x < F(0.0f), x + period, x);  // float division's last-bit slips
+    x = simd::select(x >= period, x - period, x);
+    if (mode == WrapMode::MirroredRepeat) x = simd::select(x >= n, period - F(1.0f) - x, x);
+    return x;
+  }
+  if (mode == WrapMode::ClampToBorder) inside = inside & (x >= F(0.0f)) & (x <= n - F(1.0f));
+  return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
+}
+
+}  // namespace ewa
+
+// EWA (texture/ewa.h): each lane's lookup planned in scalar code compiled
+// once, its samples summed W at a time in a fixed order.
+template <class L, class R>
 Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typename L::F& v,
                   const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  using I = typename L::I;
+  constexpr int W = L::kWidth;
   const LaneLookups<L> in(u, v, d);
+  alignas(64) float laneIndex[W];
+  for (int k = 0; k < W; ++k) laneIndex[k] = float(k);
+  const F lanes = F::load_aligned(laneIndex);
   return sampleEachLane<L>([&](int k, float rgba[4]) {
-    ewaLookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k], rgba);
+    const EwaPlan plan =
+        planEwa(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k]);
+    ewa::FixedOrderSum<L> sum;
+    if (plan.grid) {
+      // Sample n of the grid: column n mod columns, row n div columns.
+      const int samples = plan.columns * plan.rows;
+      const F columns = F(float(plan.columns)), rows = F(float(plan.rows));
+      const I level0(0);
+      for (int first = 0; first < samples; first += W) {
+        const F n = lanes + F(float(first));
+        const F row = simd::floor((n + F(0.5f)) / columns);
+        const F column = n - row * columns;
+        const F a = ((column + F(0.5f)) / columns - F(0.5f)) * F(2.0f);
+        const F b = ((row + F(0.5f)) / rows - F(0.5f)) * F(2.0f);
+        const F w = simd::select(n < F(float(samples)), ewa::weight<L>(a * a + b * b), F(0.0f));
+        sum.add(sampleBilinear<L, R>(view, F(plan.u) + a * F(plan.axisAu) + b * F(plan.axisBu),
+                                     F(plan.v) + a * F(plan.axisAv) + b * F(plan.axisBv), level0),
+                w);
+      }
+      sum.mean(rgba);
+      return;
+    }
+    // Texel centres, row by row inside the ellipse, W at a time.
+    const I level(plan.level);
+    const sampling::LevelGeometry<L> g = sampling::levelGeometry<L>(view.mipTable(), level);
+    alignas(64) float xs[W], ys[W];
+    int count = 0;
+    auto flush = [&]() {
+      for (int j = count; j < W; ++j) xs[j] = xs[0], ys[j] = ys[0];
+      const F x = F::load_aligned(xs), y = F::load_aligned(ys);
+      const F dx = x - F(plan.cx), dy = y - F(plan.cy);
+      const F r2 = F(plan.qa) * dx * dx + F(plan.qb) * dx * dy + F(plan.qc) * dy * dy;
+      const F w = simd::select(lanes < F(float(count)), ewa::weight<L>(r2), F(0.0f));
+      typename L::M inside = F(0.0f) == F(0.0f);
+      const F wx = ewa::wrapAnywhere<L>(x, g.width, view.wrapU, inside);
+      const F wy = ewa::wrapAnywhere<L>(y, g.height, view.wrapV, inside);
+      sum.add(sampling::withBorder<L>(view, sampling::fetch<L, R>(view, g, level, wx, wy), inside),
+              w);
+      count = 0;
+    };
+    for (int y = plan.y0; y <= plan.y1; ++y) {
+      int x0, x1;
+      ewaRowSpan(plan, y, x0, x1);
+      for (int x = x0; x <= x1; ++x) {
+        xs[count] = float(x), ys[count] = float(y);
+        if (++count == W) flush();
+      }
+    }
+    if (count > 0) flush();
+    sum.mean(rgba);
   });
 }
 
@@ -864,7 +995,7 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
   const Filter filter = view.minFilter;
   if (filter == Filter::Nearest) return sampleNearest<L, R>(view, u, v, level0);
   if (filter == Filter::Bilinear) return sampleBilinear<L, R>(view, u, v, level0);
-  if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
+  if (filter == Filter::Ewa) return sampleEwa<L, R>(view, u, v, d);
   if (filter == Filter::Area) return sampleArea<L, R>(view, u, v, d);
   if (filter == Filter::SummedArea) return sampleSummedArea<L>(view, u, v, d);
   if (filter == Filter::Ripmap) return sampleRipmap<L, R>(view, u, v, d);
