@@ -69,12 +69,14 @@ Axes axesOf(const MipReference& mips, const Lookup& l, int maxAniso) {
 }
 
 // texture/anisotropic.h, word for word, in double.
-void anisotropicDefinition(const MipReference& mips, const Lookup& l, double rgba[4]) {
+void anisotropicDefinition(const MipReference& mips, const Lookup& l, double rgba[4],
+                           int maxAniso = 16) {
   using namespace aniso;
-  const Axes a = axesOf(mips, l, 16);
+  const Axes a = axesOf(mips, l, maxAniso);
   const int last = mips.levels() - 1;
   const double read = std::clamp(a.lod, 0.0, double(last));
-  const bool blend = a.major < double(kBlendBelowRatio) * a.minor;
+  const bool blend =
+      a.major < double(kBlendBelowRatio) * a.minor || double(maxAniso) < double(kBlendBelowRatio);
   // The line as a multiple of the major axis, and the trapezoid's ramps on it.
   const double line = blend ? 1.0 : std::abs(a.ex) + std::abs(a.ey);
   const double rampWidth = std::min(std::abs(a.ex), std::abs(a.ey)) / line;
@@ -115,8 +117,8 @@ void anisotropicDefinition(const MipReference& mips, const Lookup& l, double rgb
 }
 
 // The filter this one replaced: N trilinear probes at λ along the major axis.
-void previousFilter(const MipReference& mips, const Lookup& l, double rgba[4]) {
-  const Axes a = axesOf(mips, l, 16);
+void previousFilter(const MipReference& mips, const Lookup& l, double rgba[4], int maxAniso) {
+  const Axes a = axesOf(mips, l, maxAniso);
   const int last = mips.levels() - 1;
   const double lod = std::clamp(a.lod, 0.0, double(last));
   const int fine = int(std::floor(lod));
@@ -215,34 +217,43 @@ TEST(Anisotropic, AtLeastAsAccurateAsThePreviousFilter) {
     const std::vector<Lookup> lookups = lookupsOf(set);
     const BilinearReference level0(*image, SamplerState{});
     const GroundTruthSet truth = groundTruthSet(level0, set.footprints(), {}, executor);
-    const std::vector<float> got = sampleAll(texture, Filter::Anisotropic, Isa::Scalar, lookups);
-    struct Sums {
-      double now = 0, before = 0;
-      int n = 0;
-      double rmse(double s) const { return std::sqrt(s / (3.0 * n)); }
-    } all, magnified, nearIsotropic, anisotropic;
-    for (std::size_t i = 0; i < lookups.size(); ++i) {
-      double previous[4];
-      previousFilter(mips, lookups[i], previous);
-      double now = 0, before = 0;
-      for (int c = 0; c < 3; ++c) {
-        const double want = truth.rgba[i * 4 + std::size_t(c)];
-        now += std::pow(got[i * 4 + std::size_t(c)] - want, 2);
-        before += std::pow(previous[c] - want, 2);
+    // The default maximum, and 2, where both filters blend two levels for
+    // every footprint (texture/anisotropic.h, kBlendBelowRatio): there the
+    // smooth texture's sheared footprints lose up to 2% (0.0246 against
+    // 0.0242 here) and the report's five textures gain (0.0250 against 0.0260).
+    for (const int maxAniso : {16, 2}) {
+      std::vector<float> got(lookups.size() * 4);
+      TextureSampler(texture, FilterSettings(Filter::Anisotropic, maxAniso), Isa::Scalar)
+          .sample(set.batch(), 0, set.size(), got.data());
+      struct Sums {
+        double now = 0, before = 0;
+        int n = 0;
+        double rmse(double s) const { return std::sqrt(s / (3.0 * n)); }
+      } all, magnified, nearIsotropic, anisotropic;
+      for (std::size_t i = 0; i < lookups.size(); ++i) {
+        double previous[4];
+        previousFilter(mips, lookups[i], previous, maxAniso);
+        double now = 0, before = 0;
+        for (int c = 0; c < 3; ++c) {
+          const double want = truth.rgba[i * 4 + std::size_t(c)];
+          now += std::pow(got[i * 4 + std::size_t(c)] - want, 2);
+          before += std::pow(previous[c] - want, 2);
+        }
+        for (Sums* s : {&all, set.scaleBucket[i] == 0 ? &magnified : nullptr,
+                        set.anisoBucket[i] == 0 ? &nearIsotropic : nullptr,
+                        set.anisoBucket[i] >= 3 ? &anisotropic : nullptr})
+          if (s) s->now += now, s->before += before, ++s->n;
       }
-      for (Sums* s : {&all, set.scaleBucket[i] == 0 ? &magnified : nullptr,
-                      set.anisoBucket[i] == 0 ? &nearIsotropic : nullptr,
-                      set.anisoBucket[i] >= 3 ? &anisotropic : nullptr})
-        if (s) s->now += now, s->before += before, ++s->n;
-    }
-    for (const auto& [category, s, allowance] :
-         {std::tuple{"all", all, 1.0}, std::tuple{"magnified", magnified, 1.05},
-          std::tuple{"near-isotropic", nearIsotropic, 1.05},
-          std::tuple{"8:1 and more", anisotropic, 0.9}}) {
-      const double now = s.rmse(s.now), before = s.rmse(s.before);
-      std::printf("[ aniso ] %s, %s: RMSE %.5f, previous filter %.5f (%d footprints)\n", t.name,
-                  category, now, before, s.n);
-      EXPECT_LE(now, allowance * before) << t.name << " " << category;
+      for (const auto& [category, s, allowance] :
+           {std::tuple{"all", all, maxAniso == 16 ? 1.0 : 1.02},
+            std::tuple{"magnified", magnified, 1.05},
+            std::tuple{"near-isotropic", nearIsotropic, 1.05},
+            std::tuple{"8:1 and more", anisotropic, maxAniso == 16 ? 0.9 : 1.02}}) {
+        const double now = s.rmse(s.now), before = s.rmse(s.before);
+        std::printf("[ aniso-%d ] %s, %s: RMSE %.5f, previous filter %.5f (%d footprints)\n",
+                    maxAniso, t.name, category, now, before, s.n);
+        EXPECT_LE(now, allowance * before) << maxAniso << " " << t.name << " " << category;
+      }
     }
   }
 }

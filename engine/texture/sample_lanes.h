@@ -521,8 +521,9 @@ QUADRA_LANE_INLINE Plan<L> planAnisotropic(const TextureView& view, const typena
   const F lastLevel = F(float(view.levelCount - 1));
   const F read = simd::min(simd::max(controlledLod<L>(view, lod), F(0.0f)), lastLevel);
 
-  // The levels read: both around λ below kBlendBelowRatio, else the nearest.
-  const auto blend = major < F(kBlendBelowRatio) * minor;
+  // The levels read: both around λ below kBlendBelowRatio (and always where
+  // maxAniso is below it), else the nearest.
+  const auto blend = (major < F(kBlendBelowRatio) * minor) | (maxAniso < F(kBlendBelowRatio));
   const F fine = simd::floor(read);
   const F nearest = simd::min(simd::floor(read + F(0.5f)), lastLevel);
   Plan<L> plan;
