@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages quadra builds against, only those missing.
 set -euo pipefail
+# libosmesa6-dev: Mesa's llvmpipe for comparisons (quadra-llvmpipe, `quadra
+# report frames`); quadra itself never links it.
 packages=(build-essential cmake pkg-config libtbb-dev libxsimd-dev libglm-dev libtinygltf-dev
   libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libbenchmark-dev
-  libgtest-dev clang-format git)
+  libgtest-dev libosmesa6-dev clang-format git)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

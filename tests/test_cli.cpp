@@ -3,82 +3,18 @@
 // errors with a non-zero exit and no output file left behind.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_helpers.h"
 #include "io/image_io.h"
+#include "render_options.h"
 
 namespace quadra {
 namespace {
-
-namespace fs = std::filesystem;
-
-struct RunResult {
-  int exitCode = -1;
-  std::string out, err;
-};
-
-// One directory per test process: CTest runs the cases in parallel.
-fs::path testDir() {
-  const fs::path dir = fs::temp_directory_path() / ("quadra_cli_test_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-RunResult run(const std::string& arguments) {
-  const fs::path dir = testDir();
-  const std::string outFile = (dir / "stdout.txt").string(),
-                    errFile = (dir / "stderr.txt").string();
-  const std::string command = std::string(QUADRA_CLI_PATH) + " " + arguments + " >" + outFile +
-                              " 2>" + errFile + " </dev/null";
-  const int status = std::system(command.c_str());
-  RunResult r;
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream o(outFile), e(errFile);
-  std::stringstream os, es;
-  os << o.rdbuf();
-  es << e.rdbuf();
-  r.out = os.str();
-  r.err = es.str();
-  return r;
-}
-
-// key=value pairs of the line starting with `prefix`.
-std::map<std::string, std::string> keyValues(const std::string& text, const std::string& prefix) {
-  std::map<std::string, std::string> pairs;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.rfind(prefix, 0) != 0) continue;
-    std::istringstream words(line.substr(prefix.size()));
-    for (std::string word; words >> word;) {
-      const std::size_t eq = word.find('=');
-      if (eq != std::string::npos) pairs[word.substr(0, eq)] = word.substr(eq + 1);
-    }
-  }
-  return pairs;
-}
-
-fs::path tempPath(const std::string& name) {
-  const fs::path dir = testDir();
-  fs::remove(dir / name);
-  return dir / name;
-}
-
-void expectOneLineError(const RunResult& r, const std::string& mentions) {
-  EXPECT_NE(r.exitCode, 0);
-  EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
-  ASSERT_FALSE(r.err.empty());
-  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "more than one line: " << r.err;
-}
 
 TEST(Cli, RenderPrintsTheFrameLineAndWritesBothFormats) {
   const fs::path exr = tempPath("cli.exr"), png = tempPath("cli.png");
@@ -86,19 +22,7 @@ TEST(Cli, RenderPrintsTheFrameLineAndWritesBothFormats) {
       run("render builtin:checker-plane --width 96 --height 54 --frames 3 --threads 2 "
           "--filter trilinear --out " +
           exr.string() + " --out " + png.string());
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto line = keyValues(r.out, "quadra frame_ms ");
-  for (const char* key : {"median", "min", "max", "triangles", "width", "height", "threads"})
-    EXPECT_TRUE(line.count(key)) << key << " missing in: " << r.out;
-  EXPECT_EQ(line.at("width"), "96");
-  EXPECT_EQ(line.at("height"), "54");
-  EXPECT_EQ(line.at("threads"), "2");
-  EXPECT_EQ(line.at("triangles"), "2");
-  EXPECT_LE(std::stod(line.at("min")), std::stod(line.at("median")));
-  EXPECT_LE(std::stod(line.at("median")), std::stod(line.at("max")));
-  const Image fromExr = readImage(exr.string()), fromPng = readImage(png.string());
-  EXPECT_EQ(fromExr.width, 96);
-  EXPECT_EQ(fromPng.height, 54);
+  expectCheckerPlaneFrame(r, "quadra frame_ms ", exr, png);
 }
 
 TEST(Cli, StatsPrintEveryStageAsANumber) {
@@ -106,7 +30,7 @@ TEST(Cli, StatsPrintEveryStageAsANumber) {
   const RunResult r = run(
       "render builtin:showcase --width 96 --height 54 --frames 3 --stats --out " + png.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto stages = keyValues(r.out, "quadra stages_ms ");
+  const auto stages = lineKeyValues(r.out, "quadra stages_ms ");
   const char* const keys[] = {"load", "first_frame", "draws", "vertex",  "setup",
                               "bin",  "raster",      "shade", "resolve", "write"};
   EXPECT_EQ(stages.size(), std::size(keys)) << r.out;
@@ -121,7 +45,7 @@ TEST(Cli, StatsPrintEveryStageAsANumber) {
   EXPECT_GT(std::stod(stages.at("write")), 0.0);  // a PNG was written
   // Without --stats the line is not printed.
   EXPECT_TRUE(
-      keyValues(run("render builtin:showcase --width 16 --height 16").out, "quadra stages_ms ")
+      lineKeyValues(run("render builtin:showcase --width 16 --height 16").out, "quadra stages_ms ")
           .empty());
 }
 
@@ -189,7 +113,7 @@ TEST(Cli, SampleReadsLookupsAndWritesValuesInOrder) {
       run("sample --texture " + tex.string() + " --filter bilinear --wrap clamp --in " +
           in.string() + " --out " + out.string() + " --threads 1");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  const auto line = keyValues(r.out, "quadra sample_ns ");
+  const auto line = lineKeyValues(r.out, "quadra sample_ns ");
   for (const char* key : {"per_lookup", "lookups", "threads", "isa"}) EXPECT_TRUE(line.count(key));
   EXPECT_EQ(line.at("lookups"), "3");
   std::ifstream values(out);
@@ -254,8 +178,9 @@ std::vector<CommandLineCase> everyCommand() {
   writeFrame(texture, tex.string());
   std::ofstream(in) << "u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,0,0,0,0\n";
   const fs::path png = tempPath("parse.png"), csv = tempPath("parse_values.csv"),
-                 reportDir = testDir() / "parse_report";
+                 reportDir = testDir() / "parse_report", framesDir = testDir() / "parse_frames";
   fs::remove_all(reportDir);
+  fs::remove_all(framesDir);
   return {
       {"render", "builtin:checker-plane --width 32", "--height 32 --out " + png.string(), png},
       {"sample", "--texture " + tex.string() + " --filter bilinear",
@@ -263,6 +188,8 @@ std::vector<CommandLineCase> everyCommand() {
       {"report textures", "--size 8 --lookups 36", "--out-dir " + reportDir.string(), reportDir},
       {"report sat-precision", "--size 16", "--boxes 1", {}},
       {"report stability", "--threads 2", "--isa auto", {}},
+      {"report frames", "--scenes builtin:checker-plane --width 32",
+       "--height 32 --rounds 1 --frames 1 --out-dir " + framesDir.string(), framesDir},
   };
 }
 
@@ -315,7 +242,7 @@ TEST(Cli, SharedOptionsSayTheSameWhicheverCommandHasThem) {
     SCOPED_TRACE(c.command);
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --threads 0"),
                      "--threads: '0' must be a whole number in 1..1024", c.written);
-    if (c.command == "report sat-precision") continue;  // has no --isa
+    if (c.command == "report sat-precision" || c.command == "report frames") continue;  // no --isa
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --isa mmx"),
                      "--isa: unknown ISA 'mmx' (auto, scalar, sse2, avx2, avx512)", c.written);
   }

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -29,6 +30,7 @@
 
 #include "core/error.h"
 #include "io/image_io.h"
+#include "io/srgb8.h"
 #include "texture/image.h"
 #include "texture/texel_format.h"
 
@@ -87,6 +89,39 @@ TEST(Srgb, LinearRoundTrip) {
     // log-slope, 2.4: a few float ulps end to end.
     EXPECT_NEAR(srgbToLinear(linearToSrgb(l)), l, 2e-6 * l + 1e-9) << "l=" << l;
   }
+}
+
+// The PNG writer's pow-free encoder returns the definition's code for every
+// float: around each step (where a wrong step would show first), over a
+// sweep of the range, and for the special values. The steps are also checked
+// against the formula in double, so a wrong definition cannot pass either.
+TEST(Srgb, EightBitEncoderMatchesItsDefinitionOnEveryFloat) {
+  const Srgb8Encoder encoder;
+  const auto next = [](float f, int ulps) {
+    return std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + std::uint32_t(ulps));
+  };
+  for (int code = 1; code < 256; ++code) {
+    const float step = encoder.step(code);
+    for (int ulps = -2; ulps <= 2; ++ulps) {
+      const float value = next(step, ulps);
+      EXPECT_EQ(encoder(value), srgb8Code(value)) << "value " << value;
+    }
+    EXPECT_EQ(srgb8Code(step), code);
+    EXPECT_EQ(srgb8Code(next(step, -1)), code - 1);
+    // Where the exact curve crosses code - 1/2, to float rounding of the curve.
+    const double exact = srgbEncodeReference(double(step));
+    EXPECT_NEAR(exact * 255.0, code - 0.5, 1e-3) << "code " << code;
+  }
+  // Every 61st float from 0 to 2 (17 million values).
+  for (std::uint32_t bits = 0; bits <= std::bit_cast<std::uint32_t>(2.0f); bits += 61) {
+    const float value = std::bit_cast<float>(bits);
+    ASSERT_EQ(encoder(value), srgb8Code(value)) << "value " << value;
+  }
+  for (float special :
+       {0.0f, -0.0f, -1.0f, 1.0f, 1e30f, std::numeric_limits<float>::infinity(),
+        -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
+        std::numeric_limits<float>::denorm_min()})
+    EXPECT_EQ(encoder(special), srgb8Code(special)) << "value " << special;
 }
 
 // ---- shared fixtures --------------------------------------------------------

@@ -4,12 +4,29 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
+#include <new>
 
 #include "core/error.h"
 
 namespace quadra {
+
+int runMain(const char* program, int argc, char** argv,
+            const std::function<int(const std::vector<std::string>& args)>& run) {
+  try {
+    return run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const Error& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "%s: out of memory\n", program);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+  }
+  return 1;
+}
 
 double parseNumber(const std::string& option, const std::string& text) {
   char* end = nullptr;
@@ -45,8 +62,8 @@ bool isOptionName(const std::string& arg) {
 
 }  // namespace
 
-CommandOptions::CommandOptions(std::string command, std::string usage)
-    : command_(std::move(command)), usage_(std::move(usage)) {}
+CommandOptions::CommandOptions(std::string command, std::string usage, std::string program)
+    : command_(std::move(command)), usage_(std::move(usage)), program_(std::move(program)) {}
 
 void CommandOptions::declare(const std::string& name, bool takesValue, ValueHandler handler) {
   QUADRA_CHECK(isOptionName(name) && !find(name));
@@ -96,7 +113,7 @@ Parsed CommandOptions::parse(const std::vector<std::string>& args) const {
       std::cout << usage_;
       return Parsed::HelpShown;
     }
-  const std::string seeHelp = "' (see quadra " + command_ + " --help)";
+  const std::string seeHelp = "' (see " + program_ + " " + command_ + " --help)";
   for (const std::string& arg : args)
     if (isOptionName(arg) && !find(arg))
       throw Error(command_ + ": unknown option '" + arg + seeHelp);

@@ -22,6 +22,11 @@ double parseNumber(const std::string& option, const std::string& text);
 int parseInteger(const std::string& option, const std::string& text, int lo, int hi);
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix);
 
+// main()'s body for a quadra program: returns run(args)'s status, and turns
+// any failure into one line on stderr, "program: message", and status 1.
+int runMain(const char* program, int argc, char** argv,
+            const std::function<int(const std::vector<std::string>& args)>& run);
+
 enum class Parsed : std::uint8_t { Run, HelpShown };
 
 // One command's options. Declare them, then parse: handlers run in
@@ -34,9 +39,10 @@ class CommandOptions {
   using ValueHandler = std::function<void(const std::string& option, const std::string& value)>;
   using PositionalHandler = std::function<void(const std::string& argument)>;
 
-  // `command` as typed after "quadra" (e.g. "report textures"), for messages;
-  // `usage` is what --help and -h print.
-  CommandOptions(std::string command, std::string usage);
+  // `command` as typed after the program's name (e.g. "report textures"), for
+  // messages; `usage` is what --help and -h print; `program` is the binary
+  // (a peer renderer has its own).
+  CommandOptions(std::string command, std::string usage, std::string program = "quadra");
 
   void value(const std::string& name, ValueHandler handler);
   void flag(const std::string& name, std::function<void()> handler);
@@ -80,7 +86,7 @@ class CommandOptions {
   void declare(const std::string& name, bool takesValue, ValueHandler handler);
   const Option* find(const std::string& name) const;
 
-  std::string command_, usage_;
+  std::string command_, usage_, program_;
   std::vector<std::pair<std::string, Option>> options_;
   PositionalHandler positional_;
 };

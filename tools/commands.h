@@ -13,6 +13,8 @@ int runSample(const std::vector<std::string>& args);
 int runReport(const std::vector<std::string>& args);
 // `quadra report sat-precision` (report_sat_precision.cpp).
 int runSatPrecisionReport(const std::vector<std::string>& args);
+// `quadra report frames` (report_frames.cpp).
+int runFramesReport(const std::vector<std::string>& args);
 // `quadra report stability` (report_stability.cpp).
 int runStabilityReport(const std::vector<std::string>& args);
 

@@ -1,13 +1,10 @@
 // quadra command-line tool: the entry point and `quadra render` (DESIGN.md
 // "Contracts") on glTF files and built-in scenes. Every failure is one line on stderr and a
 // non-zero exit; outputs are written only after a frame succeeded.
-#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,7 +18,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
-#include "scene/gltf_loader.h"
+#include "render_options.h"
 
 namespace quadra {
 namespace {
@@ -31,6 +28,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra report textures --help
        quadra report sat-precision --help
        quadra report stability --help
+       quadra report frames --help
        quadra --version
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
@@ -71,19 +69,6 @@ std::string usage() {
   return kUsage + list + "\n";
 }
 
-glm::vec3 parseVector(const std::string& option, const std::string& text) {
-  glm::vec3 v;
-  std::size_t start = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t comma = text.find(',', start);
-    if ((i < 2) != (comma != std::string::npos))
-      throw Error(option + ": '" + text + "' must be three numbers x,y,z");
-    v[i] = float(parseNumber(option, text.substr(start, comma - start)));
-    start = comma + 1;
-  }
-  return v;
-}
-
 struct RenderCommand {
   std::string scenePath = "builtin:showcase";
   LoadOptions load;
@@ -92,8 +77,7 @@ struct RenderCommand {
   int frames = 1;
   bool stats = false;
   std::vector<std::string> outputs;
-  std::optional<glm::vec3> eye, target, up;
-  std::optional<float> fovyDegrees, znear, zfar;
+  CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
 
@@ -101,34 +85,9 @@ struct RenderCommand {
 std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   RenderCommand cmd;
   CommandOptions options("render", usage());
-  bool sceneGiven = false;
-  options.positional([&](const std::string& scene) {
-    if (sceneGiven) throw Error("render: more than one scene given ('" + scene + "')");
-    cmd.scenePath = scene;
-    sceneGiven = true;
-  });
-  options.integer("--width", cmd.settings.width, 1, kMaxViewportSize);
-  options.integer("--height", cmd.settings.height, 1, kMaxViewportSize);
-  options.integer("--scene", cmd.load.sceneIndex, 0, 1 << 20);
-  for (auto [name, target] : {std::pair{"--eye", &cmd.eye}, std::pair{"--target", &cmd.target},
-                              std::pair{"--up", &cmd.up}})
-    options.value(name, [target](const std::string& option, const std::string& value) {
-      *target = parseVector(option, value);
-    });
-  options.value("--fovy", [&](const std::string& option, const std::string& value) {
-    cmd.fovyDegrees = float(parseNumber(option, value));
-    if (!(*cmd.fovyDegrees > 0.0f && *cmd.fovyDegrees < 180.0f))
-      throw Error(option + ": '" + value + "' must be between 0 and 180 degrees");
-  });
-  options.value("--near", [&](const std::string& option, const std::string& value) {
-    cmd.znear = float(parseNumber(option, value));
-    if (!(*cmd.znear > 0.0f)) throw Error(option + ": '" + value + "' must be positive");
-  });
-  options.value("--far", [&](const std::string& option, const std::string& value) {
-    cmd.zfar = float(parseNumber(option, value));
-    if (*cmd.zfar < 0.0f)
-      throw Error(option + ": '" + value + "' must be 0 (infinite) or positive");
-  });
+  addSceneOptions(options, cmd.scenePath, cmd.load);
+  addSizeOptions(options, cmd.settings.width, cmd.settings.height);
+  addCameraOptions(options, cmd.camera);
   addFilterOptions(options, cmd.settings.filter, cmd.settings.maxAniso, cmd.settings.lodBias);
   addTexelFormatOrAutoOption(options, "--texture-format", cmd.textureFormat);
   options.choice("--depth", "depth mode",
@@ -146,59 +105,16 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);
   options.flag("--stats", [&] { cmd.stats = true; });
-  options.value("--out", [&](const std::string&, const std::string& value) {
-    if (!endsWithIgnoringCase(value, ".exr") && !endsWithIgnoringCase(value, ".png"))
-      throw Error(value + ": unsupported output format (use .exr or .png)");
-    cmd.outputs.push_back(value);
-  });
+  addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
-  // Depth is resolved only for what reads it: the EXR's Z channel.
-  cmd.settings.frameDepth = std::any_of(cmd.outputs.begin(), cmd.outputs.end(), [](const auto& p) {
-    return endsWithIgnoringCase(p, ".exr");
-  });
+  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   return cmd;
 }
 
 Scene loadScene(const RenderCommand& cmd) {
-  const std::string prefix = "builtin:";
-  Scene scene;
-  if (cmd.scenePath.rfind(prefix, 0) == 0) {
-    scene = makeBuiltinScene(cmd.scenePath.substr(prefix.size()));
-  } else {
-    std::vector<std::string> notes;
-    scene = loadGltf(cmd.scenePath, cmd.load, &notes);
-    for (const std::string& note : notes) std::cerr << "quadra: note: " << note << "\n";
-  }
+  Scene scene = loadSceneArgument(cmd.scenePath, cmd.load, "quadra");
   if (cmd.textureFormat) setTextureStorage(scene, *cmd.textureFormat);
   return scene;
-}
-
-Camera chooseCamera(const Scene& scene, const RenderCommand& cmd) {
-  Camera camera = firstCameraOrDefault(scene);
-  if (cmd.eye || cmd.target || cmd.up) {
-    const glm::vec3 position(camera.world[3]);
-    const glm::vec3 forward = -glm::normalize(glm::vec3(camera.world[2]));
-    const glm::vec3 eye = cmd.eye.value_or(position);
-    const glm::vec3 target = cmd.target.value_or(eye + forward);
-    const glm::vec3 up = cmd.up.value_or(glm::normalize(glm::vec3(camera.world[1])));
-    if (glm::length(target - eye) == 0.0f) throw Error("--target: must differ from --eye");
-    camera.world = lookAtWorld(eye, target, up);
-  }
-  if (cmd.fovyDegrees) {
-    camera.type = Camera::Type::Perspective;
-    camera.yfov = *cmd.fovyDegrees * 3.14159265358979f / 180.0f;
-  }
-  if (cmd.znear) camera.znear = *cmd.znear;
-  if (cmd.zfar) camera.zfar = *cmd.zfar;
-  if (camera.zfar > 0.0f && camera.zfar <= camera.znear)
-    throw Error("--far: the far plane must lie beyond the near plane");
-  return camera;
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 // One line of key=value pairs: loading, the warm-up frame (which also builds
@@ -210,7 +126,7 @@ void printStages(double loadMs, double firstFrameMs, const std::vector<StageTime
   const auto stage = [&](double StageTimes::*field) {
     std::vector<double> values;
     for (const StageTimes& t : frames) values.push_back(t.*field);
-    return median(values);
+    return summarizeFrameTimes(values).median;
   };
   std::printf(
       "quadra stages_ms load=%.3f first_frame=%.3f draws=%.3f vertex=%.3f setup=%.3f bin=%.3f "
@@ -237,7 +153,7 @@ int renderCommand(const std::vector<std::string>& args) {
   const auto loadStart = std::chrono::steady_clock::now();
   const Scene scene = loadScene(cmd);
   const double loadMs = millisecondsSince(loadStart);
-  const Camera camera = chooseCamera(scene, cmd);
+  const Camera camera = chooseCamera(scene, cmd.camera);
 
   Frame frame;
   const auto firstStart = std::chrono::steady_clock::now();
@@ -257,11 +173,11 @@ int renderCommand(const std::vector<std::string>& args) {
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);
+  const FrameTimeSummary summary = summarizeFrameTimes(times);
   std::printf(
       "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
       "isa=%s frames=%d drawn=%zu culled=%zu clipped=%zu\n",
-      median(times), *std::min_element(times.begin(), times.end()),
-      *std::max_element(times.begin(), times.end()), stats.trianglesIn, cmd.settings.width,
+      summary.median, summary.min, summary.max, stats.trianglesIn, cmd.settings.width,
       cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), cmd.frames,
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
@@ -270,8 +186,7 @@ int renderCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
-int run(int argc, char** argv) {
-  const std::vector<std::string> args(argv + 1, argv + argc);
+int run(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << usage();
     return args.empty() ? 2 : 0;
@@ -291,14 +206,5 @@ int run(int argc, char** argv) {
 }  // namespace quadra
 
 int main(int argc, char** argv) {
-  try {
-    return quadra::run(argc, argv);
-  } catch (const quadra::Error& e) {
-    std::fprintf(stderr, "quadra: %s\n", e.what());
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "quadra: out of memory\n");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "quadra: %s\n", e.what());
-  }
-  return 1;
+  return quadra::runMain("quadra", argc, argv, quadra::run);
 }

@@ -25,6 +25,7 @@
 #include "lab/texture/ground_truth.h"
 #include "lab/texture/test_textures.h"
 #include "lab/texture/texture_error.h"
+#include "report_output.h"
 #include "texture/texture_sampler.h"
 
 #if defined(QUADRA_HAVE_OIIO)
@@ -113,30 +114,6 @@ void merge(ErrorStats& into, const ErrorStats& from) {
   into.lookups += from.lookups;
   into.sumSquared += from.sumSquared;
   into.maxAbs = std::max(into.maxAbs, from.maxAbs);
-}
-
-// Writes through a temporary file and a rename, so a failed run never leaves
-// a partial file under the requested name.
-void writeText(const std::filesystem::path& path, const std::string& text) {
-  const std::string target = path.string(), temporary = target + ".tmp-quadra";
-  std::FILE* file = std::fopen(temporary.c_str(), "w");
-  if (!file) throw Error(target + ": cannot open for writing");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!ok || !closed) {
-    std::remove(temporary.c_str());
-    throw Error(target + ": write failed");
-  }
-  if (std::rename(temporary.c_str(), target.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw Error(target + ": cannot rename the finished file into place");
-  }
-}
-
-std::string format(const char* spec, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, spec, value);
-  return buffer;
 }
 
 std::string csvText(const std::vector<TestTexture>& textures, const std::vector<FilterRow>& rows) {
@@ -289,14 +266,15 @@ int runReport(const std::vector<std::string>& args) {
   const std::vector<std::string> rest(args.begin() + (args.empty() ? 0 : 1), args.end());
   if (subject == "sat-precision") return runSatPrecisionReport(rest);
   if (subject == "stability") return runStabilityReport(rest);
+  if (subject == "frames") return runFramesReport(rest);
   if (subject == "--help" || subject == "-h") {
     std::cout << kReportUsage;
     return 0;
   }
   if (subject != "textures")
     throw Error(
-        "report: expected a subject, 'textures', 'sat-precision' or 'stability' (see quadra "
-        "report textures --help)");
+        "report: expected a subject, 'textures', 'sat-precision', 'stability' or 'frames' (see "
+        "quadra report textures --help)");
   const std::optional<ReportOptions> parsed = parseReport(rest);
   if (!parsed) return 0;
   const ReportOptions& options = *parsed;

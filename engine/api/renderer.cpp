@@ -46,13 +46,25 @@ struct FrameContext {
   glm::mat4 view, projection;
 };
 
-Draw makeDraw(const FrameContext& frame, const Instance& instance) {
+const Material& materialOf(const Scene& scene, const Mesh& mesh) {
   static const Material kDefaultMaterial;
+  return mesh.material >= 0 ? scene.materials.at(std::size_t(mesh.material)) : kDefaultMaterial;
+}
+
+// View-space depth of the mesh's bounding-box centre (larger = farther).
+float viewDepthOfCentre(const Mesh& mesh, const glm::mat4& modelView) {
+  if (mesh.positions.empty()) return 0.0f;
+  glm::vec3 lo = mesh.positions[0], hi = lo;
+  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  const glm::vec4 centre = modelView * glm::vec4(0.5f * (lo + hi), 1.0f);
+  return -centre.z;
+}
+
+Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   const Scene& scene = frame.scene;
   const RenderSettings& settings = frame.settings;
   const Mesh& mesh = scene.meshes.at(std::size_t(instance.mesh));
-  const Material& material =
-      mesh.material >= 0 ? scene.materials.at(std::size_t(mesh.material)) : kDefaultMaterial;
+  const Material& material = materialOf(scene, mesh);
   Draw draw;
   DrawGeometry& g = draw.geometry;
   ShadeState& s = draw.shade;
@@ -112,35 +124,23 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   return draw;
 }
 
-// View-space depth of a draw's bounds centre (larger = farther), for sorting
-// blended draws back to front.
-float drawDistance(const Draw& draw) {
-  const Mesh& mesh = *draw.geometry.mesh;
-  if (mesh.positions.empty()) return 0.0f;
-  glm::vec3 lo = mesh.positions[0], hi = lo;
-  for (const glm::vec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  const glm::vec4 centre = draw.geometry.modelView * glm::vec4(0.5f * (lo + hi), 1.0f);
-  return -centre.z;
-}
-
 std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
                                 const RenderSettings& settings, const Executor& executor) {
   const FrameContext frame{
       scene, settings, executor, viewMatrix(camera),
       projectionMatrix(camera, double(settings.width) / settings.height, settings.depth)};
-  std::vector<Draw> opaque, blended;
+  std::vector<Draw> draws;
+  if (settings.debugView == DebugView::None) {
+    for (const std::size_t i : instanceDrawOrder(scene, frame.view))
+      draws.push_back(makeDraw(frame, scene.instances[i]));
+    return draws;
+  }
+  // Debug views never blend: scene order.
   for (const Instance& instance : scene.instances) {
     Draw draw = makeDraw(frame, instance);
-    if (draw.geometry.mesh->indices.empty()) continue;
-    (draw.shade.blend == BlendMode::Over ? blended : opaque).push_back(std::move(draw));
+    if (!draw.geometry.mesh->indices.empty()) draws.push_back(std::move(draw));
   }
-  // Opaque first, then transparent back to front (stable: ties keep scene order).
-  std::vector<std::pair<float, std::size_t>> order;
-  for (std::size_t i = 0; i < blended.size(); ++i) order.push_back({-drawDistance(blended[i]), i});
-  std::stable_sort(order.begin(), order.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (const auto& entry : order) opaque.push_back(blended[entry.second]);
-  return opaque;
+  return draws;
 }
 
 void checkSettings(const RenderSettings& s) {
@@ -163,6 +163,26 @@ void splitWallTime(double wall, double threadA, double threadB, double& a, doubl
 }
 
 }  // namespace
+
+std::vector<std::size_t> instanceDrawOrder(const Scene& scene, const glm::mat4& view) {
+  std::vector<std::size_t> order, blended;
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const Mesh& mesh = scene.meshes.at(std::size_t(scene.instances[i].mesh));
+    if (mesh.indices.empty()) continue;
+    (materialOf(scene, mesh).alphaMode == AlphaMode::Blend ? blended : order).push_back(i);
+  }
+  // Farthest first; stable, so ties keep scene order.
+  std::vector<std::pair<float, std::size_t>> keyed;
+  for (const std::size_t i : blended) {
+    const Instance& instance = scene.instances[i];
+    keyed.push_back(
+        {-viewDepthOfCentre(scene.meshes[std::size_t(instance.mesh)], view * instance.world), i});
+  }
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& entry : keyed) order.push_back(entry.second);
+  return order;
+}
 
 Renderer::Renderer(const RendererConfig& config) {
   const Isa isa = config.isa.value_or(detectBestIsa());

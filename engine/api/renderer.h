@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -132,5 +133,13 @@ Camera defaultCamera(const Scene& scene);
 
 // The scene's first camera, or defaultCamera when it has none.
 Camera firstCameraOrDefault(const Scene& scene);
+
+// The order a colour frame draws the scene's instances in, as indices into
+// scene.instances: first every instance whose material does not blend, in
+// scene order, then the blended ones (alphaMode BLEND) back to front by the
+// view-space depth of their mesh's bounding-box centre (ties keep scene
+// order). Instances of meshes without triangles are left out. Public so that
+// a peer renderer drawn for comparison composites in the same order.
+std::vector<std::size_t> instanceDrawOrder(const Scene& scene, const glm::mat4& view);
 
 }  // namespace quadra

@@ -28,6 +28,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "io/srgb8.h"
 #include "texture/texel_format.h"
 
 namespace quadra {
@@ -156,22 +157,19 @@ void writeExr(const Frame& frame, const std::string& path) {
 
 namespace {
 
-std::uint8_t encodeUnorm8(float unit) {
-  return std::uint8_t(unit * 255.0f + 0.5f);
-}
-
 // Premultiplied linear RGBA float -> straight sRGB 8-bit RGBA.
 std::vector<std::uint8_t> encodeSrgb8(const Frame& frame) {
+  static const Srgb8Encoder srgb8;
   std::vector<std::uint8_t> bytes(frame.rgba.size());
   for (std::size_t i = 0; i < frame.rgba.size(); i += 4) {
     const float* p = &frame.rgba[i];
     const float alpha = p[3];
     for (int c = 0; c < 3; ++c) {
       const float straight = alpha > 0.0f ? p[c] / alpha : p[c];
-      bytes[i + std::size_t(c)] = encodeUnorm8(linearToSrgb(straight));
+      bytes[i + std::size_t(c)] = srgb8(straight);
     }
     const float clamped = alpha > 0.0f ? std::min(alpha, 1.0f) : 0.0f;  // NaN -> 0
-    bytes[i + 3] = encodeUnorm8(clamped);
+    bytes[i + 3] = roundToUnorm8(clamped);
   }
   return bytes;
 }

@@ -26,6 +26,15 @@ struct alignas(64) TileBuffers {
   // there (tile_kernel.h TileTriangle), or kNoTriangle.
   std::uint32_t visible[kPlaneStride];
   float color[4][kPlaneStride];  // premultiplied linear R, G, B, A planes
+  // Per 8x8 block (row-major, kBlocksPerRow to a row), bounds on the depths
+  // its samples hold: a triangle whose depth over the block lies wholly
+  // behind them fails the depth test at every sample there, and the block is
+  // skipped before its coverage is computed (hierarchical depth). Kept
+  // conservative: exact after a triangle visits every lane group of the
+  // block, widened by what a partial visit wrote otherwise.
+  static constexpr int kBlocksPerRow = kTileSize / kBlockSize;
+  float blockDepthMin[kBlocksPerRow * kBlocksPerRow];
+  float blockDepthMax[kBlocksPerRow * kBlocksPerRow];
   int originX = 0, originY = 0;  // window position of the tile's top-left pixel
   int width = 0, height = 0;     // pixels of the tile inside the viewport
 

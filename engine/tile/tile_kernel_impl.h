@@ -12,7 +12,9 @@
 // picked by the linker for another ISA's caller.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "simd/kernel_isa.h"
 #include "texture/sample_lanes.h"
@@ -33,14 +35,20 @@ constexpr int kGroupWidth = 2 * kQuads;  // pixels per row in one lane group
 // Lane k of a group is pixel (2*(k/4) + k%2, (k/2)%2) relative to the group.
 struct LaneOffsets {
   F x, y;
+  I xi, yi;
   LaneOffsets() {
     alignas(64) float xs[L::kWidth], ys[L::kWidth];
+    alignas(64) std::int32_t xis[L::kWidth], yis[L::kWidth];
     for (int k = 0; k < L::kWidth; ++k) {
-      xs[k] = float(2 * (k / 4) + k % 2);
-      ys[k] = float((k / 2) % 2);
+      xis[k] = 2 * (k / 4) + k % 2;
+      yis[k] = (k / 2) % 2;
+      xs[k] = float(xis[k]);
+      ys[k] = float(yis[k]);
     }
     x = F::load_aligned(xs);
     y = F::load_aligned(ys);
+    xi = I::load_aligned(xis);
+    yi = I::load_aligned(yis);
   }
 };
 
@@ -108,7 +116,7 @@ struct BlockRange {
 
 // Coverage of the 8x8 block whose top-left pixel is (px, py) in the window,
 // within `range`: bit (row*8 + column). Exact: integer edge functions
-// (window/window_space.h).
+// (window/window_space.h). For triangles too long for LaneEdges.
 std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, int px, int py,
                             const BlockRange& range) {
   std::int64_t corner[3];
@@ -133,6 +141,69 @@ std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, in
   }
   return mask;
 }
+
+// A triangle's edge functions in 32-bit lanes, in the lanes' own pixel order:
+// coverage without a bit per pixel to gather into lanes. Taken when every
+// edge has |a| + |b| < 2^27 (under 2048 px of extent, 16.8 fixed point
+// squared): over a block that an edge crosses, |E| <= |E(corner)| +
+// 7(|a| + |b|) <= 14(|a| + |b|) < 2^31, so the lanes hold E exactly, and an
+// edge positive over the whole block drops out of that block's test.
+struct LaneEdges {
+  std::int64_t low[3], high[3];  // min / max of E - E(corner) over a block
+  std::int32_t a[3], b[3];
+  I offset[3];  // E - E(group corner) at each lane's pixel
+
+  static bool fits(const TriangleRecord& t) {
+    for (const EdgeFunction& f : t.edges)
+      if (std::abs(f.a) + std::abs(f.b) >= (std::int64_t(1) << 27)) return false;
+    return true;
+  }
+
+  LaneEdges(const TriangleRecord& t, const LaneOffsets& lane) {
+    const std::int64_t span = kBlockSize - 1;
+    for (int e = 0; e < 3; ++e) {
+      const EdgeFunction& f = t.edges[e];
+      low[e] = std::min<std::int64_t>(0, f.a * span) + std::min<std::int64_t>(0, f.b * span);
+      high[e] = std::max<std::int64_t>(0, f.a * span) + std::max<std::int64_t>(0, f.b * span);
+      a[e] = std::int32_t(f.a), b[e] = std::int32_t(f.b);
+      offset[e] = I(a[e]) * lane.xi + I(b[e]) * lane.yi;
+    }
+  }
+};
+
+// One block's coverage from LaneEdges: the edges that cross the block, each
+// with its values at the lanes of the block's first group.
+class BlockLaneCoverage {
+ public:
+  // False when the block lies outside an edge. (px, py): the block's top-left
+  // pixel in the window.
+  bool start(const TriangleRecord& t, const LaneEdges& edges, int px, int py) {
+    crossing_ = 0;
+    for (int e = 0; e < 3; ++e) {
+      const std::int64_t corner = t.edges[e].at(px, py);
+      if (corner + edges.high[e] <= 0) return false;
+      if (corner + edges.low[e] > 0) continue;  // inside over the whole block
+      base_[crossing_] = I(std::int32_t(corner)) + edges.offset[e];
+      a_[crossing_] = edges.a[e], b_[crossing_] = edges.b[e];
+      ++crossing_;
+    }
+    return true;
+  }
+
+  // The lanes of the group at (gx, gy) in the block that the triangle covers.
+  M group(int gx, int gy) const {
+    if (crossing_ == 0) return F(0.0f) == F(0.0f);
+    I value = base_[0] + I(a_[0] * gx + b_[0] * gy);
+    for (int k = 1; k < crossing_; ++k)
+      value = simd::min(value, base_[k] + I(a_[k] * gx + b_[k] * gy));
+    return simd::toFloat(value) > F(0.0f);  // int to float keeps the sign and zero
+  }
+
+ private:
+  int crossing_ = 0;
+  I base_[3];
+  std::int32_t a_[3], b_[3];
+};
 
 // A plane over lanes: the value at tile-local pixel centre (x, y) is
 // c + dx*x + dy*y, with its coefficients broadcast (one triangle) or gathered
@@ -216,11 +287,13 @@ struct Features {
 // One triangle's planes rebased to the tile: depth, and unless only depth is
 // needed, 1/w and the attributes.
 struct TrianglePlanes {
+  Plane depth;  // z rebased to the tile, as scalars
   TilePlane z, invW;
   TilePlane attr[kMaxShadedAttributes];
   TrianglePlanes(const ShadeState& s, const TriangleRecord& t, const Plane* planes,
                  const TileBuffers& tile, bool depthOnly = false) {
-    z = rebase(planes[0], t, tile);
+    depth = planeInTile(planes[0], t, tile);
+    z = {F(depth.dx), F(depth.dy), F(depth.c)};
     if (depthOnly) return;
     invW = rebase(planes[1], t, tile);
     for (int k = 0; k < s.attributes.count; ++k) attr[k] = rebase(planes[2 + k], t, tile);
@@ -238,20 +311,24 @@ struct ForwardShader {
   ForwardShader(const ShadeState& s, const TriangleRecord& t, const Plane* p, TileBuffers& tb)
       : shade(s), tile(tb), planes(s, t, p, tb) {}
 
-  void shadeGroup(const F& x, const F& y, M cover, int index) const {
+  bool depthWritten() const { return shade.depthWrite; }
+
+  // Returns the group's depths after it (when the draw writes depth).
+  F shadeGroup(const F& x, const F& y, M cover, int index) const {
     float* const depth = tile.depth + index;
     const F zValue = planes.z.at(x, y);
     const F zOld = F::load_aligned(depth);
     if (shade.depthTest) cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
-    if (!simd::any(cover)) return;
+    if (!simd::any(cover)) return zOld;
     Rgba<L> c = Feat::color(shade, x, y, planes.invW, planes.attr);
     if (Feat::kAlpha == AlphaMode::Mask) cover = cover & (c.a >= F(shade.alphaCutoff));
     if (Feat::kAlpha != AlphaMode::Blend && Feat::kOutput != ShadeOutput::Derivatives)
       c.a = F(1.0f);  // A = dv/dy there
-    if (!simd::any(cover)) return;
+    if (!simd::any(cover)) return zOld;
     float* const color[4] = {tile.color[0] + index, tile.color[1] + index, tile.color[2] + index,
                              tile.color[3] + index};
     write(cover, zValue, zOld, c, depth, color);
+    return simd::select(cover, zValue, zOld);
   }
 
   void write(const M& cover, const F& zValue, const F& zOld, const Rgba<L>& c, float* depth,
@@ -297,28 +374,89 @@ struct VisibilityShader {
         planes(s, t, p, tb, Feat::kAlpha != AlphaMode::Mask),
         id(simd::asFloat(I(std::int32_t(triangleId)))) {}
 
-  void shadeGroup(const F& x, const F& y, M cover, int index) const {
+  bool depthWritten() const { return true; }
+
+  // Returns the group's depths after it.
+  F shadeGroup(const F& x, const F& y, M cover, int index) const {
     float* const depth = tile.depth + index;
     const F zValue = planes.z.at(x, y);
     const F zOld = F::load_aligned(depth);
     cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
-    if (!simd::any(cover)) return;
+    if (!simd::any(cover)) return zOld;
     if constexpr (Feat::kAlpha == AlphaMode::Mask) {
       const Rgba<L> c = Feat::color(shade, x, y, planes.invW, planes.attr);
       cover = cover & (c.a >= F(shade.alphaCutoff));
-      if (!simd::any(cover)) return;
+      if (!simd::any(cover)) return zOld;
     }
     won = true;
-    simd::select(cover, zValue, zOld).store_aligned(depth);
+    const F zNew = simd::select(cover, zValue, zOld);
+    zNew.store_aligned(depth);
     float* const ids = reinterpret_cast<float*>(tile.visible + index);
     simd::select(cover, id, F::load_aligned(ids)).store_aligned(ids);
+    return zNew;
   }
 };
 
-// Walks the triangle's 8x8 blocks inside the tile and hands each group of
-// quads with coverage to the shader (forward or visibility).
+// Hierarchical depth for one triangle: the range of its depth plane over an
+// 8x8 block against the block's bounds (TileBuffers::blockDepthMin/Max). The
+// range is widened by 2^-20 of the plane's largest term, well past the
+// rounding of the lanes' float evaluation (three roundings of 2^-24), so a
+// block is skipped only where every sample's depth test would fail: the
+// output does not change, only the work.
+class BlockDepthTest {
+ public:
+  BlockDepthTest(const Plane& z, const ShadeState& shade)
+      : enabled_(shade.depthTest), greater_(shade.depthGreater), z_{z.dx, z.dy, z.c} {
+    const double span = kBlockSize - 1;
+    low_ = std::min(0.0, z_.dx * span) + std::min(0.0, z_.dy * span);
+    high_ = std::max(0.0, z_.dx * span) + std::max(0.0, z_.dy * span);
+    // A constant plane evaluates exactly (c + 0x + 0y): no margin, so coplanar
+    // layers at one depth (orthographic scenes) hide each other's blocks.
+    if (z_.dx != 0.0 || z_.dy != 0.0)
+      margin_ =
+          std::ldexp(std::abs(z_.c) + kTileSize * (std::abs(z_.dx) + std::abs(z_.dy)), -20) + 1e-37;
+  }
+
+  // Whether the triangle fails the depth test at every sample of the block
+  // whose top-left pixel is (bx, by), tile-local. NaN ranges never fail.
+  bool hidden(int bx, int by, int block, const TileBuffers& tile) const {
+    if (!enabled_) return false;
+    const double base = z_.c + z_.dx * bx + z_.dy * by;
+    return greater_ ? base + high_ + margin_ <= tile.blockDepthMin[block]
+                    : base + low_ - margin_ >= tile.blockDepthMax[block];
+  }
+
+ private:
+  bool enabled_, greater_;
+  struct {
+    double dx, dy, c;
+  } z_;
+  double low_ = 0, high_ = 0, margin_ = 0;
+};
+
+// The block's depth bounds after a triangle wrote it: `low` and `high` are
+// the lane-wise extremes of the depths of the groups it visited; exact when
+// it visited all of the block's groups, else added to the old bounds.
+QUADRA_LANE_INLINE void updateBlockDepth(TileBuffers& tile, int block, const F& low, const F& high,
+                                         bool wholeBlock) {
+  alignas(64) float lows[L::kWidth], highs[L::kWidth];
+  low.store_aligned(lows);
+  high.store_aligned(highs);
+  float lo = lows[0], hi = highs[0];
+  for (int k = 1; k < L::kWidth; ++k) lo = std::min(lo, lows[k]), hi = std::max(hi, highs[k]);
+  if (!wholeBlock) {
+    lo = std::min(lo, tile.blockDepthMin[block]);
+    hi = std::max(hi, tile.blockDepthMax[block]);
+  }
+  tile.blockDepthMin[block] = lo;
+  tile.blockDepthMax[block] = hi;
+}
+
+// Walks the triangle's 8x8 blocks inside the tile, skips those its depth
+// leaves hidden, and hands each group of quads with coverage to the shader
+// (forward or visibility), keeping the blocks' depth bounds.
 template <class ShaderT>
-void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, const TileBuffers& tile) {
+void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& tile) {
   // Pixel range of the triangle inside this tile, tile-local, half-open.
   const int xBegin = std::max(t.minX - tile.originX, 0);
   const int yBegin = std::max(t.minY - tile.originY, 0);
@@ -326,28 +464,67 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, const TileBuf
   const int yEnd = std::min(t.maxY - tile.originY + 1, tile.height);
   if (xBegin >= xEnd || yBegin >= yEnd) return;
 
-  const BlockEdges edges(t);
   static const LaneOffsets lane;  // const after construction; per ISA namespace
-  constexpr std::uint32_t kRowBits = (1u << kGroupWidth) - 1;
+  const BlockDepthTest depthTest(shader.planes.depth, shader.shade);
+  const bool depthWritten = shader.depthWritten();
+  constexpr int kGroupsPerBlock = kBlockSize * kBlockSize / L::kWidth;
 
-  for (int by = yBegin & ~(kBlockSize - 1); by < yEnd; by += kBlockSize) {
-    for (int bx = xBegin & ~(kBlockSize - 1); bx < xEnd; bx += kBlockSize) {
+  // The groups of one block inside `range` that coverOf(gx, gy, x, y) finds
+  // covered go to the shader; the block's depth bounds follow what it wrote.
+  const auto shadeBlock = [&](int bx, int by, int block, const BlockRange& range,
+                              const auto& coverOf) {
+    // Only a block the viewport's edge crosses has lanes to mask beyond it:
+    // elsewhere the triangle's own edges keep it inside its bbox.
+    const bool clipped = bx + kBlockSize > tile.width || by + kBlockSize > tile.height;
+    F low(std::numeric_limits<float>::infinity()), high(-std::numeric_limits<float>::infinity());
+    int visited = 0;
+    for (int gy = range.rowBegin & ~1; gy < range.rowEnd; gy += 2) {
+      for (int gx = range.columnBegin / kGroupWidth * kGroupWidth; gx < range.columnEnd;
+           gx += kGroupWidth) {
+        const F x = lane.x + F(float(bx + gx)), y = lane.y + F(float(by + gy));
+        M cover = coverOf(gx, gy);
+        if (clipped) cover = cover & (x < F(float(tile.width))) & (y < F(float(tile.height)));
+        if (!simd::any(cover)) continue;
+        const F depth = shader.shadeGroup(x, y, cover, TileBuffers::index(bx + gx, by + gy));
+        low = simd::min(low, depth), high = simd::max(high, depth);
+        ++visited;
+      }
+    }
+    if (depthWritten && visited > 0)
+      updateBlockDepth(tile, block, low, high, visited == kGroupsPerBlock);
+  };
+
+  const int byFirst = yBegin & ~(kBlockSize - 1), bxFirst = xBegin & ~(kBlockSize - 1);
+  if (LaneEdges::fits(t)) {
+    const LaneEdges edges(t, lane);
+    BlockLaneCoverage coverage;
+    for (int by = byFirst; by < yEnd; by += kBlockSize) {
+      for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
+        const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+        if (depthTest.hidden(bx, by, block, tile)) continue;
+        if (!coverage.start(t, edges, tile.originX + bx, tile.originY + by)) continue;
+        shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
+                   [&](int gx, int gy) { return coverage.group(gx, gy); });
+      }
+    }
+    return;
+  }
+  const BlockEdges edges(t);
+  constexpr std::uint32_t kRowBits = (1u << kGroupWidth) - 1;
+  for (int by = byFirst; by < yEnd; by += kBlockSize) {
+    for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
+      const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+      if (depthTest.hidden(bx, by, block, tile)) continue;
       const BlockRange range(bx, by, xBegin, xEnd, yBegin, yEnd);
       const std::uint64_t coverage =
           blockCoverage(t, edges, tile.originX + bx, tile.originY + by, range);
       if (coverage == 0) continue;
-      for (int gy = range.rowBegin & ~1; gy < range.rowEnd; gy += 2) {
-        for (int gx = range.columnBegin / kGroupWidth * kGroupWidth; gx < range.columnEnd;
-             gx += kGroupWidth) {
-          const int shift = gy * kBlockSize + gx;
-          const std::uint32_t packed = std::uint32_t((coverage >> shift) & kRowBits) |
-                                       std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits)
-                                           << kGroupWidth;
-          if (packed == 0) continue;
-          shader.shadeGroup(lane.x + F(float(bx + gx)), lane.y + F(float(by + gy)),
-                            groupMask(packed), TileBuffers::index(bx + gx, by + gy));
-        }
-      }
+      shadeBlock(bx, by, block, range, [&](int gx, int gy) {
+        const int shift = gy * kBlockSize + gx;
+        return groupMask(std::uint32_t((coverage >> shift) & kRowBits) |
+                         std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits)
+                             << kGroupWidth);
+      });
     }
   }
 }

@@ -33,6 +33,8 @@ struct TileScratch {
 void clearTile(TileBuffers& tile, const glm::vec4& clearColor, float clearDepth) {
   std::fill(std::begin(tile.depth), std::end(tile.depth), clearDepth);
   std::fill(std::begin(tile.visible), std::end(tile.visible), kNoTriangle);
+  std::fill(std::begin(tile.blockDepthMin), std::end(tile.blockDepthMin), clearDepth);
+  std::fill(std::begin(tile.blockDepthMax), std::end(tile.blockDepthMax), clearDepth);
   for (int c = 0; c < 4; ++c)
     std::fill(std::begin(tile.color[c]), std::end(tile.color[c]), clearColor[c]);
 }

@@ -1,0 +1,29 @@
+// The 8-bit sRGB code of a linear value, and its pow-free encoder.
+#include "io/srgb8.h"
+
+#include <bit>
+
+#include "texture/image.h"
+
+namespace quadra {
+
+std::uint8_t srgb8Code(float linear) {
+  return roundToUnorm8(linearToSrgb(linear));
+}
+
+Srgb8Encoder::Srgb8Encoder() {
+  // Each step is a bisection over the float bit patterns between 0 (code 0)
+  // and 1 (code 255); positive floats order as their bits do.
+  steps_[0] = 0.0f;
+  for (int code = 1; code < 256; ++code) {
+    std::uint32_t below = std::bit_cast<std::uint32_t>(0.0f);
+    std::uint32_t at = std::bit_cast<std::uint32_t>(1.0f);  // srgb8Code(below) < code <= ...(at)
+    while (at - below > 1) {
+      const std::uint32_t middle = below + (at - below) / 2;
+      (srgb8Code(std::bit_cast<float>(middle)) >= code ? at : below) = middle;
+    }
+    steps_[code] = std::bit_cast<float>(at);
+  }
+}
+
+}  // namespace quadra

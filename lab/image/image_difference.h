@@ -1,0 +1,18 @@
+// How far apart two images of one frame are: PSNR and the largest
+// difference over R, G and B, for comparing quadra's frames with another
+// renderer's (`quadra report frames`) or with each other.
+#pragma once
+
+#include "texture/image.h"
+
+namespace quadra {
+
+struct ImageDifference {
+  double psnr = 0.0;    // dB against a peak of 1 (linear white); infinite when equal
+  double maxAbs = 0.0;  // the largest |a - b| of any R, G or B value
+};
+
+// Both images must have the same size (an Error otherwise); alpha is left out.
+ImageDifference imageDifference(const Image& a, const Image& b);
+
+}  // namespace quadra

@@ -1,0 +1,156 @@
+// quadra-llvmpipe: the peer renderer quadra is measured against (`quadra
+// report frames`). `quadra-llvmpipe render SCENE …` mirrors `quadra render`
+// for what it supports: it loads the scene with quadra's loader, takes the
+// same camera, draws the same unlit frame with Mesa's llvmpipe
+// (gl_scene_renderer.h), times it the way quadra times its own (one warm-up
+// frame, then K timed frames, each until its colour is in memory), writes the
+// last frame with quadra's writers and prints `llvmpipe frame_ms …`. A
+// separate program, so that quadra never links Mesa.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "api/renderer.h"
+#include "cli_options.h"
+#include "core/error.h"
+#include "gl_scene_renderer.h"
+#include "io/image_io.h"
+#include "lab/scene/builtin_scenes.h"
+#include "osmesa_context.h"
+#include "render_options.h"
+
+namespace quadra {
+namespace {
+
+constexpr const char* kProgram = "quadra-llvmpipe";
+
+constexpr const char* kUsage = R"(usage: quadra-llvmpipe render [SCENE] [options]
+Draws quadra's unlit frame of SCENE with Mesa's llvmpipe (OpenGL 4.5 through
+OSMesa) for comparison with `quadra render`: the same loader, camera, draw
+order and shading.
+  SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
+  --scene N              which glTF scene to render (default: the file's default scene)
+  --width W --height H   image size, default 1920x1080
+  --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
+                         override the scene's first camera (far 0 = infinite)
+  --filter nearest|bilinear|nearest-mip|trilinear|aniso
+                         texture filter for every texture (default: each glTF sampler's)
+  --aniso N              max anisotropy, default 16
+  --lod-bias B           added to every texture lookup's LOD (default 0)
+  --texture-format auto|rgba32f|rgba16f|rgba8|rgba8srgb
+                         texel format of the GL textures (default auto: as quadra stores them)
+  --framebuffer rgba32f|srgba8
+                         colour buffer: rgba32f (default) holds what quadra's frame holds;
+                         srgba8 is llvmpipe's cheapest target (8-bit sRGB, blended in linear)
+  --threads N            llvmpipe's rasterizer threads (LP_NUM_THREADS; default: all cores)
+  --frames K             K timed frames after one warm-up (default 1)
+  --out FILE.exr|FILE.png
+                         write the last frame (may be given more than once)
+Prints "llvmpipe frame_ms median=... min=... max=... triangles=... width=... height=...
+threads=..." after rendering; a frame's time ends when its colour has been read back.
+)";
+
+struct PeerCommand {
+  std::string scenePath = "builtin:showcase";
+  LoadOptions load;
+  PeerSettings settings;
+  int threads = 0;
+  int frames = 1;
+  std::vector<std::string> outputs;
+  CameraOverrides camera;
+};
+
+std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
+  PeerCommand cmd;
+  CommandOptions options("render", kUsage, kProgram);
+  addSceneOptions(options, cmd.scenePath, cmd.load);
+  addSizeOptions(options, cmd.settings.width, cmd.settings.height);
+  addCameraOptions(options, cmd.camera);
+  addFilterOptions(options, cmd.settings.filter, cmd.settings.maxAniso, cmd.settings.lodBias);
+  addTexelFormatOrAutoOption(options, "--texture-format", cmd.settings.textureFormat);
+  options.choice("--framebuffer", "framebuffer",
+                 {{"rgba32f", PeerFramebuffer::Rgba32F}, {"srgba8", PeerFramebuffer::Srgba8}},
+                 cmd.settings.framebuffer);
+  addThreadsOption(options, cmd.threads);
+  options.integer("--frames", cmd.frames, 1, 100000);
+  addOutputOption(options, cmd.outputs);
+  if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  if (cmd.settings.filter && !peerSupportsFilter(*cmd.settings.filter))
+    throw Error(std::string("--filter ") + filterName(*cmd.settings.filter) +
+                ": llvmpipe has no such filter (nearest, bilinear, nearest-mip, trilinear, aniso)");
+  return cmd;
+}
+
+// The word after `marker` ("4.5 (Core Profile) Mesa 22.3.6", "Mesa " -> "22.3.6").
+std::string wordAfter(const std::string& text, const std::string& marker) {
+  const std::size_t at = text.find(marker);
+  if (at == std::string::npos) return "unknown";
+  const std::size_t start = at + marker.size();
+  return text.substr(start, text.find_first_of(" ,)", start) - start);
+}
+
+// The word before `marker` ("llvmpipe (LLVM 15.0.6, 256 bits)", " bits" -> "256").
+std::string wordBefore(const std::string& text, const std::string& marker) {
+  const std::size_t at = text.find(marker);
+  if (at == std::string::npos || at == 0) return "unknown";
+  const std::size_t space = text.rfind(' ', at - 1);
+  const std::size_t start = space == std::string::npos ? 0 : space + 1;
+  return text.substr(start, at - start);
+}
+
+int renderCommand(const std::vector<std::string>& args) {
+  const std::optional<PeerCommand> parsed = parseRender(args);
+  if (!parsed) return 0;
+  const PeerCommand& cmd = *parsed;
+  const int threads =
+      cmd.threads > 0 ? cmd.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  const Scene scene = loadSceneArgument(cmd.scenePath, cmd.load, kProgram);
+  const Camera camera = chooseCamera(scene, cmd.camera);
+  const OsMesaContext context(threads);
+  GlSceneRenderer renderer(context, scene, cmd.settings);
+
+  renderer.render(camera);  // warm-up: llvmpipe compiles its shaders here
+  std::vector<double> times;
+  for (int i = 0; i < cmd.frames; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    renderer.render(camera);
+    times.push_back(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+  }
+  Frame frame;
+  renderer.lastFrame(frame);
+  for (const std::string& path : cmd.outputs) {
+    writeFrame(frame, path);
+    std::cout << "llvmpipe wrote " << path << "\n";
+  }
+  const FrameTimeSummary summary = summarizeFrameTimes(times);
+  std::printf(
+      "llvmpipe frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d "
+      "threads=%d frames=%d mesa=%s vector_bits=%s\n",
+      summary.median, summary.min, summary.max, scene.triangleCount(), cmd.settings.width,
+      cmd.settings.height, threads, cmd.frames, wordAfter(context.version(), "Mesa ").c_str(),
+      wordBefore(context.renderer(), " bits").c_str());
+  return 0;
+}
+
+int run(const std::vector<std::string>& args) {
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::cout << kUsage;
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
+  throw Error("unknown command '" + args[0] + "' (commands: render)");
+}
+
+}  // namespace
+}  // namespace quadra
+
+int main(int argc, char** argv) {
+  return quadra::runMain("quadra-llvmpipe", argc, argv, quadra::run);
+}

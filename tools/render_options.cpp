@@ -1,0 +1,140 @@
+// The SCENE argument, the camera overrides and the frame-time statistics
+// shared by `quadra render` and its peers.
+#include "render_options.h"
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "api/camera.h"
+#include "api/renderer.h"
+#include "core/error.h"
+#include "lab/scene/builtin_scenes.h"
+
+namespace quadra {
+
+Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
+                        const std::string& program) {
+  const std::string prefix = kBuiltinScenePrefix;
+  if (scene.rfind(prefix, 0) == 0) return makeBuiltinScene(scene.substr(prefix.size()));
+  std::vector<std::string> notes;
+  Scene loaded = loadGltf(scene, load, &notes);
+  for (const std::string& note : notes) std::cerr << program << ": note: " << note << "\n";
+  return loaded;
+}
+
+namespace {
+
+glm::vec3 parseVector(const std::string& option, const std::string& text) {
+  glm::vec3 v;
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = text.find(',', start);
+    if ((i < 2) != (comma != std::string::npos))
+      throw Error(option + ": '" + text + "' must be three numbers x,y,z");
+    v[i] = float(parseNumber(option, text.substr(start, comma - start)));
+    start = comma + 1;
+  }
+  return v;
+}
+
+}  // namespace
+
+void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& load) {
+  const auto given = std::make_shared<bool>(false);
+  options.positional([&scene, given](const std::string& argument) {
+    if (*given) throw Error("render: more than one scene given ('" + argument + "')");
+    scene = argument;
+    *given = true;
+  });
+  options.integer("--scene", load.sceneIndex, 0, 1 << 20);
+}
+
+void addSizeOptions(CommandOptions& options, int& width, int& height) {
+  options.integer("--width", width, 1, kMaxViewportSize);
+  options.integer("--height", height, 1, kMaxViewportSize);
+}
+
+void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs) {
+  options.value("--out", [&outputs](const std::string&, const std::string& value) {
+    if (!endsWithIgnoringCase(value, ".exr") && !endsWithIgnoringCase(value, ".png"))
+      throw Error(value + ": unsupported output format (use .exr or .png)");
+    outputs.push_back(value);
+  });
+}
+
+bool outputsNeedDepth(const std::vector<std::string>& outputs) {
+  return std::any_of(outputs.begin(), outputs.end(),
+                     [](const std::string& path) { return endsWithIgnoringCase(path, ".exr"); });
+}
+
+void addCameraOptions(CommandOptions& options, CameraOverrides& overrides) {
+  for (auto [name, target] :
+       {std::pair{"--eye", &overrides.eye}, std::pair{"--target", &overrides.target},
+        std::pair{"--up", &overrides.up}})
+    options.value(name, [target](const std::string& option, const std::string& value) {
+      *target = parseVector(option, value);
+    });
+  options.value("--fovy", [&overrides](const std::string& option, const std::string& value) {
+    overrides.fovyDegrees = float(parseNumber(option, value));
+    if (!(*overrides.fovyDegrees > 0.0f && *overrides.fovyDegrees < 180.0f))
+      throw Error(option + ": '" + value + "' must be between 0 and 180 degrees");
+  });
+  options.value("--near", [&overrides](const std::string& option, const std::string& value) {
+    overrides.znear = float(parseNumber(option, value));
+    if (!(*overrides.znear > 0.0f)) throw Error(option + ": '" + value + "' must be positive");
+  });
+  options.value("--far", [&overrides](const std::string& option, const std::string& value) {
+    overrides.zfar = float(parseNumber(option, value));
+    if (*overrides.zfar < 0.0f)
+      throw Error(option + ": '" + value + "' must be 0 (infinite) or positive");
+  });
+}
+
+Camera chooseCamera(const Scene& scene, const CameraOverrides& overrides) {
+  Camera camera = firstCameraOrDefault(scene);
+  if (overrides.eye || overrides.target || overrides.up) {
+    const glm::vec3 position(camera.world[3]);
+    const glm::vec3 forward = -glm::normalize(glm::vec3(camera.world[2]));
+    const glm::vec3 eye = overrides.eye.value_or(position);
+    const glm::vec3 target = overrides.target.value_or(eye + forward);
+    const glm::vec3 up = overrides.up.value_or(glm::normalize(glm::vec3(camera.world[1])));
+    if (glm::length(target - eye) == 0.0f) throw Error("--target: must differ from --eye");
+    camera.world = lookAtWorld(eye, target, up);
+  }
+  if (overrides.fovyDegrees) {
+    camera.type = Camera::Type::Perspective;
+    camera.yfov = *overrides.fovyDegrees * 3.14159265358979f / 180.0f;
+  }
+  if (overrides.znear) camera.znear = *overrides.znear;
+  if (overrides.zfar) camera.zfar = *overrides.zfar;
+  if (camera.zfar > 0.0f && camera.zfar <= camera.znear)
+    throw Error("--far: the far plane must lie beyond the near plane");
+  return camera;
+}
+
+std::map<std::string, std::string> lineKeyValues(const std::string& output,
+                                                 const std::string& prefix) {
+  std::map<std::string, std::string> pairs;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) != 0) continue;
+    std::istringstream words(line.substr(prefix.size()));
+    for (std::string word; words >> word;) {
+      const std::size_t eq = word.find('=');
+      if (eq != std::string::npos) pairs[word.substr(0, eq)] = word.substr(eq + 1);
+    }
+  }
+  return pairs;
+}
+
+FrameTimeSummary summarizeFrameTimes(std::vector<double> times) {
+  QUADRA_CHECK(!times.empty());
+  std::sort(times.begin(), times.end());
+  const std::size_t n = times.size();
+  const double median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+  return {median, times.front(), times.back()};
+}
+
+}  // namespace quadra

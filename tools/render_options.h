@@ -1,0 +1,62 @@
+// What `quadra render` and the peer renderers that mirror it (tools/peer/)
+// share, so that both read a command line the same way and see the same
+// frame: the SCENE argument (a glTF file or builtin:NAME), the camera
+// overrides applied to the scene's first camera, and the statistics of the
+// `… frame_ms median=… min=… max=…` line.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "cli_options.h"
+#include "scene/gltf_loader.h"
+#include "scene/scene.h"
+
+namespace quadra {
+
+constexpr const char* kBuiltinScenePrefix = "builtin:";
+
+// builtin:NAME from the lab, anything else a glTF file; the loader's notes go
+// to stderr, one line each, after `program` ("quadra: note: …").
+Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
+                        const std::string& program);
+
+// SCENE, the one positional argument, and --scene N (which glTF scene).
+void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& load);
+// --width and --height, each 1..kMaxViewportSize.
+void addSizeOptions(CommandOptions& options, int& width, int& height);
+// --out FILE.exr|FILE.png, repeatable: the files the last frame is written to.
+void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs);
+
+// Whether a frame must carry depth for these outputs: an EXR's Z channel
+// does, a PNG does not. Depth is produced only for what reads it.
+bool outputsNeedDepth(const std::vector<std::string>& outputs);
+
+// --eye, --target, --up, --fovy, --near, --far: each set one overrides that
+// part of the scene's first camera.
+struct CameraOverrides {
+  std::optional<glm::vec3> eye, target, up;
+  std::optional<float> fovyDegrees, znear, zfar;
+};
+void addCameraOptions(CommandOptions& options, CameraOverrides& overrides);
+// The scene's first camera (or the default framing) with the overrides
+// applied; an Error when they contradict each other.
+Camera chooseCamera(const Scene& scene, const CameraOverrides& overrides);
+
+// The key=value pairs of the line of `output` that starts with `prefix`
+// ("quadra frame_ms "), for a caller that reads a render's report back.
+std::map<std::string, std::string> lineKeyValues(const std::string& output,
+                                                 const std::string& prefix);
+
+// Frame times (ms) as the frame_ms line reports them.
+struct FrameTimeSummary {
+  double median = 0.0, min = 0.0, max = 0.0;
+};
+// `times` must not be empty; the median of an even count is the mean of the middle two.
+FrameTimeSummary summarizeFrameTimes(std::vector<double> times);
+
+}  // namespace quadra

@@ -1,0 +1,387 @@
+// `quadra report frames`: quadra against Mesa's llvmpipe on the same frames,
+// in the same run. For every built-in scene and every sample model (or the
+// --scenes list) it runs `quadra render` and `quadra-llvmpipe render`
+// (tools/peer/, found beside this quadra) as separate processes with the same
+// arguments, over R rounds, the two taking turns at going first: a timing run
+// (K timed frames after a warm-up; its median frame time; the frame written
+// as EXR) and an end-to-end run (--frames 1 writing a PNG,
+// timed from spawn to exit). It prints a markdown table of the medians over
+// the rounds and of the two images' difference, then the geometric means of
+// the ratios, and writes DIR/frames.csv.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli_options.h"
+#include "commands.h"
+#include "core/error.h"
+#include "io/image_io.h"
+#include "lab/image/image_difference.h"
+#include "lab/scene/builtin_scenes.h"
+#include "render_options.h"
+#include "report_output.h"
+#include "subprocess.h"
+
+namespace quadra {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kFramesUsage =
+    R"(usage: quadra report frames [--width W] [--height H] [--threads N] [--frames K]
+                            [--rounds R] [--scenes LIST] [--assets DIR] [--out-dir DIR]
+                            [--llvmpipe-framebuffer rgba32f|srgba8]
+  --width W --height H  frame size (default 1920x1080)
+  --threads N           threads of both renderers (default: all cores)
+  --frames K            timed frames per timing run, after one warm-up (default 5)
+  --rounds R            rounds of runs; each figure is the median over them (default 3)
+  --scenes LIST         comma-separated builtin:NAME, sample model names (folders of
+                        --assets) or .gltf/.glb files (default: every built-in scene,
+                        then every model in --assets)
+  --assets DIR          the sample models, DIR/<Model>/glTF/<Model>.gltf
+                        (default: ../shared/assets beside the source tree)
+  --out-dir DIR         where frames.csv and the images (DIR/frames/) go (default out)
+  --llvmpipe-framebuffer rgba32f|srgba8
+                        llvmpipe's colour buffer: rgba32f (default) holds what quadra's
+                        frame holds; srgba8 is llvmpipe's cheapest target
+Each scene is rendered by `quadra render` and, where it was built beside this
+quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and unlit
+shading), as separate processes with the same options, taking turns at going first.
+Frame time: the median of K timed frames per run. End to end: the wall time of
+`render SCENE --frames 1 --out FILE.png`, from process start to exit. Ratios are
+quadra / llvmpipe (below 1: quadra is faster). PSNR (peak 1) and max over R, G, B
+of the two linear EXR images.
+)";
+
+struct FramesOptions {
+  int width = 1920;
+  int height = 1080;
+  int threads = 0;
+  int frames = 5;
+  int rounds = 3;
+  std::string scenes;
+  std::string assets = QUADRA_ASSETS_DIR;
+  std::string outDir = "out";
+  std::string peerFramebuffer = "rgba32f";  // quadra-llvmpipe --framebuffer
+};
+
+std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
+  FramesOptions options;
+  CommandOptions parser("report frames", kFramesUsage);
+  addSizeOptions(parser, options.width, options.height);
+  addThreadsOption(parser, options.threads);
+  parser.integer("--frames", options.frames, 1, 1000);
+  parser.integer("--rounds", options.rounds, 1, 100);
+  parser.text("--scenes", options.scenes);
+  parser.text("--assets", options.assets);
+  parser.text("--out-dir", options.outDir);
+  parser.choice("--llvmpipe-framebuffer", "framebuffer",
+                {{"rgba32f", std::string("rgba32f")}, {"srgba8", std::string("srgba8")}},
+                options.peerFramebuffer);
+  if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
+  if (options.threads == 0)
+    options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  return options;
+}
+
+// One row of the report: what the table calls it and what `render` is given.
+struct SceneEntry {
+  std::string label;     // builtin:NAME, a model's name, or a file's stem
+  std::string argument;  // builtin:NAME or a file path
+};
+
+fs::path modelFile(const fs::path& assets, const std::string& model) {
+  return assets / model / "glTF" / (model + ".gltf");
+}
+
+// Every <Model>/glTF/<Model>.gltf under `assets`, by name; none when absent.
+std::vector<SceneEntry> sampleModels(const fs::path& assets) {
+  std::vector<SceneEntry> models;
+  std::error_code ec;
+  if (!fs::is_directory(assets, ec)) return models;
+  for (const fs::directory_entry& folder : fs::directory_iterator(assets, ec)) {
+    const std::string name = folder.path().filename().string();
+    if (fs::is_regular_file(modelFile(assets, name), ec))
+      models.push_back({name, modelFile(assets, name).string()});
+  }
+  std::sort(models.begin(), models.end(),
+            [](const SceneEntry& a, const SceneEntry& b) { return a.label < b.label; });
+  return models;
+}
+
+std::vector<SceneEntry> chooseScenes(const FramesOptions& options) {
+  const std::vector<std::string> builtins = builtinSceneNames();
+  std::vector<SceneEntry> scenes;
+  if (options.scenes.empty()) {
+    for (const std::string& name : builtins)
+      scenes.push_back({kBuiltinScenePrefix + name, kBuiltinScenePrefix + name});
+    for (const SceneEntry& model : sampleModels(options.assets)) scenes.push_back(model);
+    return scenes;
+  }
+  std::stringstream list(options.scenes + ",");
+  for (std::string entry; std::getline(list, entry, ',');) {
+    if (entry.empty()) throw Error("--scenes: empty entry in '" + options.scenes + "'");
+    const std::string prefix = kBuiltinScenePrefix;
+    std::error_code ec;
+    if (entry.rfind(prefix, 0) == 0) {
+      if (std::find(builtins.begin(), builtins.end(), entry.substr(prefix.size())) ==
+          builtins.end())
+        throw Error("--scenes: unknown built-in scene '" + entry + "' (see quadra render --help)");
+      scenes.push_back({entry, entry});
+    } else if ((endsWithIgnoringCase(entry, ".gltf") || endsWithIgnoringCase(entry, ".glb")) &&
+               fs::is_regular_file(entry, ec)) {
+      scenes.push_back({fs::path(entry).stem().string(), entry});
+    } else if (fs::is_regular_file(modelFile(options.assets, entry), ec)) {
+      scenes.push_back({entry, modelFile(options.assets, entry).string()});
+    } else {
+      throw Error("--scenes: '" + entry + "' is neither builtin:NAME, a model in " +
+                  options.assets + " nor a .gltf/.glb file");
+    }
+  }
+  return scenes;
+}
+
+// A renderer under test: its name is the frame_ms line's first word.
+struct Contender {
+  std::string name;
+  fs::path program;
+  std::vector<std::string> options;  // its own, after the shared ones
+};
+
+struct Measurements {
+  std::vector<double> frameMs, endToEndSeconds;  // one per round
+  std::size_t triangles = 0;
+  std::map<std::string, std::string> line;  // the last frame_ms line's key=value pairs
+};
+
+struct SceneResult {
+  SceneEntry scene;
+  std::vector<Measurements> byContender;
+  std::optional<ImageDifference> difference;
+};
+
+std::string firstLine(const std::string& text) {
+  return text.substr(0, text.find('\n'));
+}
+
+// Runs `program render SCENE … --out output` and returns its frame_ms line; an Error names the
+// scene, the renderer and its own message when the run fails.
+std::map<std::string, std::string> runRender(const Contender& contender, const SceneEntry& scene,
+                                             const FramesOptions& options, int frames,
+                                             const fs::path& output, const fs::path& scratch,
+                                             double& seconds) {
+  std::vector<std::string> arguments = {"render",    scene.argument,
+                                        "--width",   std::to_string(options.width),
+                                        "--height",  std::to_string(options.height),
+                                        "--threads", std::to_string(options.threads),
+                                        "--frames",  std::to_string(frames)};
+  arguments.insert(arguments.end(), {"--out", output.string()});
+  arguments.insert(arguments.end(), contender.options.begin(), contender.options.end());
+  const ProcessResult run = runProcess(contender.program, arguments, scratch);
+  if (run.exitCode != 0)
+    throw Error(scene.label + ": " + contender.program.filename().string() +
+                " render failed: " + firstLine(run.err));
+  const std::map<std::string, std::string> line =
+      lineKeyValues(run.out, contender.name + " frame_ms ");
+  if (!line.count("median") || !line.count("triangles"))
+    throw Error(scene.label + ": " + contender.program.filename().string() +
+                " printed no frame_ms line");
+  seconds = run.seconds;
+  return line;
+}
+
+ImageDifference compareImages(const SceneEntry& scene, const fs::path& a, const fs::path& b) {
+  try {
+    return imageDifference(readImage(a.string()), readImage(b.string()));
+  } catch (const Error& e) {
+    throw Error(scene.label + ": " + e.what());
+  }
+}
+
+double medianOf(const std::vector<double>& values) {
+  return summarizeFrameTimes(values).median;
+}
+
+// Below 10 two decimals, below 100 one, then none: three figures or more.
+std::string figures(double value) {
+  return format(value < 10.0 ? "%.2f" : value < 100.0 ? "%.1f" : "%.0f", value);
+}
+
+std::string withThousands(std::size_t value) {
+  std::string digits = std::to_string(value), grouped;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) grouped += ',';
+    grouped += digits[i];
+  }
+  return grouped;
+}
+
+std::string joined(const std::vector<double>& values, const char* spec) {
+  std::string text;
+  for (const double v : values) {
+    if (!text.empty()) text += ';';
+    text += format(spec, v);
+  }
+  return text;
+}
+
+double geometricMean(const std::vector<double>& values) {
+  double sumLog = 0.0;
+  for (const double v : values) sumLog += std::log(v);
+  return std::exp(sumLog / double(values.size()));
+}
+
+std::string fileStem(const std::string& label) {
+  std::string stem = label;
+  for (char& c : stem)
+    if (c == ':' || c == '/' || c == ' ') c = '-';
+  return stem;
+}
+
+// Overwrites one status line on a terminal; silent otherwise, so that stderr
+// stays a one-line error when something fails.
+void progress(const std::string& text) {
+  static const bool terminal = ::isatty(STDERR_FILENO) == 1;
+  if (terminal) std::cerr << "\r\033[K" << text << std::flush;
+}
+
+}  // namespace
+
+int runFramesReport(const std::vector<std::string>& args) {
+  const std::optional<FramesOptions> parsed = parseFrames(args);
+  if (!parsed) return 0;
+  const FramesOptions& options = *parsed;
+  const std::vector<SceneEntry> scenes = chooseScenes(options);
+  if (scenes.empty()) throw Error("report frames: no scenes to render");
+  const fs::path outDir(options.outDir), imageDir = outDir / "frames";
+  std::error_code ec;
+  fs::create_directories(imageDir, ec);
+  if (ec || !fs::is_directory(imageDir))
+    throw Error(options.outDir + ": cannot create the output directory");
+
+  const fs::path self = executablePath();
+  std::vector<Contender> contenders = {{"quadra", self, {}}};
+  const fs::path peer = self.parent_path() / "quadra-llvmpipe";
+  const bool havePeer = fs::is_regular_file(peer, ec) && ::access(peer.c_str(), X_OK) == 0;
+  if (havePeer)
+    contenders.push_back({"llvmpipe", peer, {"--framebuffer", options.peerFramebuffer}});
+
+  std::vector<SceneResult> results;
+  for (const SceneEntry& scene : scenes)
+    results.push_back({scene, std::vector<Measurements>(contenders.size()), std::nullopt});
+  for (int round = 0; round < options.rounds; ++round)
+    for (std::size_t s = 0; s < results.size(); ++s) {
+      SceneResult& result = results[s];
+      progress("report frames: round " + std::to_string(round + 1) + "/" +
+               std::to_string(options.rounds) + ", scene " + std::to_string(s + 1) + "/" +
+               std::to_string(results.size()) + " " + result.scene.label);
+      // Taking turns at going first, so neither always meets the other's
+      // leftovers in the caches and the page cache.
+      std::vector<std::size_t> order(contenders.size());
+      for (std::size_t c = 0; c < order.size(); ++c)
+        order[c] = (c + std::size_t(round) + s) % contenders.size();
+      const std::string stem = fileStem(result.scene.label);
+      for (const bool endToEnd : {false, true})
+        for (const std::size_t c : order) {
+          const Contender& contender = contenders[c];
+          Measurements& measured = result.byContender[c];
+          // Every timing run writes the EXR, so every round times the same
+          // work: both renderers produce depth for its Z channel.
+          const fs::path image =
+              imageDir / (stem + "." + contender.name + (endToEnd ? ".png" : ".exr"));
+          double seconds = 0.0;
+          const auto line = runRender(contender, result.scene, options,
+                                      endToEnd ? 1 : options.frames, image, outDir, seconds);
+          if (endToEnd) {
+            measured.endToEndSeconds.push_back(seconds);
+          } else {
+            measured.frameMs.push_back(std::stod(line.at("median")));
+            measured.triangles = std::stoull(line.at("triangles"));
+            measured.line = line;
+          }
+        }
+      if (havePeer && round == 0)
+        result.difference = compareImages(result.scene, imageDir / (stem + ".quadra.exr"),
+                                          imageDir / (stem + ".llvmpipe.exr"));
+    }
+  progress("");
+
+  std::ostringstream out, csv;
+  out << "Frames at " << options.width << "x" << options.height << ", " << options.threads
+      << " threads, medians of " << options.rounds << " rounds (each run: the median of "
+      << options.frames << " timed frames after a warm-up); end to end: `render SCENE --frames 1 "
+      << "--out FILE.png` from process start to exit.\n";
+  if (havePeer) {
+    const auto& peerLine = results.front().byContender[1].line;
+    const auto value = [&](const char* key) {
+      return peerLine.count(key) ? peerLine.at(key) : std::string("unknown");
+    };
+    out << "llvmpipe: Mesa " << value("mesa") << ", " << value("vector_bits")
+        << "-bit vectors, LP_NUM_THREADS=" << options.threads << ", OpenGL 4.5 through OSMesa, "
+        << (options.peerFramebuffer == "srgba8" ? "8-bit sRGB" : "RGBA32F")
+        << " colour + 32-bit float depth, each frame read "
+           "back. Ratio: quadra / llvmpipe (below 1: quadra is faster). PSNR (peak 1) and max: "
+           "R, G, B of the two linear EXR images.\n\n";
+    out << "| scene | triangles | quadra ms | llvmpipe ms | ratio | quadra e2e s | llvmpipe e2e s "
+           "| e2e ratio | PSNR dB | max diff |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+           "\n";
+  } else {
+    out << "llvmpipe: not measured: quadra-llvmpipe is not beside this quadra (it is built "
+           "where libosmesa6-dev is installed).\n\n";
+    out << "| scene | triangles | quadra ms | quadra e2e s |\n|---|---:|---:|---:|\n";
+  }
+  csv << "scene,triangles,quadra_ms,llvmpipe_ms,ratio,quadra_e2e_s,llvmpipe_e2e_s,e2e_ratio,"
+         "psnr_db,max_abs_diff,quadra_ms_rounds,llvmpipe_ms_rounds,quadra_e2e_s_rounds,"
+         "llvmpipe_e2e_s_rounds\n";
+  std::vector<double> frameRatios, endToEndRatios;
+  for (const SceneResult& result : results) {
+    const Measurements& q = result.byContender[0];
+    const double qMs = medianOf(q.frameMs), qSeconds = medianOf(q.endToEndSeconds);
+    out << "| " << result.scene.label << " | " << withThousands(q.triangles) << " | "
+        << figures(qMs) << " | ";
+    csv << result.scene.label << ',' << q.triangles << ',' << format("%.4g", qMs) << ',';
+    if (!havePeer) {
+      out << format("%.3f", qSeconds) << " |\n";
+      csv << ",," << format("%.4g", qSeconds) << ",,,,," << joined(q.frameMs, "%.4g") << ",,"
+          << joined(q.endToEndSeconds, "%.4g") << ",\n";
+      continue;
+    }
+    const Measurements& l = result.byContender[1];
+    const double lMs = medianOf(l.frameMs), lSeconds = medianOf(l.endToEndSeconds);
+    const double ratio = qMs / lMs, endToEndRatio = qSeconds / lSeconds;
+    frameRatios.push_back(ratio);
+    endToEndRatios.push_back(endToEndRatio);
+    const ImageDifference& d = *result.difference;
+    const std::string psnr = std::isinf(d.psnr) ? "inf" : format("%.1f", d.psnr);
+    out << figures(lMs) << " | " << format("%.2f", ratio) << " | " << format("%.3f", qSeconds)
+        << " | " << format("%.3f", lSeconds) << " | " << format("%.2f", endToEndRatio) << " | "
+        << psnr << " | " << format("%.3f", d.maxAbs) << " |\n";
+    csv << format("%.4g", lMs) << ',' << format("%.4g", ratio) << ',' << format("%.4g", qSeconds)
+        << ',' << format("%.4g", lSeconds) << ',' << format("%.4g", endToEndRatio) << ',' << psnr
+        << ',' << format("%.4g", d.maxAbs) << ',' << joined(q.frameMs, "%.4g") << ','
+        << joined(l.frameMs, "%.4g") << ',' << joined(q.endToEndSeconds, "%.4g") << ','
+        << joined(l.endToEndSeconds, "%.4g") << '\n';
+  }
+  if (havePeer)
+    out << "\nGeometric mean over " << results.size() << " scenes: frame ratio "
+        << format("%.3f", geometricMean(frameRatios)) << " (quadra "
+        << format("%.2f", 1.0 / geometricMean(frameRatios)) << "x as fast), end-to-end ratio "
+        << format("%.3f", geometricMean(endToEndRatios)) << " ("
+        << format("%.2f", 1.0 / geometricMean(endToEndRatios)) << "x).\n";
+
+  const fs::path csvPath = outDir / "frames.csv";
+  writeText(csvPath, csv.str());
+  std::cout << out.str() << "\nquadra wrote " << csvPath.string() << "\n";
+  return 0;
+}
+
+}  // namespace quadra

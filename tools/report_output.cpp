@@ -1,0 +1,32 @@
+// Whole-file text output and number formatting for the reports.
+#include "report_output.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace quadra {
+
+void writeText(const std::filesystem::path& path, const std::string& text) {
+  const std::string target = path.string(), temporary = target + ".tmp-quadra";
+  std::FILE* file = std::fopen(temporary.c_str(), "w");
+  if (!file) throw Error(target + ": cannot open for writing");
+  const bool ok = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  const bool closed = std::fclose(file) == 0;
+  if (!ok || !closed) {
+    std::remove(temporary.c_str());
+    throw Error(target + ": write failed");
+  }
+  if (std::rename(temporary.c_str(), target.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw Error(target + ": cannot rename the finished file into place");
+  }
+}
+
+std::string format(const char* spec, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, spec, value);
+  return buffer;
+}
+
+}  // namespace quadra

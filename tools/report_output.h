@@ -1,0 +1,17 @@
+// What the reports share for their output: whole files written at once
+// (never a partial file under the requested name) and numbers in printf
+// notation for tables.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace quadra {
+
+// Writes through a temporary file and a rename; throws Error naming the file.
+void writeText(const std::filesystem::path& path, const std::string& text);
+
+// One number in printf notation, e.g. format("%.3f", x).
+std::string format(const char* spec, double value);
+
+}  // namespace quadra
