@@ -194,6 +194,20 @@ template <int k>
 inline ScalarBatch<float> quadBroadcast(const ScalarBatch<float>& a) {
   return ScalarBatch<float>(a.v[k]);
 }
+// Lane j of the result is lane index[j] of a (index in [0, width)): a
+// variable permute, for spreading per-lookup values over lanes that work on
+// other lookups' taps.
+template <class T>
+inline ScalarBatch<T> permute(const ScalarBatch<T>& a, const ScalarBatch<std::int32_t>& index) {
+  return {a.v[index.v[0]], a.v[index.v[1]], a.v[index.v[2]], a.v[index.v[3]]};
+}
+// The same from two registers, a then b: index in [0, 2 width).
+inline ScalarBatch<float> permute2(const ScalarBatch<float>& a, const ScalarBatch<float>& b,
+                                   const ScalarBatch<std::int32_t>& index) {
+  ScalarBatch<float> r;
+  for (int k = 0; k < 4; ++k) r.v[k] = index.v[k] < 4 ? a.v[index.v[k]] : b.v[index.v[k] - 4];
+  return r;
+}
 
 // ------------------------------------------------------------- xsimd functions
 template <class A>
@@ -255,6 +269,28 @@ template <int k>
 inline xsimd::batch<float, xsimd::sse2> quadBroadcast(const xsimd::batch<float, xsimd::sse2>& a) {
   return _mm_shuffle_ps(a, a, _MM_SHUFFLE(k, k, k, k));
 }
+// SSE2 has no variable permute (pshufb is SSSE3): four lanes through memory.
+template <class T>
+inline xsimd::batch<T, xsimd::sse2> permute(const xsimd::batch<T, xsimd::sse2>& a,
+                                            const xsimd::batch<std::int32_t, xsimd::sse2>& index) {
+  alignas(16) T value[4], out[4];
+  alignas(16) std::int32_t lane[4];
+  a.store_aligned(value);
+  index.store_aligned(lane);
+  for (int k = 0; k < 4; ++k) out[k] = value[lane[k]];
+  return xsimd::batch<T, xsimd::sse2>::load_aligned(out);
+}
+inline xsimd::batch<float, xsimd::sse2> permute2(
+    const xsimd::batch<float, xsimd::sse2>& a, const xsimd::batch<float, xsimd::sse2>& b,
+    const xsimd::batch<std::int32_t, xsimd::sse2>& index) {
+  alignas(16) float value[8], out[4];
+  alignas(16) std::int32_t lane[4];
+  a.store_aligned(value);
+  b.store_aligned(value + 4);
+  index.store_aligned(lane);
+  for (int k = 0; k < 4; ++k) out[k] = value[lane[k]];
+  return xsimd::batch<float, xsimd::sse2>::load_aligned(out);
+}
 #endif
 #if defined(__AVX2__)
 inline std::uint32_t bits(const xsimd::batch_bool<float, xsimd::avx2>& m) {
@@ -265,6 +301,23 @@ template <int k>
 inline xsimd::batch<float, xsimd::avx2> quadBroadcast(const xsimd::batch<float, xsimd::avx2>& a) {
   return _mm256_permute_ps(a, _MM_SHUFFLE(k, k, k, k));
 }
+inline xsimd::batch<float, xsimd::avx2> permute(
+    const xsimd::batch<float, xsimd::avx2>& a,
+    const xsimd::batch<std::int32_t, xsimd::avx2>& index) {
+  return _mm256_permutevar8x32_ps(a, index);
+}
+inline xsimd::batch<std::int32_t, xsimd::avx2> permute(
+    const xsimd::batch<std::int32_t, xsimd::avx2>& a,
+    const xsimd::batch<std::int32_t, xsimd::avx2>& index) {
+  return _mm256_permutevar8x32_epi32(a, index);
+}
+inline xsimd::batch<float, xsimd::avx2> permute2(
+    const xsimd::batch<float, xsimd::avx2>& a, const xsimd::batch<float, xsimd::avx2>& b,
+    const xsimd::batch<std::int32_t, xsimd::avx2>& index) {
+  const __m256 fromB = _mm256_castsi256_ps(_mm256_cmpgt_epi32(index, _mm256_set1_epi32(7)));
+  return _mm256_blendv_ps(_mm256_permutevar8x32_ps(a, index), _mm256_permutevar8x32_ps(b, index),
+                          fromB);
+}
 #endif
 #if defined(__AVX512F__) && defined(__AVX512BW__)
 inline std::uint32_t bits(const xsimd::batch_bool<float, xsimd::avx512bw>& m) {
@@ -274,6 +327,21 @@ template <int k>
 inline xsimd::batch<float, xsimd::avx512bw> quadBroadcast(
     const xsimd::batch<float, xsimd::avx512bw>& a) {
   return _mm512_permute_ps(a, _MM_SHUFFLE(k, k, k, k));
+}
+inline xsimd::batch<float, xsimd::avx512bw> permute(
+    const xsimd::batch<float, xsimd::avx512bw>& a,
+    const xsimd::batch<std::int32_t, xsimd::avx512bw>& index) {
+  return _mm512_permutexvar_ps(index, a);
+}
+inline xsimd::batch<std::int32_t, xsimd::avx512bw> permute(
+    const xsimd::batch<std::int32_t, xsimd::avx512bw>& a,
+    const xsimd::batch<std::int32_t, xsimd::avx512bw>& index) {
+  return _mm512_permutexvar_epi32(index, a);
+}
+inline xsimd::batch<float, xsimd::avx512bw> permute2(
+    const xsimd::batch<float, xsimd::avx512bw>& a, const xsimd::batch<float, xsimd::avx512bw>& b,
+    const xsimd::batch<std::int32_t, xsimd::avx512bw>& index) {
+  return _mm512_permutex2var_ps(a, index, b);
 }
 #endif
 
@@ -291,6 +359,98 @@ inline typename L::M maskFromBits(std::uint32_t laneBits) {
   for (int k = 0; k < L::kWidth; ++k) pattern[k] = std::int32_t(1) << k;
   const typename L::I lane = L::I::load_aligned(pattern);
   return toFloat(typename L::I(std::int32_t(laneBits)) & lane) != typename L::F(0.0f);
+}
+
+#if defined(__AVX2__)
+// For eight lanes, per 8-bit lane mask: the set lanes' indices in lane order
+// (`list`), and each lane's rank among the set lanes (`rank`), as 3-bit fields.
+struct LaneMaskTables {
+  std::uint32_t list[256], rank[256];
+};
+constexpr LaneMaskTables makeLaneMaskTables() {
+  LaneMaskTables t{};
+  for (std::uint32_t mask = 0; mask < 256; ++mask) {
+    std::uint32_t set = 0;
+    for (std::uint32_t k = 0; k < 8; ++k) {
+      t.rank[mask] |= (set & 7) << (3 * k);
+      if (mask >> k & 1) t.list[mask] |= k << (3 * set++);
+    }
+  }
+  return t;
+}
+static constexpr LaneMaskTables kLaneMaskTables = makeLaneMaskTables();
+#endif
+
+// offset + the index of each lane set in laneBits, in lane order, to
+// out[0, popcount): a compress. out has room for a whole register, which may
+// be written in full.
+template <class L>
+QUADRA_LANE_INLINE void compressLaneIndices(std::uint32_t laneBits, std::int32_t offset,
+                                            std::int32_t* out) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+  if constexpr (L::kWidth == 16) {  // the register form: compress-to-memory is slow on Zen 4
+    const __m512i lane =
+        _mm512_add_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                         _mm512_set1_epi32(offset));
+    _mm512_storeu_si512(out, _mm512_maskz_compress_epi32(__mmask16(laneBits), lane));
+    return;
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (L::kWidth == 8) {
+    const __m256i fields = _mm256_srlv_epi32(_mm256_set1_epi32(int(kLaneMaskTables.list[laneBits])),
+                                             _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out),
+                        _mm256_add_epi32(_mm256_and_si256(fields, _mm256_set1_epi32(7)),
+                                         _mm256_set1_epi32(offset)));
+    return;
+  }
+#endif
+  int n = 0;
+  for (std::uint32_t rest = laneBits; rest; rest &= rest - 1)
+    out[n++] = offset + __builtin_ctz(rest);
+}
+
+// Lane k of the result: where bit k of laneBits is set, the next of
+// values[offset], values[offset + 1], ... in lane order; elsewhere 0: an
+// expand. values is register-aligned and offset < width: the SIMD paths read
+// the two whole registers values[0, 2 width) as they were stored (a load
+// straddling two earlier stores cannot be forwarded from them and waits
+// for both to reach the cache, ~20 cycles here) and pick the lanes by permute.
+template <class L>
+QUADRA_LANE_INLINE typename L::F expandLoad(std::uint32_t laneBits, const float* values,
+                                            int offset) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+  if constexpr (L::kWidth == 16) {
+    const __mmask16 set = __mmask16(laneBits);
+    const __m512i rank = _mm512_maskz_expand_epi32(
+        set, _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+    return _mm512_maskz_permutex2var_ps(set, _mm512_load_ps(values),
+                                        _mm512_add_epi32(rank, _mm512_set1_epi32(offset)),
+                                        _mm512_load_ps(values + 16));
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (L::kWidth == 8) {
+    const __m256i shifts = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+    const __m256i index = _mm256_add_epi32(
+        _mm256_and_si256(
+            _mm256_srlv_epi32(_mm256_set1_epi32(int(kLaneMaskTables.rank[laneBits])), shifts),
+            _mm256_set1_epi32(7)),
+        _mm256_set1_epi32(offset));
+    const __m256 low = _mm256_permutevar8x32_ps(_mm256_load_ps(values), index);
+    const __m256 high = _mm256_permutevar8x32_ps(_mm256_load_ps(values + 8), index);
+    const __m256 fromHigh = _mm256_castsi256_ps(_mm256_cmpgt_epi32(index, _mm256_set1_epi32(7)));
+    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+    const __m256i set =
+        _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(laneBits)), bit), bit);
+    return _mm256_and_ps(_mm256_blendv_ps(low, high, fromHigh), _mm256_castsi256_ps(set));
+  }
+#endif
+  alignas(64) float out[L::kWidth] = {};
+  for (int k = 0, n = offset; k < L::kWidth; ++k)
+    if (laneBits >> k & 1) out[k] = values[n++];
+  return L::F::load_aligned(out);
 }
 
 // log2(x) for x > 0 finite, absolute error below 1e-6 over the whole range:

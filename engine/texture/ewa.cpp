@@ -1,5 +1,6 @@
-// EWA filtering (see ewa.h): footprint ellipse from the Jacobian's singular
-// vectors, eccentricity clamp, level choice, Gaussian accumulation.
+// EWA plans (see ewa.h): the footprint's singular vectors, the eccentricity
+// clamp, the choice between a level-0 grid and texel centres, the level, and
+// the corrected ellipse on it.
 #include "texture/ewa.h"
 
 #include <algorithm>
@@ -9,152 +10,129 @@ namespace quadra {
 
 namespace {
 
-// Gaussian falloff exp(-alpha r^2) over the unit ellipse (r^2 <= 1); 2 keeps
-// the weight at the rim near e^-2, as in Heckbert's thesis and pbrt.
-constexpr float kAlpha = 2.0f;
-// Semi-axes of the filter ellipse per pixel footprint axis: 0.5 maps the unit
-// pixel (radius 1/2) itself; measured on builtin:checker-plane against the box
-// ground truth, RMSE 0.042 at 0.5 and 0.052 at 1.0 (pbrt's choice).
-constexpr double kAxisScale = 0.5;
-
-long wrapIndex(long i, long n, WrapMode mode) {
-  switch (mode) {
-    case WrapMode::Repeat: {
-      const long r = i % n;
-      return r < 0 ? r + n : r;
-    }
-    case WrapMode::MirroredRepeat: {
-      long r = i % (2 * n);
-      if (r < 0) r += 2 * n;
-      return r >= n ? 2 * n - 1 - r : r;
-    }
-    case WrapMode::ClampToEdge:
-      return std::clamp(i, 0L, n - 1);
-    case WrapMode::ClampToBorder:
-      return i >= 0 && i < n ? i : -1;
-  }
-  return -1;
-}
-
-// Gaussian-weighted texels of one level inside the ellipse centred on texel
-// position (s, t) with semi-axes a and b (texels of this level).
-void ellipseAverage(const TextureView& view, int level, double s, double t, const double a[2],
-                    const double b[2], double rgba[4]) {
-  const TextureLevel& lev = view.levels[level];
-  // Implicit ellipse A x^2 + B x y + C y^2 = 1; the +1 keeps at least a
-  // texel-sized reconstruction when the footprint is smaller than a texel.
-  double A = a[1] * a[1] + b[1] * b[1] + 1.0;
-  double B = -2.0 * (a[0] * a[1] + b[0] * b[1]);
-  double C = a[0] * a[0] + b[0] * b[0] + 1.0;
-  const double invF = 1.0 / (A * C - 0.25 * B * B);
-  A *= invF, B *= invF, C *= invF;
-  const double det = 4.0 * A * C - B * B;
-  const double halfWidth = 2.0 * std::sqrt(det * C) / det;
-  const double halfHeight = 2.0 * std::sqrt(det * A) / det;
-  const long s0 = long(std::ceil(s - halfWidth)), s1 = long(std::floor(s + halfWidth));
-  const long t0 = long(std::ceil(t - halfHeight)), t1 = long(std::floor(t + halfHeight));
-  double sum[4] = {0, 0, 0, 0}, weights = 0.0;
-  for (long it = t0; it <= t1; ++it) {
-    const double dt = double(it) - t;
-    const long row = wrapIndex(it, lev.height, view.wrapV);
-    for (long is = s0; is <= s1; ++is) {
-      const double ds = double(is) - s;
-      const double r2 = A * ds * ds + B * ds * dt + C * dt * dt;
-      if (r2 >= 1.0) continue;
-      const double w = std::exp(-double(kAlpha) * r2);
-      const long column = wrapIndex(is, lev.width, view.wrapU);
-      float texel[4];
-      if (row < 0 || column < 0) {
-        std::copy(view.border, view.border + 4, texel);
-      } else {
-        const std::size_t index = std::size_t(row) * std::size_t(lev.stride) + std::size_t(column);
-        decodeTexel(view.format, lev.texels + index * std::size_t(bytesPerTexel(view.format)),
-                    texel);
-      }
-      for (int c = 0; c < 4; ++c) sum[c] += w * texel[c];
-      weights += w;
-    }
-  }
-  for (int c = 0; c < 4; ++c) rgba[c] = weights > 0.0 ? sum[c] / weights : 0.0;
-}
-
 double finiteOr(double x, double fallback) {
   return std::isfinite(x) ? x : fallback;
 }
 
+// Positions far beyond the texture keep their wrap phase but not their
+// magnitude (repeat and mirror are periodic in 1 and 2); under clamp and
+// border, positions beyond [-2, 3] see only the edge or the border colour
+// (the ellipse is capped at a texture's size below).
+double reduce(double x, WrapMode mode) {
+  if (mode == WrapMode::Repeat) return x - std::floor(x);
+  if (mode == WrapMode::MirroredRepeat) return x - 2.0 * std::floor(x * 0.5);
+  return std::clamp(x, -2.0, 3.0);
+}
+
 }  // namespace
 
-void ewaLookup(const TextureView& view, float uIn, float vIn, float dudx, float dvdx, float dudy,
-               float dvdy, float rgba[4]) {
-  // Positions far beyond the texture keep their wrap phase but not their
-  // magnitude (repeat and mirror are periodic in 1 and 2).
-  double u = finiteOr(uIn, 0.0), v = finiteOr(vIn, 0.0);
-  // Under clamp and border, positions beyond [-2, 3] see only the edge or the
-  // border colour (the ellipse below is capped at one texture width), so they
-  // are clamped there, which also keeps texel indices far inside `long`.
-  const auto reduce = [](double x, WrapMode mode) {
-    if (mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat)
-      return x - 2.0 * std::floor(x * 0.5);
-    return std::clamp(x, -2.0, 3.0);
-  };
-  u = reduce(u, view.wrapU);
-  v = reduce(v, view.wrapV);
+EwaPlan planEwa(const TextureView& view, float uIn, float vIn, float dudx, float dvdx, float dudy,
+                float dvdy) {
+  const double u = reduce(finiteOr(uIn, 0.0), view.wrapU);
+  const double v = reduce(finiteOr(vIn, 0.0), view.wrapV);
   const double width = view.levels[0].width, height = view.levels[0].height;
-  // Jacobian in level-0 texels; columns are the images of screen x and y.
-  const double xu = finiteOr(dudx, 0.0) * width, xv = finiteOr(dvdx, 0.0) * height;
-  const double yu = finiteOr(dudy, 0.0) * width, yv = finiteOr(dvdy, 0.0) * height;
-  // Singular vectors: the ellipse's axes in texture space (as in the anisotropic filter).
+  // The Jacobian in level-0 texels: columns are the images of screen x and y.
+  double xu = finiteOr(dudx, 0.0) * width, xv = finiteOr(dvdx, 0.0) * height;
+  double yu = finiteOr(dudy, 0.0) * width, yv = finiteOr(dvdy, 0.0) * height;
+  if (!std::isfinite(xu * xu + xv * xv + yu * yu + yv * yv)) xu = xv = yu = yv = 0.0;
+  // Singular values and the screen-space singular vectors (c1, s1), (-s1, c1):
+  // J maps them to the ellipse's orthogonal axes a (length major) and b.
   const double p = xu * xu + xv * xv, q = xu * yu + xv * yv, r = yu * yu + yv * yv;
   const double root = std::sqrt(0.25 * (p - r) * (p - r) + q * q);
   const double major = std::sqrt(std::max(0.5 * (p + r) + root, 0.0));
-  double minor = std::sqrt(std::max(0.5 * (p + r) - root, 0.0));
-  double ex = p >= r ? 0.5 * (p + r) + root - r : q, ey = p >= r ? q : 0.5 * (p + r) + root - p;
-  const double eLength = std::hypot(ex, ey);
-  if (eLength > 0.0)
-    ex /= eLength, ey /= eLength;
+  const double minor = std::sqrt(std::max(0.5 * (p + r) - root, 0.0));
+  double c1 = p >= r ? 0.5 * (p + r) + root - r : q, s1 = p >= r ? q : 0.5 * (p + r) + root - p;
+  const double length = std::hypot(c1, s1);
+  if (length > 0.0)
+    c1 /= length, s1 /= length;
   else
-    ex = 1.0, ey = 0.0;
-  double axisMajor[2] = {xu * ex + yu * ey, xv * ex + yv * ey};
-  if (!(major > 0.0)) axisMajor[0] = axisMajor[1] = 0.0;
-  // Minor axis: perpendicular in texture space, with the minor length,
-  // lengthened where the eccentricity exceeds maxAniso.
-  minor = std::max(minor, major / double(view.maxAniso));
-  const double majorLength = std::hypot(axisMajor[0], axisMajor[1]);
-  double axisMinor[2] = {0.0, minor};
-  if (majorLength > 0.0)
-    axisMinor[0] = -axisMajor[1] / majorLength * minor,
-    axisMinor[1] = axisMajor[0] / majorLength * minor;
+    c1 = 1.0, s1 = 0.0;
+  const double radius = kEwaShape.radius;
+  // The eccentricity clamp (bounding the texel sums' work): the minor axis
+  // lengthened to major / maxAniso.
+  const double clamped = std::max(minor, major / double(std::clamp(view.maxAniso, 1, 64)));
 
-  // The level where the minor semi-axis spans about one texel.
-  double lod = std::log2(std::max(minor, 1e-30)) + double(view.lodBias);
-  lod = std::clamp(lod, double(std::max(view.minLod, 0.0f)),
-                   std::min(double(view.maxLod), double(view.levelCount - 1)));
-  const int level0 = int(std::floor(lod));
-  const int level1 = std::min(level0 + 1, view.levelCount - 1);
-  const double blend = lod - level0;
+  EwaPlan plan;
+  // The level where the clamped minor radius spans kEwaTexelsPerRadius
+  // texels, under the view's LOD controls.
+  const int last = view.levelCount - 1;
+  double lod = std::log2(std::max(radius * clamped / kEwaTexelsPerRadius, 1e-30));
+  lod = std::clamp(lod + double(view.lodBias), double(view.minLod), double(view.maxLod));
+  plan.level = int(std::clamp(std::floor(lod + 0.5), 0.0, double(last)));
+  plan.grid = plan.level == 0 && radius * clamped < kEwaGridBelow;
 
-  double result[2][4];
-  const int levels[2] = {level0, level1};
-  for (int i = 0; i < (blend > 0.0 ? 2 : 1); ++i) {
-    const TextureLevel& lev = view.levels[levels[i]];
-    const double sx = double(lev.width) / width, sy = double(lev.height) / height;
-    // Semi-axes (half the pixel's footprint) in texels of this level, each at
-    // most the level's size: a wider ellipse only averages whole periods again,
-    // and the cap bounds the work when LOD clamping keeps a level too fine.
-    const double cap = std::max(lev.width, lev.height);
-    const double aLength = kAxisScale * major * std::max(sx, sy),
-                 bLength = kAxisScale * minor * std::max(sx, sy);
-    const double shrinkA = aLength > cap ? cap / aLength : 1.0;
-    const double shrinkB = bLength > cap ? cap / bLength : 1.0;
-    const double a[2] = {kAxisScale * axisMajor[0] * sx * shrinkA,
-                         kAxisScale * axisMajor[1] * sy * shrinkA};
-    const double b[2] = {kAxisScale * axisMinor[0] * sx * shrinkB,
-                         kAxisScale * axisMinor[1] * sy * shrinkB};
-    ellipseAverage(view, levels[i], u * lev.width - 0.5, v * lev.height - 0.5, a, b, result[i]);
+  if (plan.grid) {  // the exact ellipse: its minor radius bounds the work
+    plan.columns = std::max(kEwaMinGrid, int(std::ceil(2.0 * radius * major * kEwaGridPerTexel)));
+    plan.rows = std::max(kEwaMinGrid, int(std::ceil(2.0 * radius * minor * kEwaGridPerTexel)));
+    plan.u = float(u), plan.v = float(v);
+    plan.axisAu = float(radius * (double(dudx) * c1 + double(dudy) * s1));
+    plan.axisAv = float(radius * (double(dvdx) * c1 + double(dvdy) * s1));
+    plan.axisBu = float(radius * (-double(dudx) * s1 + double(dudy) * c1));
+    plan.axisBv = float(radius * (-double(dvdx) * s1 + double(dvdy) * c1));
+    if (!(major > 0.0)) plan.axisAu = plan.axisAv = plan.axisBu = plan.axisBv = 0.0f;
+    return plan;
   }
-  for (int c = 0; c < 4; ++c)
-    rgba[c] =
-        float(blend > 0.0 ? result[0][c] + (result[1][c] - result[0][c]) * blend : result[0][c]);
+
+  // Texel centres: the ellipse's axes in level-0 texels, a along the major
+  // axis, b perpendicular to it with the clamped minor length.
+  double ax = xu * c1 + yu * s1, ay = xv * c1 + yv * s1;
+  const double axisLength = std::hypot(ax, ay);
+  if (axisLength > 0.0)
+    ax /= axisLength, ay /= axisLength;
+  else
+    ax = 1.0, ay = 0.0;
+  const double bx = -ay, by = ax;
+  // Squared radii, corrected for the level's box prefilter and for the ideal's
+  // bilinear reconstruction (ewa.h), each kept at 5% of itself at least (a
+  // level forced coarser by the LOD controls would otherwise invert it).
+  const TextureLevel& lev = view.levels[plan.level];
+  const double texels = std::ldexp(1.0, plan.level);
+  const double correction = (1.0 / 6.0 - (texels * texels - 1.0) / 12.0) / kEwaShapeVariance;
+  const double ra = radius * major, rb = radius * clamped;
+  double sa = std::max(ra * ra + correction, 0.05 * ra * ra);
+  double sb = std::max(rb * rb + correction, 0.05 * rb * rb);
+  // Each semi-axis capped at the level's size: a longer one only averages
+  // whole periods again (and a level clamped by the chain or the controls
+  // would be huge); capping the axes one by one keeps the minor axis's
+  // averaging, where shrinking the ellipse whole cut it to a sliver (a
+  // 1000:1 footprint on a 1x1 texture then held no texel centre at all).
+  // At least one level texel, so a texel centre always falls inside.
+  const double sx = double(lev.width) / width, sy = double(lev.height) / height;
+  const double cap = double(std::max(lev.width, lev.height));
+  const double scaleMax = std::max(sx, sy), scaleMin = std::min(sx, sy);
+  const double least = 1.0 / (scaleMin * scaleMin);
+  const double most = std::max(least, cap * cap / (scaleMax * scaleMax));
+  sa = std::clamp(sa, least, most);
+  sb = std::clamp(sb, least, most);
+  // The covariance-like matrix S = sa a a^T + sb b b^T in level texels, and
+  // its inverse as the quadratic form.
+  const double sxx = (sa * ax * ax + sb * bx * bx) * sx * sx;
+  const double sxy = (sa * ax * ay + sb * bx * by) * sx * sy;
+  const double syy = (sa * ay * ay + sb * by * by) * sy * sy;
+  const double det = sxx * syy - sxy * sxy;
+  plan.qa = float(syy / det);
+  plan.qb = float(-2.0 * sxy / det);
+  plan.qc = float(sxx / det);
+  plan.cx = float(u * lev.width - 0.5);
+  plan.cy = float(v * lev.height - 0.5);
+  const double halfHeight = std::sqrt(syy);
+  plan.y0 = int(std::ceil(double(plan.cy) - halfHeight));
+  plan.y1 = int(std::floor(double(plan.cy) + halfHeight));
+  return plan;
+}
+
+void ewaRowSpan(const EwaPlan& plan, int y, int& x0, int& x1) {
+  // qa dx^2 + (qb dy) dx + (qc dy^2 - 1) < 0 between the roots.
+  const double dy = double(y) - double(plan.cy);
+  const double qa = plan.qa, b = double(plan.qb) * dy, c = double(plan.qc) * dy * dy - 1.0;
+  const double discriminant = b * b - 4.0 * qa * c;
+  if (!(discriminant > 0.0) || !(qa > 0.0)) {
+    x0 = 0, x1 = -1;
+    return;
+  }
+  const double root = std::sqrt(discriminant);
+  x0 = int(std::ceil(double(plan.cx) + (-b - root) / (2.0 * qa)));
+  x1 = int(std::floor(double(plan.cx) + (-b + root) / (2.0 * qa)));
 }
 
 }  // namespace quadra

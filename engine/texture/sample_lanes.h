@@ -14,6 +14,7 @@
 #include "simd/lanes.h"
 #include "simd/texel_pairs.h"
 
+#include "texture/anisotropic.h"
 #include "texture/area_filter.h"
 #include "texture/ewa.h"
 #include "texture/summed_area.h"
@@ -101,6 +102,9 @@ struct LevelGeometry {
   typename L::I stride;  // texels per row (padded_level.h)
   int uniform;
   const TextureLevel* table;  // the levels the lanes' level indices refer to
+  // When set (and not uniform): each lane's level's first texel, looked up once
+  // for several fetches.
+  const std::uint8_t* const* laneBase;
 };
 
 template <class L>
@@ -111,7 +115,7 @@ QUADRA_LANE_INLINE LevelGeometry<L> levelGeometry(const LevelTable& table,
   const int first = table.count == 1 ? 0 : int(level.get(0));
   if (table.count == 1 || simd::all(simd::toFloat(level) == F(float(first)))) {
     const TextureLevel& lev = table.levels[first];
-    return {F(float(lev.width)), F(float(lev.height)), I(lev.stride), first, table.levels};
+    return {F(float(lev.width)), F(float(lev.height)), I(lev.stride), first, table.levels, nullptr};
   }
   alignas(64) std::int32_t lv[L::kWidth], stride[L::kWidth];
   alignas(64) float w[L::kWidth], h[L::kWidth];
@@ -121,7 +125,8 @@ QUADRA_LANE_INLINE LevelGeometry<L> levelGeometry(const LevelTable& table,
     h[k] = float(table.levels[lv[k]].height);
     stride[k] = table.levels[lv[k]].stride;
   }
-  return {F::load_aligned(w), F::load_aligned(h), I::load_aligned(stride), -1, table.levels};
+  return {
+      F::load_aligned(w), F::load_aligned(h), I::load_aligned(stride), -1, table.levels, nullptr};
 }
 
 // Texel offset (row * stride + column) of integer-valued coordinates, in
@@ -144,6 +149,11 @@ QUADRA_LANE_INLINE void texelPointers(const LevelGeometry<L>& g, const typename 
   if (g.uniform >= 0) {
     const std::uint8_t* const base = g.table[g.uniform].texels;
     for (int k = 0; k < L::kWidth; ++k) out[k] = base + std::ptrdiff_t(off[k]) * texelBytes;
+    return;
+  }
+  if (g.laneBase) {
+    for (int k = 0; k < L::kWidth; ++k)
+      out[k] = g.laneBase[k] + std::ptrdiff_t(off[k]) * texelBytes;
     return;
   }
   level.store_aligned(lv);
@@ -289,15 +299,22 @@ Rgba<L> sampleNearest(const TextureView& view, typename L::F u, typename L::F v,
 // clamp on the folded coordinate (the bilinear reconstruction of a mirrored
 // row is symmetric about each fold); border reads the pair at the clamped
 // column and substitutes the border colour where a texel lies outside.
-// `level` indexes `table`: the mip levels, or a ripmap's.
+// `level` indexes g.table: the mip levels, or a ripmap's; g holds their sizes.
+// The four texels around (u, v) and the fractions between them.
+template <class L>
+struct BilinearCorners {
+  Rgba<L> c00, c10, c01, c11;
+  typename L::F fx, fy;
+};
+
 template <class L, class R>
-QUADRA_LANE_INLINE Rgba<L> sampleBilinearIn(const TextureView& view, const LevelTable& table,
-                                            typename L::F u, typename L::F v,
-                                            const typename L::I& level) {
+QUADRA_LANE_INLINE BilinearCorners<L> bilinearCorners(const TextureView& view,
+                                                      const sampling::LevelGeometry<L>& g,
+                                                      const typename L::I& level, typename L::F u,
+                                                      typename L::F v) {
   using namespace sampling;
   using F = typename L::F;
   using M = typename L::M;
-  const LevelGeometry<L> g = levelGeometry<L>(table, level);
   u = reduceCoordinate<L>(u, view.wrapU);
   v = reduceCoordinate<L>(v, view.wrapV);
   if (view.wrapU == WrapMode::MirroredRepeat) u = simd::select(u > F(1.0f), F(2.0f) - u, u);
@@ -335,7 +352,24 @@ QUADRA_LANE_INLINE Rgba<L> sampleBilinearIn(const TextureView& view, const Level
     c01 = withBorder<L>(view, c01, inX0 & inY1);
     c11 = withBorder<L>(view, c11, inX1 & inY1);
   }
-  return lerp<L>(lerp<L>(c00, c10, fx), lerp<L>(c01, c11, fx), fy);
+  return {c00, c10, c01, c11, fx, fy};
+}
+
+template <class L, class R>
+QUADRA_LANE_INLINE Rgba<L> sampleBilinearOn(const TextureView& view,
+                                            const sampling::LevelGeometry<L>& g,
+                                            const typename L::I& level, const typename L::F& u,
+                                            const typename L::F& v) {
+  using sampling::lerp;
+  const BilinearCorners<L> b = bilinearCorners<L, R>(view, g, level, u, v);
+  return lerp<L>(lerp<L>(b.c00, b.c10, b.fx), lerp<L>(b.c01, b.c11, b.fx), b.fy);
+}
+
+template <class L, class R>
+QUADRA_LANE_INLINE Rgba<L> sampleBilinearIn(const TextureView& view, const LevelTable& table,
+                                            const typename L::F& u, const typename L::F& v,
+                                            const typename L::I& level) {
+  return sampleBilinearOn<L, R>(view, sampling::levelGeometry<L>(table, level), level, u, v);
 }
 
 template <class L, class R>
@@ -385,59 +419,305 @@ QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typena
   return sampling::lerp<L>(fine, coarse, t);
 }
 
-// Anisotropic: N = simd::min(ceil(major/minor), maxAniso) trilinear probes along the
-// footprint's major axis at λ = log2(major/N). The axes are the singular
-// values of the Jacobian (the footprint ellipse), not the lengths of the two
-// derivative vectors, which can be equal for a strongly sheared footprint.
-template <class L, class R>
-Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const typename L::F& v,
-                          const UvDerivatives<L>& d) {
+namespace aniso {
+
+// One level's share of a lookup: its taps, their count, the level and its size.
+template <class L>
+struct Run {
+  typename L::F taps, invTaps;
+  // Tap j's weight is scale * clamp((1/2 - |o_j|) * invRamp, 0, 1): scale is
+  // the run's share of the blend over the sum of its ramp weights, so the
+  // weights of a lookup's taps add up to 1 and no division is left for the end.
+  typename L::F scale;
+  typename L::F level, width, height, stride;  // float: exact below 2^24, and selectable
+};
+
+template <class L>
+struct Plan {
+  typename L::F u, v;
+  // Tap j of n sits at (u, v) + line * o_j, o_j = (j + 1/2) / n - 1/2.
+  typename L::F lineU, lineV, invRamp;
+  typename L::F blend;  // run 1's share (the coarser level); 0 where there is one run
+  Run<L> run[2];
+};
+
+// Level l of the chain is max(1, floor(w / 2^l)) texels wide (texture/mip_chain.h)
+// and padded to width + 1 (texture/padded_level.h): computed, not looked up
+// lane by lane.
+template <class L>
+QUADRA_LANE_INLINE Run<L> levelRun(const TextureView& view, const typename L::F& level,
+                                   const typename L::F& taps) {
   using F = typename L::F;
+  using I = typename L::I;
+  const F shrink = simd::asFloat((I(127) - simd::toInt(level)) << 23);  // 2^-level, exact
+  const F width = simd::max(simd::floor(F(float(view.levels[0].width)) * shrink), F(1.0f));
+  const F height = simd::max(simd::floor(F(float(view.levels[0].height)) * shrink), F(1.0f));
+  return {taps, F(1.0f) / taps, F(0.0f), level, width, height, width + F(1.0f)};
+}
+
+// The sum of the ramp weights min(max((1/2 - |o_j|) * invRamp, 0), 1) of a
+// run's n taps, in closed form: with d_j = min(j + 1/2, n - j - 1/2) the
+// weights are min(d_j invRamp / n, 1), symmetric about the centre (whose
+// weight is 1, as invRamp >= 2); the J smallest d_j of each half, those
+// below n ramp, ramp up (they sum to invRamp J^2 / (2 n)), the rest weigh 1.
+template <class L>
+QUADRA_LANE_INLINE typename L::F rampWeightSum(const Run<L>& run, const typename L::F& ramp,
+                                               const typename L::F& invRamp) {
+  using F = typename L::F;
+  const F half = simd::floor(run.taps * F(0.5f));
+  const F x = run.taps * ramp - F(0.5f);
+  F below = simd::floor(x);
+  below = simd::select(x > below, below + F(1.0f), below);  // ceil
+  below = simd::min(simd::max(below, F(0.0f)), half);
+  return below * below * invRamp * run.invTaps + F(2.0f) * (half - below) +
+         (run.taps - half - half);
+}
+
+// 2^-k for integer-valued k in [0, 126], exactly, from the exponent bits.
+template <class L>
+QUADRA_LANE_INLINE typename L::F exp2Negative(const typename L::F& k) {
+  using I = typename L::I;
+  return simd::asFloat((I(127) - simd::toInt(k)) << 23);
+}
+
+// The plan of every lane's lookup: texture/anisotropic.h, step by step.
+template <class L>
+QUADRA_LANE_INLINE Plan<L> planAnisotropic(const TextureView& view, const typename L::F& u,
+                                           const typename L::F& v, const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  // The footprint's axes: J^T J = [[p, q], [q, r]] has the squared singular
+  // values as eigenvalues. A non-finite Jacobian (NaN, infinite, or too large
+  // to square) reads as a point.
   const F w = F(float(view.levels[0].width)), h = F(float(view.levels[0].height));
-  const F xu = d.dudx * w, xv = d.dvdx * h, yu = d.dudy * w, yv = d.dvdy * h;
-  // J^T J = [[p, q], [q, r]]; its eigenvalues are the squared singular values.
+  F xu = d.dudx * w, xv = d.dvdx * h, yu = d.dudy * w, yv = d.dvdy * h;
+  const auto finite = (xu * xu + xv * xv) + (yu * yu + yv * yv) < F(3.0e38f);
+  xu = simd::select(finite, xu, F(0.0f)), xv = simd::select(finite, xv, F(0.0f));
+  yu = simd::select(finite, yu, F(0.0f)), yv = simd::select(finite, yv, F(0.0f));
   const F p = xu * xu + xv * xv, q = xu * yu + xv * yv, r = yu * yu + yv * yv;
   const F halfSum = F(0.5f) * (p + r), halfDiff = F(0.5f) * (p - r);
   const F root = simd::sqrt(halfDiff * halfDiff + q * q);
   const F majorSq = halfSum + root;
   const F minorSq = simd::max(halfSum - root, F(0.0f));
-  // Eigenvector for the major eigenvalue, in screen space; pick the stabler form.
+  // The major eigenvector (ex, ey), in screen space; the stabler form of two.
   const auto pBigger = p >= r;
   F ex = simd::select(pBigger, majorSq - r, q);
   F ey = simd::select(pBigger, q, majorSq - p);
   const F eLen = simd::sqrt(ex * ex + ey * ey);
   const auto degenerate = ~(eLen > F(0.0f));
-  ex = simd::select(degenerate, F(1.0f), ex / eLen);
-  ey = simd::select(degenerate, F(0.0f), ey / eLen);
-  // Major axis in uv (normalized texture units).
-  const F axisU = d.dudx * ex + d.dudy * ey, axisV = d.dvdx * ex + d.dvdy * ey;
-
+  const F invLen = F(1.0f) / eLen;
+  ex = simd::select(degenerate, F(1.0f), ex * invLen);
+  ey = simd::select(degenerate, F(0.0f), ey * invLen);
   const F major = simd::sqrt(majorSq), minor = simd::sqrt(minorSq);
-  const F maxAniso = F(float(view.maxAniso));
-  // ceil(major/minor) in [1, maxAniso]; minor == 0 gives the cap, major == 0 one probe.
+
+  // N in [1, maxAniso] (minor == 0 gives the cap, major == 0 one probe) and
+  // λ = log2(major / N), as a difference of logs: off the ratio's division,
+  // whose latency the whole plan would wait on.
+  const F maxAniso = F(float(std::clamp(view.maxAniso, 1, 64)));
   const F ratio = major / simd::max(minor, F(1e-30f));
   F probes = simd::floor(ratio);
   probes = simd::select(ratio > probes, probes + F(1.0f), probes);
   probes = simd::max(simd::min(probes, maxAniso), F(1.0f));
-  const F lod = controlledLod<L>(view, simd::log2<L>(major / probes));
+  const F lod = F(0.5f) * simd::log2<L>(majorSq) - simd::log2<L>(probes);  // -63 for a point
+  const F lastLevel = F(float(view.levelCount - 1));
+  const F read = simd::min(simd::max(controlledLod<L>(view, lod), F(0.0f)), lastLevel);
 
-  alignas(64) float probeCount[L::kWidth];
-  probes.store_aligned(probeCount);
-  int maxProbes = 1;
-  for (int k = 0; k < L::kWidth; ++k) maxProbes = std::max(maxProbes, int(probeCount[k]));
+  // The levels read: both around λ below kBlendBelowRatio (and always where
+  // maxAniso is below it), else the nearest.
+  const auto blend = (major < F(kBlendBelowRatio) * minor) | (maxAniso < F(kBlendBelowRatio));
+  const F fine = simd::floor(read);
+  const F nearest = simd::min(simd::floor(read + F(0.5f)), lastLevel);
+  Plan<L> plan;
+  plan.blend = simd::select(blend, read - fine, F(0.0f));
+  const F level0 = simd::select(blend, fine, nearest);
+  const F level1 = simd::min(fine + F(1.0f), lastLevel);
 
-  Rgba<L> sum{F(0.0f), F(0.0f), F(0.0f), F(0.0f)};
-  for (int i = 0; i < maxProbes; ++i) {
-    const F offset = (F(float(i) + 0.5f) / probes - F(0.5f));
-    const auto active = F(float(i)) < probes;
-    const Rgba<L> c =
-        sampleMipmapped<L, R>(view, u + axisU * offset, v + axisV * offset, lod, true);
-    sum.r = sum.r + simd::select(active, c.r, F(0.0f));
-    sum.g = sum.g + simd::select(active, c.g, F(0.0f));
-    sum.b = sum.b + simd::select(active, c.b, F(0.0f));
-    sum.a = sum.a + simd::select(active, c.a, F(0.0f));
+  // The line the taps lie on, as a multiple of major: the shadow (a + b) or,
+  // blended, major itself.
+  const F shadow = simd::select(blend, F(1.0f), simd::abs(ex) + simd::abs(ey));
+  // Spans of the tap spacing along that line (the coarser level has half as
+  // many). While magnified the spacing is major / kMagnifiedTaps, clamped to
+  // [major / N, 1]: shadow / spacing = shadow min(N, max(kMagnifiedTaps,
+  // major)). Else a texel of level floor(λ) (blended) or round(λ).
+  const auto magnified = lod < F(0.0f);
+  const F naturalLevel = simd::select(blend, simd::floor(lod), simd::floor(lod + F(0.5f)));
+  const F spans0 =
+      simd::select(magnified, shadow * simd::min(probes, simd::max(F(kMagnifiedTaps), major)),
+                   major * shadow *
+                       exp2Negative<L>(simd::min(simd::max(naturalLevel, F(0.0f)), F(126.0f)))) *
+      simd::select(blend, F(1.0f / kBlendedTapSpacing), F(1.0f / kTapSpacing));
+  const F spans1 = simd::select(magnified, spans0, spans0 * F(0.5f));
+  // Taps per run: ceil(spans), rounded up to whole chunks beyond a single tap
+  // (a lane runs kChunk taps either way: the extra one is free accuracy).
+  auto ceil = [](const F& x) {
+    const F n = simd::floor(x);
+    return simd::select(x > n, n + F(1.0f), n);
+  };
+  auto tapsFor = [&](const F& spans) {
+    const F n = ceil(spans);
+    const F chunks = ceil(n * F(1.0f / float(kChunk))) * F(float(kChunk));
+    return simd::max(simd::min(simd::select(n > F(1.0f), chunks, n), F(kMaxTapsPerRun)), F(1.0f));
+  };
+  plan.run[0] = levelRun<L>(view, level0, tapsFor(spans0));
+  plan.run[1] =
+      levelRun<L>(view, level1, simd::select(plan.blend > F(0.0f), tapsFor(spans1), F(0.0f)));
+
+  // The centre brought within a period for the periodic wraps (exactly: u
+  // and floor(u) are close), so the taps' small offsets keep their bits far
+  // from the origin and u + 10000 samples as u does; the clamp modes keep it
+  // where it is (a clamped centre would move the taps back over the texture).
+  auto periodic = [](const F& x, WrapMode mode) {
+    if (mode == WrapMode::Repeat) return x - simd::floor(x);
+    if (mode == WrapMode::MirroredRepeat) return x - F(2.0f) * simd::floor(x * F(0.5f));
+    return x;
+  };
+  plan.u = periodic(u, view.wrapU), plan.v = periodic(v, view.wrapV);
+  // The line in uv (normalized texture units): the major axis J (ex, ey) times it.
+  plan.lineU = simd::select(finite, (d.dudx * ex + d.dudy * ey) * shadow, F(0.0f));
+  plan.lineV = simd::select(finite, (d.dvdx * ex + d.dvdy * ey) * shadow, F(0.0f));
+  // The trapezoid's ramps over the line: min(|ex|, |ey|) / (|ex| + |ey|) <= 1/2,
+  // so a lone centre tap always weighs exactly 1; blended, no ramps (a box).
+  const F rampWidth = simd::max(simd::min(simd::abs(ex), simd::abs(ey)), F(1e-6f));
+  const F ramp = simd::select(blend, F(1e-6f), rampWidth / shadow);
+  plan.invRamp = simd::select(blend, F(1e6f), shadow / rampWidth);
+  plan.run[0].scale = (F(1.0f) - plan.blend) / rampWeightSum<L>(plan.run[0], ramp, plan.invRamp);
+  plan.run[1].scale =
+      simd::select(plan.run[1].taps > F(0.0f),
+                   plan.blend / rampWeightSum<L>(plan.run[1], ramp, plan.invRamp), F(0.0f));
+  return plan;
+}
+
+}  // namespace aniso
+
+namespace aniso {
+
+// One tap, weighted: the bilinear weights times the tap's own, four products
+// per channel instead of three lerps and a product.
+template <class L, class R>
+QUADRA_LANE_INLINE Rgba<L> weightedTap(const TextureView& view, const sampling::LevelGeometry<L>& g,
+                                       const typename L::I& level, const typename L::F& u,
+                                       const typename L::F& v, const typename L::F& weight) {
+  using F = typename L::F;
+  const BilinearCorners<L> b = bilinearCorners<L, R>(view, g, level, u, v);
+  const F right = weight * b.fx, left = weight - right;
+  const F w11 = right * b.fy, w01 = left * b.fy, w10 = right - w11, w00 = left - w01;
+  return {b.c00.r * w00 + b.c10.r * w10 + (b.c01.r * w01 + b.c11.r * w11),
+          b.c00.g * w00 + b.c10.g * w10 + (b.c01.g * w01 + b.c11.g * w11),
+          b.c00.b * w00 + b.c10.b * w10 + (b.c01.b * w01 + b.c11.b * w11),
+          b.c00.a * w00 + b.c10.a * w10 + (b.c01.a * w01 + b.c11.a * w11)};
+}
+
+}  // namespace aniso
+
+// Anisotropic filtering: weighted bilinear taps along the footprint's major
+// axis on the level that fits its minor axis (texture/anisotropic.h), each
+// lookup paying for its own taps only.
+template <class L, class R>
+Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                          const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  using I = typename L::I;
+  constexpr int W = L::kWidth;
+  const aniso::Plan<L> plan = aniso::planAnisotropic<L>(view, u, v, d);
+  const aniso::Run<L>& run0 = plan.run[0];
+  // A group of single taps without blending (deep magnification): each the
+  // one tap at the centre, weight 1, as the packed path below computes it.
+  if (simd::all((run0.taps == F(1.0f)) & (plan.blend == F(0.0f)))) {
+    const I level = simd::toInt(run0.level);
+    return aniso::weightedTap<L, R>(view, sampling::levelGeometry<L>(view.mipTable(), level), level,
+                                    u, v, F(1.0f));
   }
-  return {sum.r / probes, sum.g / probes, sum.b / probes, sum.a / probes};
+
+  // The taps, packed densely: job j is kChunk consecutive taps of one run of one
+  // lookup, and W jobs run side by side whatever lookups they belong to, so no
+  // lane idles while another lookup finishes (on the report's stream the most
+  // taps of 16 lookups average 20.0, the taps 8.8). Jobs come in segments, one
+  // per chunk start `first` and run: the lookups with taps left there.
+  constexpr int kMaxSegments =
+      2 * ((int(aniso::kMaxTapsPerRun) + aniso::kChunk - 1) / aniso::kChunk);
+  constexpr int kMaxJobs = kMaxSegments * W + W;  // + a padding batch
+  std::uint32_t segmentLanes[kMaxSegments];
+  // Job j: lookup jobRun[j] % W, run jobRun[j] / W, taps from jobFirst[j] on.
+  alignas(64) std::int32_t jobRun[kMaxJobs + W];
+  alignas(64) float jobFirst[kMaxJobs + W];
+  // Run 0's segments, then run 1's: the order jobs run in does not change any
+  // bits, only the order each lookup's partial sums are added in does.
+  int segments = 0, jobs = 0;
+  for (int r = 0; r < 2; ++r) {
+    for (float first = 0.0f;; first += float(aniso::kChunk)) {
+      const std::uint32_t lanes = simd::bits(plan.run[r].taps > F(first));
+      if (lanes == 0) break;
+      segmentLanes[segments++] = lanes;
+      simd::compressLaneIndices<L>(lanes, r * W, jobRun + jobs);
+      F(first).store_unaligned(jobFirst + jobs);
+      jobs += __builtin_popcount(lanes);
+    }
+  }
+  // Idle lanes of the last batch run a tap of lookup 0 whose sums are never read.
+  I(0).store_unaligned(jobRun + jobs);
+  F(0.0f).store_unaligned(jobFirst + jobs);
+
+  // Each job's weighted sums (r, g, b, a), in job order.
+  alignas(64) float partial[4][kMaxJobs + W];
+  for (int batch = 0; batch < jobs; batch += W) {
+    const I run = I::load_aligned(jobRun + batch);
+    const I lookup = run & I(W - 1);
+    const F first = F::load_aligned(jobFirst + batch);
+    auto pick = [&](const F& a, const F& b) { return simd::permute2(a, b, run); };
+    const F taps = pick(plan.run[0].taps, plan.run[1].taps);
+    const F invTaps = pick(plan.run[0].invTaps, plan.run[1].invTaps);
+    const F scale = pick(plan.run[0].scale, plan.run[1].scale);
+    const F levelF = pick(plan.run[0].level, plan.run[1].level);
+    const I level = simd::toInt(levelF);
+    alignas(64) std::int32_t levelOf[W];
+    const std::uint8_t* base[W];
+    const bool uniform = simd::all(levelF == F(levelF.get(0)));
+    if (!uniform) {
+      level.store_aligned(levelOf);
+      for (int k = 0; k < W; ++k) base[k] = view.levels[levelOf[k]].texels;
+    }
+    const sampling::LevelGeometry<L> g{pick(plan.run[0].width, plan.run[1].width),
+                                       pick(plan.run[0].height, plan.run[1].height),
+                                       simd::toInt(pick(plan.run[0].stride, plan.run[1].stride)),
+                                       uniform ? int(levelF.get(0)) : -1,
+                                       view.levels,
+                                       uniform ? nullptr : base};
+    const F cu = simd::permute(plan.u, lookup), cv = simd::permute(plan.v, lookup);
+    const F lineU = simd::permute(plan.lineU, lookup), lineV = simd::permute(plan.lineV, lookup);
+    const F invRamp = simd::permute(plan.invRamp, lookup);
+    Rgba<L> acc{F(0.0f), F(0.0f), F(0.0f), F(0.0f)};
+    for (int i = 0; i < aniso::kChunk; ++i) {
+      const F tap = first + F(float(i));
+      const F o = (tap + F(0.5f)) * invTaps - F(0.5f);
+      const F ramp = simd::min(simd::max((F(0.5f) - simd::abs(o)) * invRamp, F(0.0f)), F(1.0f));
+      const F weight = simd::select(tap < taps, ramp * scale, F(0.0f));
+      const Rgba<L> c =
+          aniso::weightedTap<L, R>(view, g, level, cu + lineU * o, cv + lineV * o, weight);
+      acc.r = acc.r + c.r;
+      acc.g = acc.g + c.g;
+      acc.b = acc.b + c.b;
+      acc.a = acc.a + c.a;
+    }
+    acc.r.store_aligned(partial[0] + batch);
+    acc.g.store_aligned(partial[1] + batch);
+    acc.b.store_aligned(partial[2] + batch);
+    acc.a.store_aligned(partial[3] + batch);
+  }
+  const int computed = (jobs + W - 1) / W * W;  // the block after the last is read too
+  for (int c = 0; c < 4; ++c) F(0.0f).store_aligned(partial[c] + computed);
+
+  // The partial sums back to their lookups, segment by segment (run 0's, then
+  // run 1's): each lookup's in the order of its taps on every path.
+  Rgba<L> sum{F(0.0f), F(0.0f), F(0.0f), F(0.0f)};
+  for (int s = 0, at = 0; s < segments; ++s) {
+    const std::uint32_t lanes = segmentLanes[s];
+    const int block = at / W * W, offset = at - block;
+    sum.r = sum.r + simd::expandLoad<L>(lanes, partial[0] + block, offset);
+    sum.g = sum.g + simd::expandLoad<L>(lanes, partial[1] + block, offset);
+    sum.b = sum.b + simd::expandLoad<L>(lanes, partial[2] + block, offset);
+    sum.a = sum.a + simd::expandLoad<L>(lanes, partial[3] + block, offset);
+    at += __builtin_popcount(lanes);
+  }
+  return sum;
 }
 
 // Ripmap (texture/ripmap.h): a level per axis from the footprint's extent
@@ -510,19 +790,159 @@ Rgba<L> sampleEachLane(const LaneLookup& lookup) {
           F::load_aligned(out[3])};
 }
 
+namespace ewa {
+
+// exp(-2 x) - exp(-2) for x in [0, 1), else 0: kEwaShape's weight (ewa.h) of
+// r^2 = x. A polynomial of degree 7 fitted at Chebyshev nodes (error below
+// 8e-8 before float rounding), evaluated by Estrin's scheme: exactly rounded
+// operations only, the same bits on every path, where std::exp per sample
+// was the scalar loop's largest cost; a weight table would need a gather
+// per lane (slow on this Zen, docs/texel-storage.md) or a per-ISA permute.
+static_assert(kEwaShape.alpha == 2.0 && kEwaShape.zeroAtRim, "the polynomial is this shape's");
 template <class L>
+QUADRA_LANE_INLINE typename L::F weight(const typename L::F& x) {
+  using F = typename L::F;
+  const F x2 = x * x, x4 = x2 * x2;
+  const F p01 = F(0.999999922f) + x * F(-1.99998992f);
+  const F p23 = F(1.99978404f) + x * F(-1.33155871f);
+  const F p45 = F(0.659425989f) + x * F(-0.25031036f);
+  const F p67 = F(0.067623278f) + x * F(-0.00963902684f);
+  const F e = (p01 + x2 * p23) + x4 * (p45 + x2 * p67);
+  return simd::select(x < F(1.0f), e - F(0.135335283f), F(0.0f));
+}
+
+// Sums of weighted samples in a fixed order whatever the lane width: sample
+// j goes to virtual lane j mod 16 (a register of 16 lanes, two of 8, or four
+// of 4, in turn), and the 16 virtual sums are added by one fixed tree.
+template <class L>
+struct FixedOrderSum {
+  using F = typename L::F;
+  static constexpr int kTurns = 16 / L::kWidth;
+  static_assert(kTurns * L::kWidth == 16, "lane widths divide 16");
+  F sum[kTurns][5];
+  int turn = 0;
+
+  FixedOrderSum() {
+    for (auto& t : sum)
+      for (F& s : t) s = F(0.0f);
+  }
+  void add(const Rgba<L>& c, const F& w) {
+    F* s = sum[turn];
+    s[0] = s[0] + c.r * w, s[1] = s[1] + c.g * w, s[2] = s[2] + c.b * w, s[3] = s[3] + c.a * w;
+    s[4] = s[4] + w;
+    turn = turn + 1 == kTurns ? 0 : turn + 1;
+  }
+  // The weighted mean (0 where no sample weighed anything).
+  void mean(float rgba[4]) const {
+    alignas(64) float lane[5][16];
+    for (int t = 0; t < kTurns; ++t)
+      for (int c = 0; c < 5; ++c) sum[t][c].store_aligned(&lane[c][t * L::kWidth]);
+    for (int half = 8; half >= 1; half /= 2)
+      for (int c = 0; c < 5; ++c)
+        for (int k = 0; k < half; ++k) lane[c][k] = lane[c][k] + lane[c][k + half];
+    for (int c = 0; c < 4; ++c) rgba[c] = lane[4][0] > 0.0f ? lane[c][0] / lane[4][0] : 0.0f;
+  }
+};
+
+// Integer-valued texel coordinates anywhere → inside [0, n) per the wrap
+// mode; `inside` is cleared where the border colour applies.
+template <class L>
+QUADRA_LANE_INLINE typename L::F wrapAnywhere(typename L::F x, const typename L::F& n,
+                                              WrapMode mode, typename L::M& inside) {
+  using F = typename L::F;
+  if (mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat) {
+    const F period = mode == WrapMode::Repeat ? n : n + n;
+    x = x - period * simd::floor(x / period);
+    x = simd::select(x < F(0.0f), x + period, x);  // float division's last-bit slips
+    x = simd::select(x >= period, x - period, x);
+    if (mode == WrapMode::MirroredRepeat) x = simd::select(x >= n, period - F(1.0f) - x, x);
+    return x;
+  }
+  if (mode == WrapMode::ClampToBorder) inside = inside & (x >= F(0.0f)) & (x <= n - F(1.0f));
+  return simd::max(simd::min(x, n - F(1.0f)), F(0.0f));
+}
+
+}  // namespace ewa
+
+// EWA (texture/ewa.h): each lane's lookup planned in scalar code compiled
+// once, its samples summed W at a time in a fixed order.
+template <class L, class R>
 Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typename L::F& v,
                   const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  using I = typename L::I;
+  constexpr int W = L::kWidth;
   const LaneLookups<L> in(u, v, d);
+  alignas(64) float laneIndex[W];
+  for (int k = 0; k < W; ++k) laneIndex[k] = float(k);
+  const F lanes = F::load_aligned(laneIndex);
   return sampleEachLane<L>([&](int k, float rgba[4]) {
-    ewaLookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k], rgba);
+    const EwaPlan plan =
+        planEwa(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k]);
+    ewa::FixedOrderSum<L> sum;
+    if (plan.grid) {
+      // Sample n of the grid: column n mod columns, row n div columns.
+      const int samples = plan.columns * plan.rows;
+      const F columns = F(float(plan.columns)), rows = F(float(plan.rows));
+      const I level0(0);
+      for (int first = 0; first < samples; first += W) {
+        const F n = lanes + F(float(first));
+        const F row = simd::floor((n + F(0.5f)) / columns);
+        const F column = n - row * columns;
+        const F a = ((column + F(0.5f)) / columns - F(0.5f)) * F(2.0f);
+        const F b = ((row + F(0.5f)) / rows - F(0.5f)) * F(2.0f);
+        const F w = simd::select(n < F(float(samples)), ewa::weight<L>(a * a + b * b), F(0.0f));
+        sum.add(sampleBilinear<L, R>(view, F(plan.u) + a * F(plan.axisAu) + b * F(plan.axisBu),
+                                     F(plan.v) + a * F(plan.axisAv) + b * F(plan.axisBv), level0),
+                w);
+      }
+      sum.mean(rgba);
+      return;
+    }
+    // Texel centres, row by row inside the ellipse, W at a time.
+    const I level(plan.level);
+    const sampling::LevelGeometry<L> g = sampling::levelGeometry<L>(view.mipTable(), level);
+    alignas(64) float xs[W], ys[W];
+    int count = 0;
+    auto flush = [&]() {
+      for (int j = count; j < W; ++j) xs[j] = xs[0], ys[j] = ys[0];
+      const F x = F::load_aligned(xs), y = F::load_aligned(ys);
+      const F dx = x - F(plan.cx), dy = y - F(plan.cy);
+      const F r2 = F(plan.qa) * dx * dx + F(plan.qb) * dx * dy + F(plan.qc) * dy * dy;
+      const F w = simd::select(lanes < F(float(count)), ewa::weight<L>(r2), F(0.0f));
+      typename L::M inside = F(0.0f) == F(0.0f);
+      const F wx = ewa::wrapAnywhere<L>(x, g.width, view.wrapU, inside);
+      const F wy = ewa::wrapAnywhere<L>(y, g.height, view.wrapV, inside);
+      sum.add(sampling::withBorder<L>(view, sampling::fetch<L, R>(view, g, level, wx, wy), inside),
+              w);
+      count = 0;
+    };
+    for (int y = plan.y0; y <= plan.y1; ++y) {
+      int x0, x1;
+      ewaRowSpan(plan, y, x0, x1);
+      for (int x = x0; x <= x1; ++x) {
+        xs[count] = float(x), ys[count] = float(y);
+        if (++count == W) flush();
+      }
+    }
+    if (count > 0) flush();
+    sum.mean(rgba);
   });
 }
 
+// The summed-area table (texture/summed_area.h): lane by lane in scalar
+// integer and double arithmetic (the same bits on every path), after every
+// lane's table entries are prefetched: on a table beyond the caches the
+// lookups wait on memory (12 scattered cache lines each, 32 bytes a texel),
+// 680 -> 468 ns a lookup on the sampler benchmark's 2048² texture; on a
+// cached one (128²) the arithmetic's ~400 ns is all there is.
 template <class L>
 Rgba<L> sampleSummedArea(const TextureView& view, const typename L::F& u, const typename L::F& v,
                          const UvDerivatives<L>& d) {
   const LaneLookups<L> in(u, v, d);
+  for (int k = 0; k < L::kWidth; ++k)
+    view.summedArea->prefetch(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k],
+                              in.dvdy[k]);
   return sampleEachLane<L>([&](int k, float rgba[4]) {
     view.summedArea->lookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k],
                             rgba);
@@ -585,10 +1005,13 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
   const Filter filter = view.minFilter;
   if (filter == Filter::Nearest) return sampleNearest<L, R>(view, u, v, level0);
   if (filter == Filter::Bilinear) return sampleBilinear<L, R>(view, u, v, level0);
-  if (filter == Filter::Ewa) return sampleEwa<L>(view, u, v, d);
+  if (filter == Filter::Ewa) return sampleEwa<L, R>(view, u, v, d);
   if (filter == Filter::Area) return sampleArea<L, R>(view, u, v, d);
   if (filter == Filter::SummedArea) return sampleSummedArea<L>(view, u, v, d);
   if (filter == Filter::Ripmap) return sampleRipmap<L, R>(view, u, v, d);
+  // Magnified lanes only change the anisotropic filter under nearest magnification.
+  if (filter == Filter::Anisotropic && view.magLinear)
+    return sampleAnisotropic<L, R>(view, u, v, d);
   // Magnification decided exactly on the squared footprint length: a group
   // that is magnified throughout (the common case up close) skips the log2
   // and the level selection, and reads level 0 as trilinear would there.

@@ -262,8 +262,8 @@ void SummedAreaTable::texelSum(const TextureView& view, long m0, long m1, long n
     rgba[c] = double(std::int64_t(s11[c] - s10[c] - s01[c] + s00[c])) * unit;
 }
 
-void SummedAreaTable::lookup(const TextureView& view, float u, float v, float dudx, float dvdx,
-                             float dudy, float dvdy, float rgba[4]) const {
+SummedAreaTable::Box SummedAreaTable::boxOf(const TextureView& view, float u, float v, float dudx,
+                                            float dvdx, float dudy, float dvdy) const {
   const double w = width_, h = height_;
   // Half sides of the footprint's bounding box in texels; NaN counts as 0.
   auto halfSide = [](float a, float b, double size) {
@@ -282,9 +282,33 @@ void SummedAreaTable::lookup(const TextureView& view, float u, float v, float du
   const double hx = halfSide(dudx, dudy, w), hy = halfSide(dvdx, dvdy, h);
   const double cx = centre(finiteOrZero(u), view.wrapU) * w;
   const double cy = centre(finiteOrZero(v), view.wrapV) * h;
+  return {cx - hx, cx + hx, cy - hy, cy + hy};
+}
+
+void SummedAreaTable::lookup(const TextureView& view, float u, float v, float dudx, float dvdx,
+                             float dudy, float dvdy, float rgba[4]) const {
+  const Box box = boxOf(view, u, v, dudx, dvdx, dudy, dvdy);
   double average[4];
-  boxAverage(view, cx - hx, cx + hx, cy - hy, cy + hy, average);
+  boxAverage(view, box.x0, box.x1, box.y0, box.y1, average);
   for (int c = 0; c < 4; ++c) rgba[c] = float(average[c]);
+}
+
+void SummedAreaTable::prefetch(const TextureView& view, float u, float v, float dudx, float dvdx,
+                               float dudy, float dvdy) const {
+  const Box box = boxOf(view, u, v, dudx, dvdx, dudy, dvdy);
+  // Each corner reads entries (m .. m + 2, n .. n + 2) from its cornerTerms:
+  // three rows of 96 bytes, two cache lines each at most.
+  const CornerTerms xs[2] = {cornerTerms(box.x0, -1.0), cornerTerms(box.x1, 1.0)};
+  const CornerTerms ys[2] = {cornerTerms(box.y0, -1.0), cornerTerms(box.y1, 1.0)};
+  for (const CornerTerms& y : ys)
+    for (const CornerTerms& x : xs) {
+      const long m = x.index[0], n = y.index[0];
+      if (m < 0 || m + 2 > width_ || n < 0 || n + 2 > height_) continue;
+      for (long row = n; row <= n + 2; ++row) {
+        __builtin_prefetch(entry(m, row));
+        __builtin_prefetch(entry(m + 2, row) + 3);
+      }
+    }
 }
 
 }  // namespace quadra

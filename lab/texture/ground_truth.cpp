@@ -103,17 +103,14 @@ void integrateFootprintGrid(const BilinearReference& reference, const Footprint&
   for (int c = 0; c < 4; ++c) rgba[c] = sum[c] / count;
 }
 
-GroundTruthValue groundTruth(const BilinearReference& reference, const Footprint& footprint,
-                             const GroundTruthOptions& options) {
-  const double w = reference.image().width, h = reference.image().height;
-  const double edgeX = std::hypot(footprint.dudx * w, footprint.dvdx * h);
-  const double edgeY = std::hypot(footprint.dudy * w, footprint.dvdy * h);
-  const auto startCount = [&](double edge) {
-    const double wanted = std::ceil(options.samplesPerTexel * (std::isfinite(edge) ? edge : 0.0));
-    return int(
-        std::clamp(wanted, double(options.minSamplesPerAxis), double(options.maxSamplesPerAxis)));
-  };
-  int nx = startCount(edgeX), ny = startCount(edgeY);
+int gridCellsFor(double texels, const GroundTruthOptions& options) {
+  const double wanted = std::ceil(options.samplesPerTexel * (std::isfinite(texels) ? texels : 0.0));
+  return int(
+      std::clamp(wanted, double(options.minSamplesPerAxis), double(options.maxSamplesPerAxis)));
+}
+
+GroundTruthValue refineGrid(int nx, int ny, const GroundTruthOptions& options,
+                            const std::function<void(int, int, double[4])>& integrate) {
   // Footprints covering thousands of texels: shrink both axes alike to the budget.
   while (std::size_t(nx) * std::size_t(ny) > options.maxSamples && (nx > 2 || ny > 2)) {
     nx = std::max(2, nx / 2);
@@ -121,9 +118,9 @@ GroundTruthValue groundTruth(const BilinearReference& reference, const Footprint
   }
   GroundTruthValue result;
   double coarse[4];
-  integrateFootprintGrid(reference, footprint, std::max(1, nx / 2), std::max(1, ny / 2), coarse);
+  integrate(std::max(1, nx / 2), std::max(1, ny / 2), coarse);
   for (;;) {
-    integrateFootprintGrid(reference, footprint, nx, ny, result.rgba);
+    integrate(nx, ny, result.rgba);
     result.change = 0.0;
     for (int c = 0; c < 4; ++c)
       result.change = std::max(result.change, std::abs(result.rgba[c] - coarse[c]));
@@ -139,15 +136,25 @@ GroundTruthValue groundTruth(const BilinearReference& reference, const Footprint
   }
 }
 
-GroundTruthSet groundTruthSet(const BilinearReference& reference,
-                              const std::vector<Footprint>& footprints,
-                              const GroundTruthOptions& options, const Executor& executor) {
+GroundTruthValue groundTruth(const BilinearReference& reference, const Footprint& footprint,
+                             const GroundTruthOptions& options) {
+  const double w = reference.image().width, h = reference.image().height;
+  const double edgeX = std::hypot(footprint.dudx * w, footprint.dvdx * h);
+  const double edgeY = std::hypot(footprint.dudy * w, footprint.dvdy * h);
+  return refineGrid(gridCellsFor(edgeX, options), gridCellsFor(edgeY, options), options,
+                    [&](int nx, int ny, double rgba[4]) {
+                      integrateFootprintGrid(reference, footprint, nx, ny, rgba);
+                    });
+}
+
+GroundTruthSet truthSet(const std::vector<Footprint>& footprints,
+                        const std::function<GroundTruthValue(const Footprint&)>& ideal,
+                        const Executor& executor) {
   GroundTruthSet set;
   set.rgba.resize(footprints.size() * 4);
   std::vector<GroundTruthValue> values(footprints.size());
   executor.parallelFor(footprints.size(), 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      values[i] = groundTruth(reference, footprints[i], options);
+    for (std::size_t i = begin; i < end; ++i) values[i] = ideal(footprints[i]);
   });
   for (std::size_t i = 0; i < values.size(); ++i) {
     std::copy(values[i].rgba, values[i].rgba + 4, &set.rgba[i * 4]);
@@ -159,6 +166,13 @@ GroundTruthSet groundTruthSet(const BilinearReference& reference,
   }
   if (!values.empty()) set.rmsChange = std::sqrt(set.rmsChange / double(values.size()));
   return set;
+}
+
+GroundTruthSet groundTruthSet(const BilinearReference& reference,
+                              const std::vector<Footprint>& footprints,
+                              const GroundTruthOptions& options, const Executor& executor) {
+  return truthSet(
+      footprints, [&](const Footprint& f) { return groundTruth(reference, f, options); }, executor);
 }
 
 }  // namespace quadra

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "texture/image.h"
@@ -80,6 +81,15 @@ void integrateFootprintGrid(const BilinearReference& reference, const Footprint&
 GroundTruthValue groundTruth(const BilinearReference& reference, const Footprint& footprint,
                              const GroundTruthOptions& options = {});
 
+// The refinement both ideals share: integrate(nx, ny, rgba) on grids from
+// (nx, ny) (cut to the sample budget), doubled per axis until converged as
+// GroundTruthOptions describes.
+GroundTruthValue refineGrid(int nx, int ny, const GroundTruthOptions& options,
+                            const std::function<void(int, int, double[4])>& integrate);
+// Grid cells along an edge `texels` long: options.samplesPerTexel per texel,
+// within the options' per-axis bounds (non-finite lengths give the minimum).
+int gridCellsFor(double texels, const GroundTruthOptions& options);
+
 // Ground truth of many footprints, in parallel over footprints (each value is
 // computed by one task, so the results do not depend on the thread count).
 struct GroundTruthSet {
@@ -92,5 +102,9 @@ struct GroundTruthSet {
 GroundTruthSet groundTruthSet(const BilinearReference& reference,
                               const std::vector<Footprint>& footprints,
                               const GroundTruthOptions& options, const Executor& executor);
+// The same for any per-footprint ideal.
+GroundTruthSet truthSet(const std::vector<Footprint>& footprints,
+                        const std::function<GroundTruthValue(const Footprint&)>& ideal,
+                        const Executor& executor);
 
 }  // namespace quadra
