@@ -42,6 +42,22 @@ std::array<std::pair<double*, double>, 7> stageFields(StageTimes& total, const S
            {&total.resolve, part.resolve}}};
 }
 
+// A renderer on `threads` threads and the trilinear settings every frame
+// benchmark draws with, after one warm-up frame (which also builds the mip
+// chains), so loading and first use stay outside the timing.
+struct WarmRenderer {
+  Renderer renderer;
+  RenderSettings settings;
+  Frame frame;
+  WarmRenderer(const Scene& scene, const Camera& camera, int threads, int width, int height)
+      : renderer(RendererConfig{.threads = threads, .isa = std::nullopt}) {
+    settings.width = width;
+    settings.height = height;
+    settings.filter = Filter::Trilinear;
+    renderer.render(scene, camera, settings, frame);
+  }
+};
+
 // state.range(0) is the thread count. Loading, renderer construction and one
 // warm-up frame (which also builds the mip chains) stay outside the timing.
 void frameTime(benchmark::State& state, const std::string& source) {
@@ -53,19 +69,11 @@ void frameTime(benchmark::State& state, const std::string& source) {
     return;
   }
   const Camera camera = firstCameraOrDefault(scene);
-  RendererConfig config;
-  config.threads = int(state.range(0));
-  Renderer renderer(config);
-  RenderSettings settings;
-  settings.width = kWidth;
-  settings.height = kHeight;
-  settings.filter = Filter::Trilinear;
-  Frame frame;
-  renderer.render(scene, camera, settings, frame);
+  WarmRenderer warm(scene, camera, int(state.range(0)), kWidth, kHeight);
   StageTimes sum;
   for (auto _ : state) {
-    const StageTimes t = renderer.render(scene, camera, settings, frame).stages;
-    benchmark::DoNotOptimize(frame.rgba.data());
+    const StageTimes t = warm.renderer.render(scene, camera, warm.settings, warm.frame).stages;
+    benchmark::DoNotOptimize(warm.frame.rgba.data());
     benchmark::ClobberMemory();
     for (auto [total, part] : stageFields(sum, t)) *total += part;
   }
@@ -80,7 +88,7 @@ void frameTime(benchmark::State& state, const std::string& source) {
       benchmark::Counter(frames * double(scene.triangleCount()), benchmark::Counter::kIsRate);
   state.counters["pixels/s"] =
       benchmark::Counter(frames * kWidth * kHeight, benchmark::Counter::kIsRate);
-  state.SetLabel(source + " isa=" + isaName(renderer.isa()));
+  state.SetLabel(source + " isa=" + isaName(warm.renderer.isa()));
 }
 
 // How a frame scales: builtin:dense-mesh:N against its triangle count at
@@ -90,18 +98,10 @@ void scalingRun(benchmark::State& state, const std::string& source, int width, i
                 std::int64_t complexityN) {
   const Scene scene = loadBenchScene(source);
   const Camera camera = firstCameraOrDefault(scene);
-  RendererConfig config;
-  config.threads = 2;
-  Renderer renderer(config);
-  RenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.filter = Filter::Trilinear;
-  Frame frame;
-  renderer.render(scene, camera, settings, frame);
+  WarmRenderer warm(scene, camera, 2, width, height);
   for (auto _ : state) {
-    renderer.render(scene, camera, settings, frame);
-    benchmark::DoNotOptimize(frame.rgba.data());
+    warm.renderer.render(scene, camera, warm.settings, warm.frame);
+    benchmark::DoNotOptimize(warm.frame.rgba.data());
   }
   state.SetComplexityN(complexityN);
   state.counters["triangles"] = double(scene.triangleCount());

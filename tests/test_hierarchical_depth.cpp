@@ -14,23 +14,15 @@
 #include <vector>
 
 #include "lab/reference/reference_raster.h"
+#include "lab/scene/hard_case_scenes.h"
 #include "render_helpers.h"
 
 namespace quadra {
 namespace {
 
-constexpr int kSize = 256;
-
-// As in test_raster_fill_rule.cpp: world (x, y) lands on window (x + 128, 128 - y)
-// exactly, so both sides snap the same positions.
-Camera orthographicCamera() {
-  Camera camera;
-  camera.type = Camera::Type::Orthographic;
-  camera.xmag = camera.ymag = kSize / 2;
-  camera.znear = 0.5f;
-  camera.zfar = 4.0f;
-  return camera;
-}
+// The hard cases' pixel-exact camera: world (x, y) lands on window
+// (x + 128, 128 - y) exactly, so both sides snap the same positions.
+constexpr int kSize = kPixelExactSize;
 
 struct Layer {
   std::array<glm::dvec2, 3> window;
@@ -43,8 +35,9 @@ Scene sceneOf(const std::vector<Layer>& layers) {
   for (const Layer& layer : layers)
     for (int k = 0; k < 3; ++k) {
       mesh.indices.push_back(std::uint32_t(mesh.positions.size()));
-      mesh.positions.push_back({float(layer.window[k].x - kSize / 2),
-                                float(kSize / 2 - layer.window[k].y), layer.worldZ[k]});
+      glm::vec3 world = worldFromWindow(layer.window[k].x, layer.window[k].y);
+      world.z = layer.worldZ[k];
+      mesh.positions.push_back(world);
     }
   mesh.material = 0;
   Material material;
@@ -110,7 +103,7 @@ std::vector<double> referenceDepth(const Scene& scene, const Camera& camera) {
 }
 
 TEST(HierarchicalDepth, OverdrawKeepsTheNearestSampleOnEveryPath) {
-  const Camera camera = orthographicCamera();
+  const Camera camera = pixelExactCamera();
   for (std::uint32_t seed : {1u, 2u, 3u}) {
     const Scene scene = sceneOf(overdrawLayers(seed));
     const std::vector<double> expected = referenceDepth(scene, camera);

@@ -486,12 +486,12 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
         if (clipped) cover = cover & (x < F(float(tile.width))) & (y < F(float(tile.height)));
         if (!simd::any(cover)) continue;
         const F depth = shader.shadeGroup(x, y, cover, TileBuffers::index(bx + gx, by + gy));
+        if (!depthWritten) continue;  // the block's bounds stay as they are
         low = simd::min(low, depth), high = simd::max(high, depth);
         ++visited;
       }
     }
-    if (depthWritten && visited > 0)
-      updateBlockDepth(tile, block, low, high, visited == kGroupsPerBlock);
+    if (visited > 0) updateBlockDepth(tile, block, low, high, visited == kGroupsPerBlock);
   };
 
   const int byFirst = yBegin & ~(kBlockSize - 1), bxFirst = xBegin & ~(kBlockSize - 1);
