@@ -73,18 +73,25 @@ void pixelSpan(std::int64_t lo, std::int64_t hi, int limit, std::int32_t& first,
   last = std::int32_t(std::min<std::int64_t>(l, limit - 1));
 }
 
-// The triangle's pixel bbox in the viewport goes to `bbox` (minX .. maxY).
-Cull cullSnapped(const SetupContext& ctx, const SnappedTriangle& t, TriangleRecord& bbox) {
+// The pixels whose centres a kept triangle's bounding box holds, in the viewport.
+struct PixelBox {
+  std::int32_t minX, minY, maxX, maxY;
+};
+
+// Most triangles of a dense mesh end here, so it reads only the snapped
+// positions and writes nothing but the small box (a TriangleRecord
+// zero-filled per triangle cost a tenth of setup).
+Cull cullSnapped(const SetupContext& ctx, const SnappedTriangle& t, PixelBox& box) {
   const std::int64_t area = t.area();
   if (area == 0) return Cull::Degenerate;
   // glTF front faces are counter-clockwise with y up, so negative area here.
   const bool front = (area < 0) != ctx.geometry.frontIsClockwise;
   if (!front && ctx.geometry.cullBackFaces) return Cull::BackFace;
   pixelSpan(std::min({t.x[0], t.x[1], t.x[2]}), std::max({t.x[0], t.x[1], t.x[2]}),
-            ctx.viewport.width, bbox.minX, bbox.maxX);
+            ctx.viewport.width, box.minX, box.maxX);
   pixelSpan(std::min({t.y[0], t.y[1], t.y[2]}), std::max({t.y[0], t.y[1], t.y[2]}),
-            ctx.viewport.height, bbox.minY, bbox.maxY);
-  if (bbox.minX > bbox.maxX || bbox.minY > bbox.maxY) return Cull::Outside;
+            ctx.viewport.height, box.minY, box.maxY);
+  if (box.minX > box.maxX || box.minY > box.maxY) return Cull::Outside;
   return Cull::Keep;
 }
 
@@ -166,11 +173,12 @@ struct PlaneSolver {
   }
 };
 
-void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVertex& v1In,
-                  const SetupVertex& v2In) {
+// Emits a triangle that passed cullSnapped (snapped holds its vertices'
+// snapped positions, box what cullSnapped found).
+void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const PixelBox& box,
+              const SetupVertex& v0, const SetupVertex& v1In, const SetupVertex& v2In) {
   TriangleRecord t;
-  const SnappedTriangle snapped{{v0.x, v1In.x, v2In.x}, {v0.y, v1In.y, v2In.y}};
-  if (!kept(cullSnapped(ctx, snapped, t), ctx.out.counters)) return;
+  t.minX = box.minX, t.minY = box.minY, t.maxX = box.maxX, t.maxY = box.maxY;
   const SetupVertex* v1 = &v1In;
   const SetupVertex* v2 = &v2In;
   if (snapped.area() < 0) std::swap(v1, v2);
@@ -194,6 +202,14 @@ void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVer
   for (int k = 0; k < ctx.attributeCount; ++k) plane(v[0]->attr[k], v[1]->attr[k], v[2]->attr[k]);
   ctx.out.triangles.push_back(t);
   ++ctx.out.counters.drawn;
+}
+
+void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVertex& v1,
+                  const SetupVertex& v2) {
+  const SnappedTriangle snapped{{v0.x, v1.x, v2.x}, {v0.y, v1.y, v2.y}};
+  PixelBox box;
+  if (kept(cullSnapped(ctx, snapped, box), ctx.out.counters))
+    emitKept(ctx, snapped, box, v0, v1, v2);
 }
 
 // Clips a triangle that leaves near/far or the guard band and emits its fan.
@@ -251,17 +267,16 @@ void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& ver
       emitClipped(ctx, tri, vertices.stride);
       continue;
     }
-    const ScreenVertex &s0 = vertices.screen[i0], &s1 = vertices.screen[i1],
-                       &s2 = vertices.screen[i2];
-    const SnappedTriangle snapped{
-        {snapToSubpixel(s0.windowX), snapToSubpixel(s1.windowX), snapToSubpixel(s2.windowX)},
-        {snapToSubpixel(s0.windowY), snapToSubpixel(s1.windowY), snapToSubpixel(s2.windowY)}};
-    TriangleRecord bbox;
-    if (!kept(cullSnapped(ctx, snapped, bbox), out.counters)) continue;
+    const SubpixelPosition p0 = vertices.subpixel[i0], p1 = vertices.subpixel[i1],
+                           p2 = vertices.subpixel[i2];
+    const SnappedTriangle snapped{{p0.x, p1.x, p2.x}, {p0.y, p1.y, p2.y}};
+    PixelBox box;
+    if (!kept(cullSnapped(ctx, snapped, box), out.counters)) continue;
     const int count = ctx.attributeCount;
-    emitTriangle(ctx, makeSetupVertex(vertices.screen[i0], vertices.vertex(i0) + 4, count),
-                 makeSetupVertex(vertices.screen[i1], vertices.vertex(i1) + 4, count),
-                 makeSetupVertex(vertices.screen[i2], vertices.vertex(i2) + 4, count));
+    emitKept(ctx, snapped, box,
+             makeSetupVertex(vertices.screen[i0], vertices.vertex(i0) + 4, count),
+             makeSetupVertex(vertices.screen[i1], vertices.vertex(i1) + 4, count),
+             makeSetupVertex(vertices.screen[i2], vertices.vertex(i2) + 4, count));
   }
 }
 

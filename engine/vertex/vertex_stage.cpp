@@ -65,8 +65,12 @@ void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t
     }
     const std::uint8_t code = outcodeOf(v, out.stride, guardX, guardY);
     out.outcode[i] = code;
-    if (!(code & (kNeedsClipping | kNotFinite)))
-      out.screen[i] = projectToWindow(v[0], v[1], v[2], v[3], viewport);
+    if (!(code & (kNeedsClipping | kNotFinite))) {
+      const ScreenVertex s = projectToWindow(v[0], v[1], v[2], v[3], viewport);
+      out.screen[i] = s;
+      out.subpixel[i] = {std::int32_t(snapToSubpixel(s.windowX)),
+                         std::int32_t(snapToSubpixel(s.windowY))};
+    }
   }
 }
 
@@ -78,6 +82,7 @@ void transformVertices(const DrawGeometry& geometry, const Viewport& viewport,
   out.stride = 4 + geometry.attributes.count;
   out.data.resize(count * std::size_t(out.stride));
   out.screen.resize(count);
+  out.subpixel.resize(count);
   out.outcode.resize(count);
   executor.parallelFor(count, 16384, [&](std::size_t begin, std::size_t end) {
     transformRange(geometry, viewport, begin, end, out);

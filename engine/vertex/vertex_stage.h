@@ -1,7 +1,8 @@
 // Vertex stage: a draw's mesh → clip-space positions plus exactly the
 // attributes the draw's material reads (one flat float array), and for each
 // vertex its clip outcode and, when it lies inside the guard band, its
-// snapped window position, so setup projects each shared vertex once.
+// window position, unsnapped and snapped, so setup projects and snaps each
+// shared vertex once.
 #pragma once
 
 #include <cstdint>
@@ -31,7 +32,9 @@ constexpr std::uint8_t kNeedsClipping = kOutsideNear | kOutsideFar | kOutsideGua
 // then the attributes at the offsets of geometry.attributes (plus 4).
 struct TransformedVertices {
   std::vector<float> data;
-  std::vector<ScreenVertex> screen;  // valid where outcode has none of kNeedsClipping | kNotFinite
+  // screen and subpixel are valid where outcode has none of kNeedsClipping | kNotFinite.
+  std::vector<ScreenVertex> screen;
+  std::vector<SubpixelPosition> subpixel;  // screen's window position, snapped
   std::vector<std::uint8_t> outcode;
   int stride = 4;
   const float* vertex(std::uint32_t i) const { return &data[std::size_t(i) * std::size_t(stride)]; }

@@ -41,6 +41,12 @@ inline std::int64_t snapToSubpixel(double window) {
   return std::int64_t((window * kSubpixelScale + kShift) - kShift);
 }
 
+// A window position snapped to the 1/256-pixel grid; within the guard band
+// it needs 23 bits, so setup's culling reads 8 bytes a vertex.
+struct SubpixelPosition {
+  std::int32_t x = 0, y = 0;
+};
+
 struct Viewport {
   int width = 0;
   int height = 0;
