@@ -9,6 +9,7 @@
 #include "api/camera.h"
 #include "bin/bins.h"
 #include "core/error.h"
+#include "core/large_buffer.h"
 #include "core/parallel.h"
 #include "core/stage_clock.h"
 #include "setup/triangle_setup.h"
@@ -263,8 +264,9 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   // Tile stage and resolve.
   out.width = settings.width;
   out.height = settings.height;
-  out.rgba.resize(std::size_t(out.width) * std::size_t(out.height) * 4);
-  out.depth.resize(settings.frameDepth ? std::size_t(out.width) * std::size_t(out.height) : 0);
+  resizeLarge(out.rgba, std::size_t(out.width) * std::size_t(out.height) * 4);
+  resizeLarge(out.depth,
+              settings.frameDepth ? std::size_t(out.width) * std::size_t(out.height) : 0);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
   renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out,
               impl_->tileTimes);

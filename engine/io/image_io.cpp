@@ -28,6 +28,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/large_buffer.h"
 #include "io/srgb8.h"
 #include "texture/texel_format.h"
 
@@ -160,7 +161,8 @@ namespace {
 // Premultiplied linear RGBA float -> straight sRGB 8-bit RGBA.
 std::vector<std::uint8_t> encodeSrgb8(const Frame& frame) {
   static const Srgb8Encoder srgb8;
-  std::vector<std::uint8_t> bytes(frame.rgba.size());
+  std::vector<std::uint8_t> bytes;
+  resizeLarge(bytes, frame.rgba.size());
   for (std::size_t i = 0; i < frame.rgba.size(); i += 4) {
     const float* p = &frame.rgba[i];
     const float alpha = p[3];

@@ -1,11 +1,18 @@
-// The sRGB transfer function (IEC 61966-2-1) in both directions, and the
+// Image storage, the sRGB transfer function (IEC 61966-2-1) in both
+// directions, and the
 // 8-bit decode table that PNG and glTF sRGB textures go through.
 #include "texture/image.h"
 
 #include <array>
 #include <cmath>
 
+#include "core/large_buffer.h"
+
 namespace quadra {
+
+Image::Image(int w, int h) : width(w), height(h) {
+  resizeLarge(rgba, std::size_t(w) * std::size_t(h) * 4, 0.0f);
+}
 
 namespace {
 

@@ -23,7 +23,7 @@ struct Image {
   std::vector<float> rgba;  // width * height * 4, row-major, linear (not sRGB)
 
   Image() = default;
-  Image(int w, int h) : width(w), height(h), rgba(std::size_t(w) * std::size_t(h) * 4, 0.0f) {}
+  Image(int w, int h);  // zero-filled
 
   float* texel(int x, int y) { return &rgba[(std::size_t(y) * std::size_t(width) + x) * 4]; }
   const float* texel(int x, int y) const {

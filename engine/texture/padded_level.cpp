@@ -4,16 +4,15 @@
 #include <algorithm>
 #include <cstddef>
 
+#include "core/large_buffer.h"
 #include "core/parallel.h"
 
 namespace quadra {
 
 PaddedLevel::PaddedLevel(const Image& image, TexelFormat format, const Executor* executor)
-    : texels(std::size_t(image.width + 1) * std::size_t(image.height) *
-             std::size_t(bytesPerTexel(format))),
-      width(image.width),
-      height(image.height),
-      stride(image.width + 1) {
+    : width(image.width), height(image.height), stride(image.width + 1) {
+  resizeLarge(texels,
+              std::size_t(stride) * std::size_t(height) * std::size_t(bytesPerTexel(format)));
   const std::size_t texelBytes = std::size_t(bytesPerTexel(format));
   const auto encodeRows = [&](std::size_t begin, std::size_t end) {
     for (std::size_t y = begin; y < end; ++y) {

@@ -414,7 +414,7 @@ class BlockDepthTest {
     // layers at one depth (orthographic scenes) hide each other's blocks.
     if (z_.dx != 0.0 || z_.dy != 0.0)
       margin_ =
-          std::ldexp(std::abs(z_.c) + kTileSize * (std::abs(z_.dx) + std::abs(z_.dy)), -20) + 1e-37;
+          (std::abs(z_.c) + kTileSize * (std::abs(z_.dx) + std::abs(z_.dy))) * 0x1p-20 + 1e-37;
   }
 
   // Whether the triangle fails the depth test at every sample of the block

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/large_buffer.h"
 #include "core/parallel.h"
 
 namespace quadra {
@@ -80,10 +81,10 @@ void transformVertices(const DrawGeometry& geometry, const Viewport& viewport,
                        const Executor& executor, TransformedVertices& out) {
   const std::size_t count = geometry.mesh->positions.size();
   out.stride = 4 + geometry.attributes.count;
-  out.data.resize(count * std::size_t(out.stride));
-  out.screen.resize(count);
-  out.subpixel.resize(count);
-  out.outcode.resize(count);
+  resizeLarge(out.data, count * std::size_t(out.stride));
+  resizeLarge(out.screen, count);
+  resizeLarge(out.subpixel, count);
+  resizeLarge(out.outcode, count);
   executor.parallelFor(count, 16384, [&](std::size_t begin, std::size_t end) {
     transformRange(geometry, viewport, begin, end, out);
   });
