@@ -859,6 +859,9 @@ TEST(GltfLoader, ImagesFromFilesDataUrisAnd16BitPngs) {
     EXPECT_EQ(decoded[c], b.texel(0, 0)[c]) << "channel " << c;
   }
 
+  // A PNG cut short names the image and what libpng found.
+  writeBytes(dir.file("deep texture.png"), deepPng.data(), deepPng.size() - 20);
+  expectError(path, "image 0 ('deep texture.png'): invalid or truncated PNG");
   fs::remove(dir.file("deep texture.png"));
   expectError(path, "deep texture.png");
 }

@@ -396,6 +396,11 @@ TEST_F(ImageFiles, ReadImageDecodesWrittenPng) {
 
 // ---- PNG in: files written with libpng's full API --------------------------
 
+std::string readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
 struct PngSpec {
   int width = 0;
   int height = 0;
@@ -514,6 +519,15 @@ void checkPngDecode(const std::string& path, const PngSpec& spec, unsigned seed)
           << path << " texel " << i << " channel " << c;
     }
   }
+  // The same bytes from memory (a glTF's images) decode to the same floats.
+  const std::string bytes = readBytes(path);
+  int bits = 0;
+  const Image fromMemory = decodePng(reinterpret_cast<const std::uint8_t*>(bytes.data()),
+                                     bytes.size(), "in memory", &bits);
+  EXPECT_EQ(bits, spec.bitDepth == 16 ? 16 : 8) << path;
+  ASSERT_EQ(fromMemory.width, image.width);
+  ASSERT_EQ(fromMemory.height, image.height);
+  EXPECT_TRUE(fromMemory.rgba == image.rgba) << path;
   // Images read from 8-bit codes keep every bit when stored as sRGB8 codes.
   if (spec.bitDepth > 8) return;
   for (int y = 0; y < spec.height; ++y) {
@@ -624,11 +638,6 @@ void writeBytes(const std::string& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
 }
 
-std::string readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 TEST_F(ImageFiles, ReadingBadFilesThrowsErrors) {
   expectErrorNaming([&] { readImage(file("absent.png")); }, file("absent.png"));
   expectErrorNaming([&] { readImage(dir_.string()); }, dir_.string());
@@ -654,6 +663,12 @@ TEST_F(ImageFiles, ReadingTruncatedFilesThrowsErrors) {
       const std::string path = file(name);
       writeBytes(path, bytes.substr(0, keep));
       expectErrorNaming([&] { readImage(path); }, path);
+      if (bytes[1] != 'P') continue;
+      expectErrorNaming(
+          [&] {
+            decodePng(reinterpret_cast<const std::uint8_t*>(bytes.data()), keep, "cut bytes");
+          },
+          "cut bytes");
     }
   }
 }

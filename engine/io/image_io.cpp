@@ -231,6 +231,7 @@ struct PngLayout {
   int bitDepth = 0;
   int channels = 0;
   std::size_t rowBytes = 0;
+  bool interlaced = false;
 };
 
 void pngErrorToMessage(png_structp png, png_const_charp text) {
@@ -241,12 +242,25 @@ void pngErrorToMessage(png_structp png, png_const_charp text) {
 
 void pngIgnoreWarning(png_structp, png_const_charp) {}
 
+// Bytes in memory as a libpng input (a glTF's embedded or stashed image).
+struct PngMemory {
+  const std::uint8_t* data;
+  std::size_t size;
+  std::size_t at;
+};
+
+void readPngMemory(png_structp png, png_bytep out, png_size_t count) {
+  auto* source = static_cast<PngMemory*>(png_get_io_ptr(png));
+  if (count > source->size - source->at) png_error(png, "unexpected end of data");
+  std::memcpy(out, source->data + source->at, count);
+  source->at += count;
+}
+
 // Reads the header and asks libpng for 8/16-bit grey or RGB, with or without
-// alpha (palettes and sub-byte depths expanded, grey widened to RGB).
-bool decodePngHeader(PngDecoder& d, std::FILE* file, PngLayout& layout) {
+// alpha (palettes and sub-byte depths expanded, grey widened to RGB). No
+// gamma or colour-profile chunk is applied: samples are the stored codes.
+bool decodePngHeader(PngDecoder& d, PngLayout& layout) {
   if (setjmp(png_jmpbuf(d.png))) return false;
-  png_init_io(d.png, file);
-  png_set_sig_bytes(d.png, 8);
   png_read_info(d.png, d.info);
   png_set_expand(d.png);
   png_set_gray_to_rgb(d.png);
@@ -257,25 +271,16 @@ bool decodePngHeader(PngDecoder& d, std::FILE* file, PngLayout& layout) {
   layout.bitDepth = png_get_bit_depth(d.png, d.info);
   layout.channels = png_get_channels(d.png, d.info);
   layout.rowBytes = png_get_rowbytes(d.png, d.info);
+  layout.interlaced = png_get_interlace_type(d.png, d.info) != PNG_INTERLACE_NONE;
   return true;
 }
 
-bool decodePngRows(PngDecoder& d, png_bytepp rows) {
-  if (setjmp(png_jmpbuf(d.png))) return false;
-  png_read_image(d.png, rows);
-  png_read_end(d.png, nullptr);
-  return true;
-}
-
-// Decoded samples (big-endian when 16-bit) -> linear float RGBA.
-void pngSamplesToLinear(const std::vector<png_byte>& samples, const PngLayout& layout,
-                        Image& image) {
+// One decoded row (big-endian when 16-bit) -> linear float RGBA.
+void pngRowToLinear(const png_byte* samples, const PngLayout& layout, float* out) {
   const bool wide = layout.bitDepth == 16;
   const float maxCode = wide ? 65535.0f : 255.0f;
-  const std::size_t count =
-      std::size_t(layout.width) * layout.height * std::size_t(layout.channels);
-  for (std::size_t s = 0, texel = 0; s < count; s += std::size_t(layout.channels), ++texel) {
-    float* out = &image.rgba[texel * 4];
+  const std::size_t count = std::size_t(layout.width) * std::size_t(layout.channels);
+  for (std::size_t s = 0; s < count; s += std::size_t(layout.channels), out += 4) {
     for (int c = 0; c < layout.channels; ++c) {
       const std::size_t at = (s + std::size_t(c)) * (wide ? 2 : 1);
       const unsigned code = wide ? (unsigned(samples[at]) << 8) | samples[at + 1] : samples[at];
@@ -290,6 +295,27 @@ void pngSamplesToLinear(const std::vector<png_byte>& samples, const PngLayout& l
   }
 }
 
+// Non-interlaced images go a row at a time through one row buffer, straight
+// into the Image: no whole-image buffer of codes.
+bool decodePngRowByRow(PngDecoder& d, const PngLayout& layout, png_bytep row, Image& image) {
+  if (setjmp(png_jmpbuf(d.png))) return false;
+  for (png_uint_32 y = 0; y < layout.height; ++y) {
+    png_read_row(d.png, row, nullptr);
+    pngRowToLinear(row, layout, image.texel(0, int(y)));
+  }
+  png_read_end(d.png, nullptr);
+  return true;
+}
+
+bool decodePngRows(PngDecoder& d, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(d.png))) return false;
+  png_read_image(d.png, rows);
+  png_read_end(d.png, nullptr);
+  return true;
+}
+
+// Decodes one PNG from a FILE positioned after its signature or from memory;
+// errors name `source` (a path, or what the caller calls the bytes).
 class PngReader {
  public:
   PngReader() {
@@ -303,23 +329,44 @@ class PngReader {
   PngReader& operator=(const PngReader&) = delete;
 
   Image read(std::FILE* file, const std::string& path) {
-    PngLayout layout;
-    if (!decodePngHeader(decoder_, file, layout)) throw failure(path);
-    if (std::int64_t(layout.width) * layout.height > kMaxImagePixels) {
-      throw makeError(path, tooLargeText(layout.width, layout.height));
-    }
-    std::vector<png_byte> samples(layout.rowBytes * layout.height);
-    std::vector<png_bytep> rows(layout.height);
-    for (png_uint_32 y = 0; y < layout.height; ++y) rows[y] = &samples[y * layout.rowBytes];
-    if (!decodePngRows(decoder_, rows.data())) throw failure(path);
-    Image image(static_cast<int>(layout.width), static_cast<int>(layout.height));
-    pngSamplesToLinear(samples, layout, image);
-    return image;
+    png_init_io(decoder_.png, file);
+    png_set_sig_bytes(decoder_.png, 8);
+    return decode(path, nullptr);
+  }
+
+  Image read(const std::uint8_t* data, std::size_t size, const std::string& source,
+             int* bitsPerChannel) {
+    PngMemory memory{data, size, 0};
+    png_set_read_fn(decoder_.png, &memory, readPngMemory);
+    return decode(source, bitsPerChannel);
   }
 
  private:
-  Error failure(const std::string& path) const {
-    return makeError(path, std::string("invalid or truncated PNG (") + decoder_.message + ")");
+  Image decode(const std::string& source, int* bitsPerChannel) {
+    PngLayout layout;
+    if (!decodePngHeader(decoder_, layout)) throw failure(source);
+    if (std::int64_t(layout.width) * layout.height > kMaxImagePixels) {
+      throw makeError(source, tooLargeText(layout.width, layout.height));
+    }
+    if (bitsPerChannel != nullptr) *bitsPerChannel = layout.bitDepth;
+    Image image(static_cast<int>(layout.width), static_cast<int>(layout.height));
+    if (!layout.interlaced) {
+      std::vector<png_byte> row(layout.rowBytes);
+      if (!decodePngRowByRow(decoder_, layout, row.data(), image)) throw failure(source);
+      return image;
+    }
+    std::vector<png_byte> samples;
+    resizeLarge(samples, layout.rowBytes * layout.height);
+    std::vector<png_bytep> rows(layout.height);
+    for (png_uint_32 y = 0; y < layout.height; ++y) rows[y] = &samples[y * layout.rowBytes];
+    if (!decodePngRows(decoder_, rows.data())) throw failure(source);
+    for (png_uint_32 y = 0; y < layout.height; ++y)
+      pngRowToLinear(rows[y], layout, image.texel(0, int(y)));
+    return image;
+  }
+
+  Error failure(const std::string& source) const {
+    return makeError(source, std::string("invalid or truncated PNG (") + decoder_.message + ")");
   }
   PngDecoder decoder_;
 };
@@ -401,6 +448,20 @@ struct FileCloser {
 };
 
 }  // namespace
+
+bool isPng(const std::uint8_t* data, std::size_t size) {
+  return size >= 8 && png_sig_cmp(data, 0, 8) == 0;
+}
+
+Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& source,
+                int* bitsPerChannel) {
+  if (!isPng(data, size)) throw makeError(source, "not a PNG image");
+  try {
+    return PngReader().read(data, size, source, bitsPerChannel);
+  } catch (const std::bad_alloc&) {
+    throw makeError(source, "out of memory while decoding PNG");
+  }
+}
 
 Image readImage(const std::string& path) {
   errno = 0;

@@ -3,6 +3,8 @@
 // temporary beside it and rename on success.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "io/frame.h"
@@ -21,5 +23,13 @@ void writeFrame(const Frame& frame, const std::string& path);
 // Reads a PNG (decoded from sRGB to linear; alpha stays linear) or an EXR
 // (already linear; missing channels: RGB 0, A 1) into linear float RGBA.
 Image readImage(const std::string& path);
+
+// Whether the bytes start with the PNG signature.
+bool isPng(const std::uint8_t* data, std::size_t size);
+// Decodes a PNG held in memory as readImage decodes a file (the same samples,
+// the same linear floats); bitsPerChannel, when given, receives the file's
+// depth after expansion (8 or 16). Throws Error("<source>: <problem>").
+Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& source,
+                int* bitsPerChannel = nullptr);
 
 }  // namespace quadra

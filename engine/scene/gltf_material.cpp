@@ -11,6 +11,7 @@
 #include <set>
 
 #include "core/parallel.h"
+#include "io/image_io.h"
 #include "scene/gltf_internal.h"
 #include "texture/texel_format.h"
 
@@ -234,6 +235,14 @@ bool encodedImageSize(const std::uint8_t* data, std::uint64_t size, std::uint32_
   return false;
 }
 
+// Half floats keep every step of an 8-bit sRGB source (texel_format.h) at
+// half the memory of float; a 16-bit source's steps need float. rgba8srgb
+// would halve the memory again, losslessly, but samples slower
+// (texel_format.h gives the measurements).
+TexelFormat storageFor(int bitsPerChannel) {
+  return bitsPerChannel == 8 ? TexelFormat::Rgba16F : TexelFormat::Rgba32F;
+}
+
 }  // namespace
 
 std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFormat& storage,
@@ -259,6 +268,20 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFor
     throw ref_.fail(what + " is " + std::to_string(width) + "x" + std::to_string(height) +
                     ", more than the limit of 2^28 texels (e.g. 16384x16384)");
   }
+  // PNG through libpng (the library that writes quadra's PNGs), a row at a
+  // time straight into the linear Image; other formats (JPEG) through the
+  // glTF library's stb_image, which makes two whole-image copies on the way.
+  if (isPng(bytes.data, std::size_t(bytes.size))) {
+    int bits = 8;
+    Image image;
+    try {
+      image = decodePng(bytes.data, std::size_t(bytes.size), what, &bits);
+    } catch (const Error& e) {
+      throw ref_.fail(e.what());
+    }
+    storage = storageFor(bits);
+    return std::make_shared<const Image>(std::move(image));
+  }
   tinygltf::Image decoded;
   std::string err, warn;
   // The library's own stb_image decoder, expanding to RGBA at 8 or 16 bits.
@@ -272,11 +295,7 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFor
                         decoded.image.size() == std::size_t(decoded.width) *
                                                     std::size_t(decoded.height) * 4 * bytesPerValue;
   if (!layoutOk) throw ref_.fail(what + " decoded to an unexpected pixel layout");
-  // Half floats keep every step of an 8-bit sRGB source (texel_format.h) at
-  // half the memory of float; a 16-bit source's steps need float. rgba8srgb
-  // would halve the memory again, losslessly, but samples slower
-  // (texel_format.h gives the measurements).
-  storage = decoded.bits == 8 ? TexelFormat::Rgba16F : TexelFormat::Rgba32F;
+  storage = storageFor(decoded.bits);
   return std::make_shared<const Image>(toLinear(decoded, executor));
 }
 
