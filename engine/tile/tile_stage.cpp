@@ -30,6 +30,16 @@ struct TileScratch {
   std::vector<std::uint16_t> groupList, pixelList;
 };
 
+// How far ahead the visibility pass fetches triangle records and planes.
+constexpr std::uint32_t kRecordLookahead = 8, kPlaneLookahead = 4;
+
+// Both ends of an object that may straddle two cache lines.
+template <class T>
+void prefetch(const T* object, std::size_t count = 1) {
+  __builtin_prefetch(object);
+  __builtin_prefetch(reinterpret_cast<const char*>(object + count) - 1);
+}
+
 void clearTile(TileBuffers& tile, const glm::vec4& clearColor, float clearDepth) {
   std::fill(std::begin(tile.depth), std::end(tile.depth), clearDepth);
   std::fill(std::begin(tile.visible), std::end(tile.visible), kNoTriangle);
@@ -69,8 +79,16 @@ void visibilityPass(int tileIndex, const std::vector<Draw>& draws,
   for (const FrontEndChunk& chunk : chunks) {
     const std::uint32_t begin = chunk.bins.tileStart[tileIndex];
     const std::uint32_t end = chunk.bins.tileStart[tileIndex + 1];
+    const std::uint32_t* index = chunk.bins.triangleIndex.data();
+    const TriangleRecord* records = chunk.setup.triangles.data();
     for (std::uint32_t i = begin; i < end; ++i) {
-      const TriangleRecord& t = chunk.setup.triangles[chunk.bins.triangleIndex[i]];
+      // A tile's triangles are scattered over the chunk's records: fetch the
+      // records a few triangles ahead and their planes a few less (measured:
+      // the record loads were half of this loop's time on dense meshes).
+      if (i + kRecordLookahead < end) prefetch(&records[index[i + kRecordLookahead]]);
+      if (i + kPlaneLookahead < end)
+        prefetch(&chunk.setup.planes[records[index[i + kPlaneLookahead]].firstPlane], 4);
+      const TriangleRecord& t = records[index[i]];
       const TileTriangle entry{&t, &chunk.setup.planes[t.firstPlane], t.draw};
       const ShadeState& shade = draws[t.draw].shade;
       if (!shade.twoPass || allForward) {
