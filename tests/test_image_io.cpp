@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/image_io.h"
 #include "io/srgb8.h"
 #include "texture/image.h"
@@ -399,6 +400,31 @@ TEST_F(ImageFiles, ReadImageDecodesWrittenPng) {
 std::string readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// The PNG's rows are compressed in bands in parallel: the bytes must not
+// depend on the threads, and libpng must read back every row (heights that
+// are and are not multiples of the band, down to one row).
+TEST_F(ImageFiles, PngBytesAreTheSameOnAnyThreadCount) {
+  const Executor two(2), three(3);
+  for (const auto& [width, height] : {std::pair{37, 101}, std::pair{5, 64}, std::pair{1, 1}}) {
+    const Frame frame = premultipliedFrame(width, height, unsigned(width + height));
+    writePng(frame, file("serial.png"));
+    writePng(frame, file("two.png"), &two);
+    writeFrame(frame, file("three.png"), &three);
+    const std::string serial = readBytes(file("serial.png"));
+    EXPECT_EQ(readBytes(file("two.png")), serial) << width << "x" << height;
+    EXPECT_EQ(readBytes(file("three.png")), serial) << width << "x" << height;
+    const Rgba8 png = readPngDirectly(file("two.png"));
+    ASSERT_EQ(png.width, width);
+    ASSERT_EQ(png.height, height);
+    for (std::size_t i = 0; i < frame.rgba.size(); i += 4) {
+      const double alpha = frame.rgba[i + 3];
+      for (int c = 0; c < 3; ++c)
+        ASSERT_LE(std::abs(int(png.bytes[i + c]) - expectedColourCode(frame.rgba[i + c], alpha)), 1)
+            << "texel " << i / 4;
+    }
+  }
 }
 
 struct PngSpec {

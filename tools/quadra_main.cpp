@@ -16,6 +16,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 #include "render_options.h"
@@ -174,8 +175,9 @@ int renderCommand(const std::vector<std::string>& args) {
     stages.push_back(stats.stages);
   }
   const auto writeStart = std::chrono::steady_clock::now();
+  const Executor writer(renderer.threadCount());
   for (const std::string& path : cmd.outputs) {
-    writeFrame(frame, path);
+    writeFrame(frame, path, &writer);
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);

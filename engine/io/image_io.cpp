@@ -6,6 +6,7 @@
 
 #include <png.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -29,6 +30,7 @@
 
 #include "core/error.h"
 #include "core/large_buffer.h"
+#include "core/parallel.h"
 #include "io/srgb8.h"
 #include "texture/texel_format.h"
 
@@ -158,58 +160,148 @@ void writeExr(const Frame& frame, const std::string& path) {
 
 namespace {
 
-// Premultiplied linear RGBA float -> straight sRGB 8-bit RGBA.
-std::vector<std::uint8_t> encodeSrgb8(const Frame& frame) {
+// Premultiplied linear RGBA float -> straight sRGB 8-bit RGBA, one row.
+void encodeSrgb8Row(const float* rgba, int width, std::uint8_t* out) {
   static const Srgb8Encoder srgb8;
-  std::vector<std::uint8_t> bytes;
-  resizeLarge(bytes, frame.rgba.size());
-  for (std::size_t i = 0; i < frame.rgba.size(); i += 4) {
-    const float* p = &frame.rgba[i];
-    const float alpha = p[3];
+  for (int x = 0; x < width; ++x, rgba += 4, out += 4) {
+    const float alpha = rgba[3];
     for (int c = 0; c < 3; ++c) {
-      const float straight = alpha > 0.0f ? p[c] / alpha : p[c];
-      bytes[i + std::size_t(c)] = srgb8(straight);
+      const float straight = alpha > 0.0f ? rgba[c] / alpha : rgba[c];
+      out[c] = srgb8(straight);
     }
     const float clamped = alpha > 0.0f ? std::min(alpha, 1.0f) : 0.0f;  // NaN -> 0
-    bytes[i + 3] = roundToUnorm8(clamped);
+    out[3] = roundToUnorm8(clamped);
   }
-  return bytes;
+}
+
+// The PNG's pixel data is one zlib stream; quadra cuts it into bands of rows,
+// each encoded and deflated on its own (a sync flush ends each band, so the
+// bands concatenate into one valid stream, as pigz does) and written as IDAT
+// chunks in order. Bands are fixed in rows, not in threads, so the bytes are
+// the same for any thread count. Filter None and zlib level 3 are what
+// libpng's fast simplified writer used before (PNG_IMAGE_FLAG_FAST).
+constexpr int kPngBandRows = 32;
+constexpr int kPngZlibLevel = 3;
+
+struct PngBand {
+  std::vector<std::uint8_t> deflated;
+  uLong adler = 0;  // of the band's filtered rows
+  std::size_t rawBytes = 0;
+  bool failed = false;
+};
+
+void deflateBand(const Frame& frame, int firstRow, int rows, bool last, PngBand& band) {
+  const std::size_t rowBytes = 1 + std::size_t(frame.width) * 4;  // filter byte, then RGBA
+  std::vector<std::uint8_t> raw(rowBytes * std::size_t(rows));
+  for (int y = 0; y < rows; ++y) {
+    std::uint8_t* row = &raw[std::size_t(y) * rowBytes];
+    row[0] = 0;  // filter type None
+    encodeSrgb8Row(&frame.rgba[std::size_t(firstRow + y) * std::size_t(frame.width) * 4],
+                   frame.width, row + 1);
+  }
+  band.rawBytes = raw.size();
+  band.adler = adler32(adler32(0, nullptr, 0), raw.data(), uInt(raw.size()));
+  z_stream z{};
+  // Raw deflate (no zlib header per band); the file carries one header.
+  if (deflateInit2(&z, kPngZlibLevel, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+    band.failed = true;
+    return;
+  }
+  band.deflated.resize(deflateBound(&z, uLong(raw.size())) + 64);
+  z.next_in = raw.data();
+  z.avail_in = uInt(raw.size());
+  z.next_out = band.deflated.data();
+  z.avail_out = uInt(band.deflated.size());
+  const int status = deflate(&z, last ? Z_FINISH : Z_SYNC_FLUSH);
+  band.failed =
+      z.avail_out == 0 || (last ? status != Z_STREAM_END : (status != Z_OK || z.avail_in != 0));
+  band.deflated.resize(band.deflated.size() - z.avail_out);
+  deflateEnd(&z);
+}
+
+void putBigEndian32(std::uint32_t value, std::uint8_t* out) {
+  for (int i = 0; i < 4; ++i) out[i] = std::uint8_t(value >> (24 - 8 * i));
+}
+
+// One chunk: length, type, data, CRC of type and data.
+bool writePngChunk(std::FILE* file, const char type[4], const std::uint8_t* data,
+                   std::size_t size) {
+  std::uint8_t head[8];
+  putBigEndian32(std::uint32_t(size), head);
+  std::memcpy(head + 4, type, 4);
+  uLong crc = crc32(crc32(0, nullptr, 0), head + 4, 4);
+  if (size > 0) crc = crc32(crc, data, uInt(size));
+  std::uint8_t tail[4];
+  putBigEndian32(std::uint32_t(crc), tail);
+  return std::fwrite(head, 1, 8, file) == 8 &&
+         (size == 0 || std::fwrite(data, 1, size, file) == size) &&
+         std::fwrite(tail, 1, 4, file) == 4;
 }
 
 }  // namespace
 
-void writePng(const Frame& frame, const std::string& path) {
+void writePng(const Frame& frame, const std::string& path, const Executor* executor) {
   checkFrame(frame, path, false);
-  const std::vector<std::uint8_t> bytes = encodeSrgb8(frame);
+  const int bands = (frame.height + kPngBandRows - 1) / kPngBandRows;
+  std::vector<PngBand> deflated(static_cast<std::size_t>(bands));
+  const auto deflateBands = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b) {
+      const int first = int(b) * kPngBandRows;
+      deflateBand(frame, first, std::min(kPngBandRows, frame.height - first),
+                  b + 1 == deflated.size(), deflated[b]);
+    }
+  };
+  if (executor)
+    executor->parallelFor(deflated.size(), 1, deflateBands);
+  else
+    deflateBands(0, deflated.size());
+  for (const PngBand& band : deflated)
+    if (band.failed) throw makeError(path, "cannot write PNG (zlib could not compress it)");
+
   TempFile temp(path);
   errno = 0;
   std::FILE* file = std::fopen(temp.path().c_str(), "wb");
   if (file == nullptr) {
     throw makeError(path, "cannot create file (" + errnoText(errno, "open failed") + ")");
   }
-  png_image image;
-  std::memset(&image, 0, sizeof(image));
-  image.version = PNG_IMAGE_VERSION;
-  image.width = png_uint_32(frame.width);
-  image.height = png_uint_32(frame.height);
-  image.format = PNG_FORMAT_RGBA;
-  image.flags = PNG_IMAGE_FLAG_FAST;
-  const int ok = png_image_write_to_stdio(&image, file, 0, bytes.data(), 0, nullptr);
-  const std::string message = ok ? "" : image.message;
-  png_image_free(&image);
+  static const std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  std::uint8_t header[13];
+  putBigEndian32(std::uint32_t(frame.width), header);
+  putBigEndian32(std::uint32_t(frame.height), header + 4);
+  header[8] = 8;                             // bits per sample
+  header[9] = 6;                             // RGBA
+  header[10] = header[11] = header[12] = 0;  // deflate, adaptive filtering, no interlace
+  bool ok = std::fwrite(kSignature, 1, 8, file) == 8 && writePngChunk(file, "IHDR", header, 13);
+  // The zlib stream: its header, the bands, then the Adler-32 of all rows.
+  uLong adler = adler32(0, nullptr, 0);
+  for (std::size_t b = 0; b < deflated.size() && ok; ++b) {
+    std::vector<std::uint8_t>& data = deflated[b].deflated;
+    adler = adler32_combine(adler, deflated[b].adler, z_off_t(deflated[b].rawBytes));
+    if (b == 0) data.insert(data.begin(), {0x78, 0x5E});  // deflate, 32 KiB window
+    if (b + 1 == deflated.size()) {
+      std::uint8_t check[4];
+      putBigEndian32(std::uint32_t(adler), check);
+      data.insert(data.end(), check, check + 4);
+    }
+    ok = writePngChunk(file, "IDAT", data.data(), data.size());
+  }
+  ok = ok && writePngChunk(file, "IEND", nullptr, 0);
+  const int writeError = errno;
   const bool closed = std::fclose(file) == 0;
   const int closeError = errno;
-  if (!ok) throw makeError(path, "cannot write PNG (" + message + ")");
+  if (!ok) {
+    throw makeError(path, "cannot write PNG (" + errnoText(writeError, "write failed") + ")");
+  }
   if (!closed) {
     throw makeError(path, "cannot write PNG (" + errnoText(closeError, "close failed") + ")");
   }
   temp.commit();
 }
 
-void writeFrame(const Frame& frame, const std::string& path) {
+void writeFrame(const Frame& frame, const std::string& path, const Executor* executor) {
   const std::string ext = lowerExtension(path);
   if (ext == ".exr") return writeExr(frame, path);
-  if (ext == ".png") return writePng(frame, path);
+  if (ext == ".png") return writePng(frame, path, executor);
   throw makeError(path, "unsupported output format (use .exr or .png)");
 }
 

@@ -12,13 +12,17 @@
 
 namespace quadra {
 
+class Executor;
+
 // EXR with half-free FLOAT channels R, G, B, A (premultiplied linear) and Z.
 // Throws Error("<path>: <problem>") on failure.
 void writeExr(const Frame& frame, const std::string& path);
-// PNG, 8-bit sRGB RGBA (colour un-premultiplied before encoding).
-void writePng(const Frame& frame, const std::string& path);
+// PNG, 8-bit sRGB RGBA (colour un-premultiplied before encoding), encoded
+// and compressed in bands of rows in parallel on `executor` when one is
+// given; the file's bytes are the same either way.
+void writePng(const Frame& frame, const std::string& path, const Executor* executor = nullptr);
 // Chooses the writer from the extension (.exr or .png, any case).
-void writeFrame(const Frame& frame, const std::string& path);
+void writeFrame(const Frame& frame, const std::string& path, const Executor* executor = nullptr);
 
 // Reads a PNG (decoded from sRGB to linear; alpha stays linear) or an EXR
 // (already linear; missing channels: RGB 0, A 1) into linear float RGBA.

@@ -17,6 +17,7 @@
 #include "api/renderer.h"
 #include "cli_options.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "gl_scene_renderer.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
@@ -125,8 +126,10 @@ int renderCommand(const std::vector<std::string>& args) {
   }
   Frame frame;
   renderer.lastFrame(frame);
+  // quadra's writer, on as many threads as llvmpipe had, as quadra's CLI does.
+  const Executor writer(threads);
   for (const std::string& path : cmd.outputs) {
-    writeFrame(frame, path);
+    writeFrame(frame, path, &writer);
     std::cout << "llvmpipe wrote " << path << "\n";
   }
   const FrameTimeSummary summary = summarizeFrameTimes(times);
