@@ -121,8 +121,8 @@ EdgeFunction makeEdge(const SetupVertex& p, const SetupVertex& q) {
   const bool topLeft = dy < 0 || (dy == 0 && dx > 0);
   const std::int64_t half = kSubpixelScale / 2;  // pixel centre offset
   EdgeFunction e;
-  e.a = -dy * kSubpixelScale;
-  e.b = dx * kSubpixelScale;
+  e.a = std::int32_t(-dy * kSubpixelScale);
+  e.b = std::int32_t(dx * kSubpixelScale);
   e.c = dx * (half - p.y) - dy * (half - p.x) + (topLeft ? 1 : 0);
   return e;
 }
@@ -178,7 +178,8 @@ struct PlaneSolver {
 void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const PixelBox& box,
               const SetupVertex& v0, const SetupVertex& v1In, const SetupVertex& v2In) {
   TriangleRecord t;
-  t.minX = box.minX, t.minY = box.minY, t.maxX = box.maxX, t.maxY = box.maxY;
+  t.minX = std::int16_t(box.minX), t.minY = std::int16_t(box.minY);
+  t.maxX = std::int16_t(box.maxX), t.maxY = std::int16_t(box.maxY);
   const SetupVertex* v1 = &v1In;
   const SetupVertex* v2 = &v2In;
   if (snapped.area() < 0) std::swap(v1, v2);

@@ -85,11 +85,11 @@ struct BlockEdges {
   explicit BlockEdges(const TriangleRecord& t) {
     const std::int64_t span = kBlockSize - 1;
     for (int e = 0; e < 3; ++e) {
-      const EdgeFunction& f = t.edges[e];
-      for (int c = 0; c < kBlockSize; ++c) column[e][c] = f.a * c;
-      rowStep[e] = f.b;
-      lowOffset[e] = std::min<std::int64_t>(0, f.a * span) + std::min<std::int64_t>(0, f.b * span);
-      highOffset[e] = std::max<std::int64_t>(0, f.a * span) + std::max<std::int64_t>(0, f.b * span);
+      const std::int64_t a = t.edges[e].a, b = t.edges[e].b;
+      for (int c = 0; c < kBlockSize; ++c) column[e][c] = a * c;
+      rowStep[e] = b;
+      lowOffset[e] = std::min<std::int64_t>(0, a * span) + std::min<std::int64_t>(0, b * span);
+      highOffset[e] = std::max<std::int64_t>(0, a * span) + std::max<std::int64_t>(0, b * span);
     }
   }
 };
@@ -155,17 +155,18 @@ struct LaneEdges {
 
   static bool fits(const TriangleRecord& t) {
     for (const EdgeFunction& f : t.edges)
-      if (std::abs(f.a) + std::abs(f.b) >= (std::int64_t(1) << 27)) return false;
+      if (std::abs(std::int64_t(f.a)) + std::abs(std::int64_t(f.b)) >= (std::int64_t(1) << 27))
+        return false;
     return true;
   }
 
   LaneEdges(const TriangleRecord& t, const LaneOffsets& lane) {
     const std::int64_t span = kBlockSize - 1;
     for (int e = 0; e < 3; ++e) {
-      const EdgeFunction& f = t.edges[e];
-      low[e] = std::min<std::int64_t>(0, f.a * span) + std::min<std::int64_t>(0, f.b * span);
-      high[e] = std::max<std::int64_t>(0, f.a * span) + std::max<std::int64_t>(0, f.b * span);
-      a[e] = std::int32_t(f.a), b[e] = std::int32_t(f.b);
+      const std::int64_t fa = t.edges[e].a, fb = t.edges[e].b;
+      low[e] = std::min<std::int64_t>(0, fa * span) + std::min<std::int64_t>(0, fb * span);
+      high[e] = std::max<std::int64_t>(0, fa * span) + std::max<std::int64_t>(0, fb * span);
+      a[e] = t.edges[e].a, b[e] = t.edges[e].b;
       offset[e] = I(a[e]) * lane.xi + I(b[e]) * lane.yi;
     }
   }
