@@ -16,6 +16,7 @@
 // comfortably inside int64, so coverage is decided exactly.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 namespace quadra {
@@ -65,7 +66,22 @@ struct ScreenVertex {
 void guardBand(const Viewport& viewport, double& guardX, double& guardY);
 
 // Window position of a clip-space point (w > 0); the one projection the vertex
-// stage and setup (for clipped vertices) share.
-ScreenVertex projectToWindow(double x, double y, double z, double w, const Viewport& viewport);
+// stage and setup (for clipped vertices) share. Inline: out of line, each
+// vertex waited on the division through a call and a returned struct (a
+// sixth of the vertex stage).
+inline ScreenVertex projectToWindow(double x, double y, double z, double w,
+                                    const Viewport& viewport) {
+  const double invW = 1.0 / w;
+  // A vertex the clip put on a guard plane may round a hair beyond it; the
+  // clamp (to the guard band plus a pixel, far outside any pixel centre)
+  // keeps the fixed-point range proof and the integer snap valid for any w.
+  const auto window = [](double ndc, int size) {
+    const double limit = kGuardBandPixels + 1.0;
+    return std::clamp((ndc + 1.0) * 0.5 * size, -limit, size + limit);
+  };
+  const double xw = window(x * invW, viewport.width);
+  const double yw = window(-y * invW, viewport.height);
+  return {xw, yw, z * invW, invW};
+}
 
 }  // namespace quadra
