@@ -80,8 +80,10 @@ struct PixelBox {
 
 // Most triangles of a dense mesh end here, so it reads only the snapped
 // positions and writes nothing but the small box (a TriangleRecord
-// zero-filled per triangle cost a tenth of setup).
-Cull cullSnapped(const SetupContext& ctx, const SnappedTriangle& t, PixelBox& box) {
+// zero-filled per triangle cost a tenth of setup). Forced inline, as is
+// kept(): a call per triangle cost dense-mesh 2% of its frame.
+[[gnu::always_inline]] inline Cull cullSnapped(const SetupContext& ctx, const SnappedTriangle& t,
+                                               PixelBox& box) {
   const std::int64_t area = t.area();
   if (area == 0) return Cull::Degenerate;
   // glTF front faces are counter-clockwise with y up, so negative area here.
@@ -96,7 +98,7 @@ Cull cullSnapped(const SetupContext& ctx, const SnappedTriangle& t, PixelBox& bo
 }
 
 // Counts a culled triangle; true when it is kept.
-bool kept(Cull cull, SetupCounters& n) {
+[[gnu::always_inline]] inline bool kept(Cull cull, SetupCounters& n) {
   switch (cull) {
     case Cull::Degenerate:
       ++n.degenerate;
