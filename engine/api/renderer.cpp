@@ -264,9 +264,9 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   // Tile stage and resolve.
   out.width = settings.width;
   out.height = settings.height;
-  resizeLarge(out.rgba, std::size_t(out.width) * std::size_t(out.height) * 4);
-  resizeLarge(out.depth,
-              settings.frameDepth ? std::size_t(out.width) * std::size_t(out.height) : 0);
+  const std::size_t pixels = std::size_t(out.width) * std::size_t(out.height);
+  resizeLarge(out.rgba, pixels * 4, 0.0f, &executor);
+  resizeLarge(out.depth, settings.frameDepth ? pixels : 0, 0.0f, &executor);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
   renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out,
               impl_->tileTimes);

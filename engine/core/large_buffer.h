@@ -20,18 +20,22 @@
 
 namespace quadra {
 
-// Maps the whole pages of [data, data + bytes) for writing, now; a hint, so
-// failure is ignored. Below a megabyte it does nothing (a syscall costs more
-// than the faults it saves).
-void mapForWriting(void* data, std::size_t bytes);
+class Executor;
+
+// Maps the whole pages of [data, data + bytes) for writing, now, in pieces
+// on `executor`'s threads when one is given (the kernel zeroes every page,
+// so the threads share that work); a hint, so failure is ignored. Below a
+// megabyte it does nothing (a syscall costs more than the faults it saves).
+void mapForWriting(void* data, std::size_t bytes, const Executor* executor = nullptr);
 
 // v.resize(count, value), with new storage mapped before it is touched.
 template <class T>
-void resizeLarge(std::vector<T>& v, std::size_t count, const T& value = T()) {
+void resizeLarge(std::vector<T>& v, std::size_t count, const T& value = T(),
+                 const Executor* executor = nullptr) {
   if (count > v.capacity()) {
     std::vector<T> fresh;
     fresh.reserve(count);
-    mapForWriting(fresh.data(), count * sizeof(T));
+    mapForWriting(fresh.data(), count * sizeof(T), executor);
     fresh.assign(v.begin(), v.end());
     v.swap(fresh);
   }

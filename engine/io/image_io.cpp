@@ -423,25 +423,25 @@ class PngReader {
   Image read(std::FILE* file, const std::string& path) {
     png_init_io(decoder_.png, file);
     png_set_sig_bytes(decoder_.png, 8);
-    return decode(path, nullptr);
+    return decode(path, nullptr, nullptr);
   }
 
   Image read(const std::uint8_t* data, std::size_t size, const std::string& source,
-             int* bitsPerChannel) {
+             int* bitsPerChannel, const Executor* executor) {
     PngMemory memory{data, size, 0};
     png_set_read_fn(decoder_.png, &memory, readPngMemory);
-    return decode(source, bitsPerChannel);
+    return decode(source, bitsPerChannel, executor);
   }
 
  private:
-  Image decode(const std::string& source, int* bitsPerChannel) {
+  Image decode(const std::string& source, int* bitsPerChannel, const Executor* executor) {
     PngLayout layout;
     if (!decodePngHeader(decoder_, layout)) throw failure(source);
     if (std::int64_t(layout.width) * layout.height > kMaxImagePixels) {
       throw makeError(source, tooLargeText(layout.width, layout.height));
     }
     if (bitsPerChannel != nullptr) *bitsPerChannel = layout.bitDepth;
-    Image image(static_cast<int>(layout.width), static_cast<int>(layout.height));
+    Image image(static_cast<int>(layout.width), static_cast<int>(layout.height), executor);
     if (!layout.interlaced) {
       std::vector<png_byte> row(layout.rowBytes);
       if (!decodePngRowByRow(decoder_, layout, row.data(), image)) throw failure(source);
@@ -546,10 +546,10 @@ bool isPng(const std::uint8_t* data, std::size_t size) {
 }
 
 Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& source,
-                int* bitsPerChannel) {
+                int* bitsPerChannel, const Executor* executor) {
   if (!isPng(data, size)) throw makeError(source, "not a PNG image");
   try {
-    return PngReader().read(data, size, source, bitsPerChannel);
+    return PngReader().read(data, size, source, bitsPerChannel, executor);
   } catch (const std::bad_alloc&) {
     throw makeError(source, "out of memory while decoding PNG");
   }

@@ -32,8 +32,9 @@ Image readImage(const std::string& path);
 bool isPng(const std::uint8_t* data, std::size_t size);
 // Decodes a PNG held in memory as readImage decodes a file (the same samples,
 // the same linear floats); bitsPerChannel, when given, receives the file's
-// depth after expansion (8 or 16). Throws Error("<source>: <problem>").
+// depth after expansion (8 or 16); the image's memory is mapped on
+// `executor`'s threads when one is given. Throws Error("<source>: <problem>").
 Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& source,
-                int* bitsPerChannel = nullptr);
+                int* bitsPerChannel = nullptr, const Executor* executor = nullptr);
 
 }  // namespace quadra

@@ -275,7 +275,7 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFor
     int bits = 8;
     Image image;
     try {
-      image = decodePng(bytes.data, std::size_t(bytes.size), what, &bits);
+      image = decodePng(bytes.data, std::size_t(bytes.size), what, &bits, &executor);
     } catch (const Error& e) {
       throw ref_.fail(e.what());
     }

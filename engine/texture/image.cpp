@@ -10,8 +10,8 @@
 
 namespace quadra {
 
-Image::Image(int w, int h) : width(w), height(h) {
-  resizeLarge(rgba, std::size_t(w) * std::size_t(h) * 4, 0.0f);
+Image::Image(int w, int h, const Executor* executor) : width(w), height(h) {
+  resizeLarge(rgba, std::size_t(w) * std::size_t(h) * 4, 0.0f, executor);
 }
 
 namespace {

@@ -9,6 +9,8 @@
 
 namespace quadra {
 
+class Executor;
+
 // The largest image quadra reads or samples: 2^28 texels, a 16384^2 texture.
 // Memory at that size: 4 GiB as the float Image, and as sampled storage with
 // its mip chain (4/3 of level 0, padding aside) 5.3 GiB in rgba32f, 2.7 GiB in
@@ -23,7 +25,9 @@ struct Image {
   std::vector<float> rgba;  // width * height * 4, row-major, linear (not sRGB)
 
   Image() = default;
-  Image(int w, int h);  // zero-filled
+  // Zero-filled; the memory is mapped on `executor`'s threads when one is
+  // given (core/large_buffer.h).
+  Image(int w, int h, const Executor* executor = nullptr);
 
   float* texel(int x, int y) { return &rgba[(std::size_t(y) * std::size_t(width) + x) * 4]; }
   const float* texel(int x, int y) const {

@@ -83,7 +83,7 @@ Image downsampleBox(const Image& src, int dstW, int dstH, const Executor* execut
   QUADRA_CHECK_OP(src.rgba.size(), ==, std::size_t(src.width) * std::size_t(src.height) * 4);
   const AxisTaps xTaps = boxTaps(src.width, dstW);
   const AxisTaps yTaps = boxTaps(src.height, dstH);
-  Image dst(dstW, dstH);
+  Image dst(dstW, dstH, executor);
   const auto body = [&](std::size_t begin, std::size_t end) {
     reduceRows(src, xTaps, yTaps, dst, begin, end);
   };

@@ -12,7 +12,8 @@ namespace quadra {
 PaddedLevel::PaddedLevel(const Image& image, TexelFormat format, const Executor* executor)
     : width(image.width), height(image.height), stride(image.width + 1) {
   resizeLarge(texels,
-              std::size_t(stride) * std::size_t(height) * std::size_t(bytesPerTexel(format)));
+              std::size_t(stride) * std::size_t(height) * std::size_t(bytesPerTexel(format)),
+              std::uint8_t(0), executor);
   const std::size_t texelBytes = std::size_t(bytesPerTexel(format));
   const auto encodeRows = [&](std::size_t begin, std::size_t end) {
     for (std::size_t y = begin; y < end; ++y) {

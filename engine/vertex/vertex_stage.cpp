@@ -81,10 +81,10 @@ void transformVertices(const DrawGeometry& geometry, const Viewport& viewport,
                        const Executor& executor, TransformedVertices& out) {
   const std::size_t count = geometry.mesh->positions.size();
   out.stride = 4 + geometry.attributes.count;
-  resizeLarge(out.data, count * std::size_t(out.stride));
-  resizeLarge(out.screen, count);
-  resizeLarge(out.subpixel, count);
-  resizeLarge(out.outcode, count);
+  resizeLarge(out.data, count * std::size_t(out.stride), 0.0f, &executor);
+  resizeLarge(out.screen, count, ScreenVertex{}, &executor);
+  resizeLarge(out.subpixel, count, SubpixelPosition{}, &executor);
+  resizeLarge(out.outcode, count, std::uint8_t(0), &executor);
   executor.parallelFor(count, 16384, [&](std::size_t begin, std::size_t end) {
     transformRange(geometry, viewport, begin, end, out);
   });
