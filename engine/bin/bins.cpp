@@ -1,6 +1,8 @@
-// Binning by bounding box in two passes (count, then fill), so each chunk's
-// bins are two flat arrays rather than a vector per tile.
+// Binning by bounding box and edges in two passes (count, then fill), so each
+// chunk's bins are two flat arrays rather than a vector per tile.
 #include "bin/bins.h"
+
+#include <algorithm>
 
 #include "window/window_space.h"
 
@@ -15,13 +17,43 @@ TileGrid TileGrid::forViewport(int width, int height) {
   return g;
 }
 
+namespace {
+
+// Whether some pixel centre of the rectangle [x0, x1] x [y0, y1] (inclusive
+// pixel indices) may lie inside all three edges: each edge's largest value
+// over the rectangle, at the corner its steps point to, must be positive.
+// Exact (64-bit edge functions), and conservative: a rectangle that passes
+// may still hold no covered centre, one that fails holds none.
+bool mayCover(const TriangleRecord& t, int x0, int y0, int x1, int y1) {
+  for (const EdgeFunction& e : t.edges) {
+    const int x = e.a > 0 ? x1 : x0, y = e.b > 0 ? y1 : y0;
+    if (e.at(x, y) <= 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// A triangle goes to the tiles its bounding box overlaps, except, when the
+// box spans several tiles both ways, those its edges leave empty: a thin
+// diagonal triangle is listed along its length, not in every tile of its box.
 void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid,
                   TileBins& out) {
   out.tileStart.assign(std::size_t(grid.tileCount()) + 1, 0);
   auto forEachTile = [&](const TriangleRecord& t, auto&& visit) {
-    for (int ty = t.minY / kTileSize; ty <= t.maxY / kTileSize; ++ty)
-      for (int tx = t.minX / kTileSize; tx <= t.maxX / kTileSize; ++tx)
+    const int tx0 = t.minX / kTileSize, tx1 = t.maxX / kTileSize;
+    const int ty0 = t.minY / kTileSize, ty1 = t.maxY / kTileSize;
+    const bool edgeTested = tx1 > tx0 && ty1 > ty0;
+    for (int ty = ty0; ty <= ty1; ++ty) {
+      const int y0 = std::max<int>(ty * kTileSize, t.minY);
+      const int y1 = std::min<int>(ty * kTileSize + kTileSize - 1, t.maxY);
+      for (int tx = tx0; tx <= tx1; ++tx) {
+        const int x0 = std::max<int>(tx * kTileSize, t.minX);
+        const int x1 = std::min<int>(tx * kTileSize + kTileSize - 1, t.maxX);
+        if (edgeTested && !mayCover(t, x0, y0, x1, y1)) continue;
         visit(ty * grid.tilesX + tx);
+      }
+    }
   };
   for (const TriangleRecord& t : triangles)
     forEachTile(t, [&](int tile) { ++out.tileStart[tile + 1]; });
