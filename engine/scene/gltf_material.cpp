@@ -212,8 +212,7 @@ std::uint32_t bigEndian(const std::uint8_t* p, int bytes) {
 // when the header is not one of those (the decoder then reports the error).
 bool encodedImageSize(const std::uint8_t* data, std::uint64_t size, std::uint32_t& width,
                       std::uint32_t& height) {
-  static const std::uint8_t kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  if (size >= 24 && std::memcmp(data, kPng, 8) == 0 && std::memcmp(data + 12, "IHDR", 4) == 0) {
+  if (size >= 24 && isPng(data, std::size_t(size)) && std::memcmp(data + 12, "IHDR", 4) == 0) {
     width = bigEndian(data + 16, 4);
     height = bigEndian(data + 20, 4);
     return true;

@@ -41,10 +41,13 @@ struct SetupContext {
   SetupOutput& out;
 };
 
+// `snapped`: s's window position snapped (the vertex stage's, or snapped here
+// for a clipped vertex).
 template <class T>
-SetupVertex makeSetupVertex(const ScreenVertex& s, const T* attributes, int count) {
+SetupVertex makeSetupVertex(const ScreenVertex& s, SubpixelPosition snapped, const T* attributes,
+                            int count) {
   SetupVertex v;  // attr[count..] stay unset: nothing reads them
-  v.x = snapToSubpixel(s.windowX), v.y = snapToSubpixel(s.windowY);
+  v.x = snapped.x, v.y = snapped.y;
   v.windowX = s.windowX, v.windowY = s.windowY, v.z = s.z, v.invW = s.invW;
   for (int k = 0; k < count; ++k) v.attr[k] = double(attributes[k]) * s.invW;
   return v;
@@ -236,7 +239,8 @@ void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats)
   SetupVertex fan[kMaxClipPolygon];
   for (int i = 0; i < polygon.count; ++i) {
     const double* c = polygon.vertices[i].v;
-    fan[i] = makeSetupVertex(projectToWindow(c[0], c[1], c[2], c[3], ctx.viewport), c + 4,
+    const ScreenVertex projected = projectToWindow(c[0], c[1], c[2], c[3], ctx.viewport);
+    fan[i] = makeSetupVertex(projected, snapToSubpixel(projected.windowX, projected.windowY), c + 4,
                              ctx.attributeCount);
   }
   // The fan's pieces count as drawn (or culled) separately.
@@ -277,9 +281,9 @@ void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& ver
     if (!kept(cullSnapped(ctx, snapped, box), out.counters)) continue;
     const int count = ctx.attributeCount;
     emitKept(ctx, snapped, box,
-             makeSetupVertex(vertices.screen[i0], vertices.vertex(i0) + 4, count),
-             makeSetupVertex(vertices.screen[i1], vertices.vertex(i1) + 4, count),
-             makeSetupVertex(vertices.screen[i2], vertices.vertex(i2) + 4, count));
+             makeSetupVertex(vertices.screen[i0], p0, vertices.vertex(i0) + 4, count),
+             makeSetupVertex(vertices.screen[i1], p1, vertices.vertex(i1) + 4, count),
+             makeSetupVertex(vertices.screen[i2], p2, vertices.vertex(i2) + 4, count));
   }
 }
 

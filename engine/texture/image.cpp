@@ -1,6 +1,6 @@
 // Image storage, the sRGB transfer function (IEC 61966-2-1) in both
-// directions, and the
-// 8-bit decode table that PNG and glTF sRGB textures go through.
+// directions, and the 8-bit decode table that PNG and glTF sRGB textures go
+// through.
 #include "texture/image.h"
 
 #include <array>

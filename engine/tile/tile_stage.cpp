@@ -33,11 +33,10 @@ struct TileScratch {
 // How far ahead the visibility pass fetches triangle records and planes.
 constexpr std::uint32_t kRecordLookahead = 8, kPlaneLookahead = 4;
 
-// Both ends of an object that may straddle two cache lines.
-template <class T>
-void prefetch(const T* object, std::size_t count = 1) {
-  __builtin_prefetch(object);
-  __builtin_prefetch(reinterpret_cast<const char*>(object + count) - 1);
+// Both ends of a run of bytes that may straddle two cache lines.
+void prefetch(const void* begin, std::size_t bytes) {
+  __builtin_prefetch(begin);
+  __builtin_prefetch(static_cast<const char*>(begin) + bytes - 1);
 }
 
 void clearTile(TileBuffers& tile, const glm::vec4& clearColor, float clearDepth) {
@@ -85,9 +84,12 @@ void visibilityPass(int tileIndex, const std::vector<Draw>& draws,
       // A tile's triangles are scattered over the chunk's records: fetch the
       // records a few triangles ahead and their planes a few less (measured:
       // the record loads were half of this loop's time on dense meshes).
-      if (i + kRecordLookahead < end) prefetch(&records[index[i + kRecordLookahead]]);
+      // A record is one cache line; a triangle's planes (z, 1/w, attributes)
+      // may span two.
+      if (i + kRecordLookahead < end) __builtin_prefetch(&records[index[i + kRecordLookahead]]);
       if (i + kPlaneLookahead < end)
-        prefetch(&chunk.setup.planes[records[index[i + kPlaneLookahead]].firstPlane], 4);
+        prefetch(&chunk.setup.planes[records[index[i + kPlaneLookahead]].firstPlane],
+                 4 * sizeof(Plane));
       const TriangleRecord& t = records[index[i]];
       const TileTriangle entry{&t, &chunk.setup.planes[t.firstPlane], t.draw};
       const ShadeState& shade = draws[t.draw].shade;

@@ -69,8 +69,7 @@ void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t
     if (!(code & (kNeedsClipping | kNotFinite))) {
       const ScreenVertex s = projectToWindow(v[0], v[1], v[2], v[3], viewport);
       out.screen[i] = s;
-      out.subpixel[i] = {std::int32_t(snapToSubpixel(s.windowX)),
-                         std::int32_t(snapToSubpixel(s.windowY))};
+      out.subpixel[i] = snapToSubpixel(s.windowX, s.windowY);
     }
   }
 }

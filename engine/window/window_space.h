@@ -48,6 +48,11 @@ struct SubpixelPosition {
   std::int32_t x = 0, y = 0;
 };
 
+// A window position within the guard band, both coordinates snapped.
+inline SubpixelPosition snapToSubpixel(double windowX, double windowY) {
+  return {std::int32_t(snapToSubpixel(windowX)), std::int32_t(snapToSubpixel(windowY))};
+}
+
 struct Viewport {
   int width = 0;
   int height = 0;
