@@ -118,17 +118,18 @@ struct PixelBox {
   return true;
 }
 
-// Edge from p to q of a triangle with positive area (in y-down window space,
-// i.e. clockwise on screen). Inside is E > 0; ties go to top and left edges
-// (D3D): a top edge runs exactly horizontally to the right, a left edge upward.
-EdgeFunction makeEdge(const SetupVertex& p, const SetupVertex& q) {
-  const std::int64_t dx = q.x - p.x, dy = q.y - p.y;
+// Edge from vertex p to vertex q of a triangle with positive area (in y-down
+// window space, i.e. clockwise on screen). Inside is E > 0; ties go to top and
+// left edges (D3D): a top edge runs exactly horizontally to the right, a left
+// edge upward.
+EdgeFunction makeEdge(const SnappedTriangle& s, int p, int q) {
+  const std::int64_t dx = s.x[q] - s.x[p], dy = s.y[q] - s.y[p];
   const bool topLeft = dy < 0 || (dy == 0 && dx > 0);
   const std::int64_t half = kSubpixelScale / 2;  // pixel centre offset
   EdgeFunction e;
   e.a = std::int32_t(-dy * kSubpixelScale);
   e.b = std::int32_t(dx * kSubpixelScale);
-  e.c = dx * (half - p.y) - dy * (half - p.x) + (topLeft ? 1 : 0);
+  e.c = dx * (half - s.y[p]) - dy * (half - s.x[p]) + (topLeft ? 1 : 0);
   return e;
 }
 
@@ -179,19 +180,21 @@ struct PlaneSolver {
 };
 
 // Emits a triangle that passed cullSnapped (snapped holds its vertices'
-// snapped positions, box what cullSnapped found).
+// snapped positions, box what cullSnapped found). vertexOf(i) makes the setup
+// vertex of corner i; it is called only once the snapped edges show the
+// triangle covers a pixel centre, so the triangles dropped between pixel
+// centres never touch their attributes.
+template <class VertexOf>
 void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const PixelBox& box,
-              const SetupVertex& v0, const SetupVertex& v1In, const SetupVertex& v2In) {
+              const VertexOf& vertexOf) {
   TriangleRecord t;
   t.minX = std::int16_t(box.minX), t.minY = std::int16_t(box.minY);
   t.maxX = std::int16_t(box.maxX), t.maxY = std::int16_t(box.maxY);
-  const SetupVertex* v1 = &v1In;
-  const SetupVertex* v2 = &v2In;
-  if (snapped.area() < 0) std::swap(v1, v2);
-  const SetupVertex* const v[3] = {&v0, v1, v2};
-  t.edges[0] = makeEdge(*v[1], *v[2]);
-  t.edges[1] = makeEdge(*v[2], *v[0]);
-  t.edges[2] = makeEdge(*v[0], *v[1]);
+  int corner[3] = {0, 1, 2};
+  if (snapped.area() < 0) std::swap(corner[1], corner[2]);
+  t.edges[0] = makeEdge(snapped, corner[1], corner[2]);
+  t.edges[1] = makeEdge(snapped, corner[2], corner[0]);
+  t.edges[2] = makeEdge(snapped, corner[0], corner[1]);
   if (!coversAPixelCentre(t)) {
     ++ctx.out.counters.outside;
     return;
@@ -199,13 +202,15 @@ void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const Pix
   t.draw = ctx.drawIndex;
   t.firstPlane = std::uint32_t(ctx.out.planes.size());
 
+  const SetupVertex v0 = vertexOf(corner[0]), v1 = vertexOf(corner[1]), v2 = vertexOf(corner[2]);
+  const SetupVertex* const v[3] = {&v0, &v1, &v2};
   const PlaneSolver solver(v);
   const auto plane = [&](double f0, double f1, double f2) {
     ctx.out.planes.push_back(solver.solve(f0, f1, f2, t.minX, t.minY));
   };
-  plane(v[0]->z, v[1]->z, v[2]->z);
-  plane(v[0]->invW, v[1]->invW, v[2]->invW);
-  for (int k = 0; k < ctx.attributeCount; ++k) plane(v[0]->attr[k], v[1]->attr[k], v[2]->attr[k]);
+  plane(v0.z, v1.z, v2.z);
+  plane(v0.invW, v1.invW, v2.invW);
+  for (int k = 0; k < ctx.attributeCount; ++k) plane(v0.attr[k], v1.attr[k], v2.attr[k]);
   ctx.out.triangles.push_back(t);
   ++ctx.out.counters.drawn;
 }
@@ -214,8 +219,9 @@ void emitTriangle(const SetupContext& ctx, const SetupVertex& v0, const SetupVer
                   const SetupVertex& v2) {
   const SnappedTriangle snapped{{v0.x, v1.x, v2.x}, {v0.y, v1.y, v2.y}};
   PixelBox box;
+  const SetupVertex* const v[3] = {&v0, &v1, &v2};
   if (kept(cullSnapped(ctx, snapped, box), ctx.out.counters))
-    emitKept(ctx, snapped, box, v0, v1, v2);
+    emitKept(ctx, snapped, box, [&](int i) { return *v[i]; });
 }
 
 // Clips a triangle that leaves near/far or the guard band and emits its fan.
@@ -279,11 +285,12 @@ void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& ver
     const SnappedTriangle snapped{{p0.x, p1.x, p2.x}, {p0.y, p1.y, p2.y}};
     PixelBox box;
     if (!kept(cullSnapped(ctx, snapped, box), out.counters)) continue;
-    const int count = ctx.attributeCount;
-    emitKept(ctx, snapped, box,
-             makeSetupVertex(vertices.screen[i0], p0, vertices.vertex(i0) + 4, count),
-             makeSetupVertex(vertices.screen[i1], p1, vertices.vertex(i1) + 4, count),
-             makeSetupVertex(vertices.screen[i2], p2, vertices.vertex(i2) + 4, count));
+    const std::uint32_t index[3] = {i0, i1, i2};
+    const SubpixelPosition position[3] = {p0, p1, p2};
+    emitKept(ctx, snapped, box, [&](int i) {
+      return makeSetupVertex(vertices.screen[index[i]], position[i], vertices.vertex(index[i]) + 4,
+                             ctx.attributeCount);
+    });
   }
 }
 
