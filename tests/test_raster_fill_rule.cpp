@@ -206,6 +206,27 @@ TEST(RasterFillRule, RandomTrianglesMatchReference) {
   expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
 }
 
+// Triangles far larger than the viewport whose one edge ends inside a tile,
+// at and between pixel centres and one grid unit either side of a centre:
+// the tile stage drops the edges that hold over a whole tile, so the lanes
+// just past that edge (in a group the walk visits) must still be tested.
+TEST(RasterFillRule, EdgesEndingInsideCoveredTilesMatchReference) {
+  const double unit = 1.0 / 256;
+  std::vector<WindowTriangle> triangles;
+  const double ends[] = {37.3, 64.5, 70.5 + unit, 101.5 - unit, 130.0, 191.75, 250.5};
+  for (double end : ends) {
+    // Vertical right edge, vertical left edge, horizontal bottom, horizontal top.
+    triangles.push_back({{{end, -2000.0}, {end, 2000.0}, {-3000.0, 128.0}}});
+    triangles.push_back({{{end, 2000.0}, {end, -2000.0}, {3000.0, 128.0}}});
+    triangles.push_back({{{-2000.0, end}, {2000.0, end}, {128.0, -3000.0}}});
+    triangles.push_back({{{2000.0, end}, {-2000.0, end}, {128.0, 3000.0}}});
+  }
+  // And slanted edges across tiles that the other two edges cover whole.
+  triangles.push_back({{{-1000.0, -900.0}, {3000.0, 200.3}, {-1000.0, 3000.0}}});
+  triangles.push_back({{{3000.0, -1000.0}, {3000.0, 3000.0}, {-100.0, 3000.0}}});
+  expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
+}
+
 // Needles one grid unit wide that run along rows and columns of pixel centres
 // and across many tiles, at shallow and steep slopes.
 TEST(RasterFillRule, SliversMatchReference) {

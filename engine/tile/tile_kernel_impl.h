@@ -177,10 +177,12 @@ struct LaneEdges {
 class BlockLaneCoverage {
  public:
   // False when the block lies outside an edge. (px, py): the block's top-left
-  // pixel in the window.
-  bool start(const TriangleRecord& t, const LaneEdges& edges, int px, int py) {
+  // pixel in the window. Only the edges in `tested` (bit e: edge e) are
+  // evaluated: the others hold over the whole tile.
+  bool start(const TriangleRecord& t, const LaneEdges& edges, unsigned tested, int px, int py) {
     crossing_ = 0;
     for (int e = 0; e < 3; ++e) {
+      if (!(tested >> e & 1u)) continue;
       const std::int64_t corner = t.edges[e].at(px, py);
       if (corner + edges.high[e] <= 0) return false;
       if (corner + edges.low[e] > 0) continue;  // inside over the whole block
@@ -498,12 +500,25 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
   const int byFirst = yBegin & ~(kBlockSize - 1), bxFirst = xBegin & ~(kBlockSize - 1);
   if (LaneEdges::fits(t)) {
     const LaneEdges edges(t, lane);
+    // An edge positive at the four corners of the lanes the walk can visit
+    // (the triangle's part of the tile, widened to whole groups) is positive
+    // at every one of them (E is linear): its blocks skip it, and a triangle
+    // that covers the tile there tests no edge at all.
+    const int x0 = tile.originX + xBegin / kGroupWidth * kGroupWidth;
+    const int x1 = tile.originX + (xEnd + kGroupWidth - 1) / kGroupWidth * kGroupWidth - 1;
+    const int y0 = tile.originY + (yBegin & ~1), y1 = tile.originY + ((yEnd + 1) & ~1) - 1;
+    unsigned tested = 0;
+    for (int e = 0; e < 3; ++e) {
+      const EdgeFunction& f = t.edges[e];
+      const std::int64_t low = std::min({f.at(x0, y0), f.at(x1, y0), f.at(x0, y1), f.at(x1, y1)});
+      tested |= unsigned(low <= 0) << e;
+    }
     BlockLaneCoverage coverage;
     for (int by = byFirst; by < yEnd; by += kBlockSize) {
       for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
         const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
         if (depthTest.hidden(bx, by, block, tile)) continue;
-        if (!coverage.start(t, edges, tile.originX + bx, tile.originY + by)) continue;
+        if (!coverage.start(t, edges, tested, tile.originX + bx, tile.originY + by)) continue;
         shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
                    [&](int gx, int gy) { return coverage.group(gx, gy); });
       }
