@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 #include "simd/kernel_isa.h"
 #include "texture/sample_lanes.h"
@@ -179,10 +180,12 @@ class BlockLaneCoverage {
   // False when the block lies outside an edge. (px, py): the block's top-left
   // pixel in the window. Only the edges in `tested` (bit e: edge e) are
   // evaluated: the others hold over the whole tile.
-  bool start(const TriangleRecord& t, const LaneEdges& edges, unsigned tested, int px, int py) {
+  template <class Tested>
+  QUADRA_LANE_INLINE bool start(const TriangleRecord& t, const LaneEdges& edges, Tested tested,
+                                int px, int py) {
     crossing_ = 0;
     for (int e = 0; e < 3; ++e) {
-      if (!(tested >> e & 1u)) continue;
+      if (!(unsigned(tested) >> e & 1u)) continue;
       const std::int64_t corner = t.edges[e].at(px, py);
       if (corner + edges.high[e] <= 0) return false;
       if (corner + edges.low[e] > 0) continue;  // inside over the whole block
@@ -500,10 +503,30 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
   const int byFirst = yBegin & ~(kBlockSize - 1), bxFirst = xBegin & ~(kBlockSize - 1);
   if (LaneEdges::fits(t)) {
     const LaneEdges edges(t, lane);
-    // An edge positive at the four corners of the lanes the walk can visit
-    // (the triangle's part of the tile, widened to whole groups) is positive
-    // at every one of them (E is linear): its blocks skip it, and a triangle
-    // that covers the tile there tests no edge at all.
+    BlockLaneCoverage coverage;
+    // tested: a std::integral_constant for small triangles, so their block
+    // test compiles to the plain three-edge one.
+    const auto walk = [&](auto tested) {
+      for (int by = byFirst; by < yEnd; by += kBlockSize) {
+        for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
+          const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+          if (depthTest.hidden(bx, by, block, tile)) continue;
+          if (!coverage.start(t, edges, tested, tile.originX + bx, tile.originY + by)) continue;
+          shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
+                     [&](int gx, int gy) { return coverage.group(gx, gy); });
+        }
+      }
+    };
+    // Small parts (a few blocks at most: nearly all of a dense mesh's) test
+    // every edge in each block; a per-tile check would cost more than it
+    // saves (dense-mesh's frame took 6% longer with one for every part).
+    constexpr int kWholeTileCheckPixels = 4 * kBlockSize * kBlockSize;
+    if ((xEnd - xBegin) * (yEnd - yBegin) < kWholeTileCheckPixels)
+      return walk(std::integral_constant<unsigned, 0b111>());
+    // Larger ones: an edge positive at the four corners of the lanes the walk
+    // can visit (the triangle's part of the tile, widened to whole groups) is
+    // positive at every one of them (E is linear), so the blocks skip it, and
+    // a triangle that covers the tile there tests no edge at all.
     const int x0 = tile.originX + xBegin / kGroupWidth * kGroupWidth;
     const int x1 = tile.originX + (xEnd + kGroupWidth - 1) / kGroupWidth * kGroupWidth - 1;
     const int y0 = tile.originY + (yBegin & ~1), y1 = tile.originY + ((yEnd + 1) & ~1) - 1;
@@ -513,16 +536,7 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
       const std::int64_t low = std::min({f.at(x0, y0), f.at(x1, y0), f.at(x0, y1), f.at(x1, y1)});
       tested |= unsigned(low <= 0) << e;
     }
-    BlockLaneCoverage coverage;
-    for (int by = byFirst; by < yEnd; by += kBlockSize) {
-      for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
-        const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
-        if (depthTest.hidden(bx, by, block, tile)) continue;
-        if (!coverage.start(t, edges, tested, tile.originX + bx, tile.originY + by)) continue;
-        shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
-                   [&](int gx, int gy) { return coverage.group(gx, gy); });
-      }
-    }
+    walk(tested);
     return;
   }
   const BlockEdges edges(t);
