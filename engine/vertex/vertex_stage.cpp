@@ -32,17 +32,14 @@ std::uint8_t outcodeOf(const float* v, int floats, double guardX, double guardY)
   return code;
 }
 
-void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t begin,
-                    std::size_t end, TransformedVertices& out) {
-  double guardX, guardY;
-  guardBand(viewport, guardX, guardY);
+// Clip-space position, attributes and outcode of vertices [first, last).
+void transformBlock(const DrawGeometry& g, const glm::mat4& modelViewProjection,
+                    const glm::mat3& normalMatrix, const std::vector<glm::vec2>& texcoords,
+                    double guardX, double guardY, std::size_t first, std::size_t last,
+                    TransformedVertices& out) {
   const Mesh& mesh = *g.mesh;
-  const glm::mat4 modelViewProjection = g.projection * g.modelView;
-  // Normals go to view space with the inverse transpose (non-uniform scale).
-  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(g.modelView)));
   const AttributeLayout& a = g.attributes;
-  const auto& texcoords = mesh.texcoords[g.texcoordSet];
-  for (std::size_t i = begin; i < end; ++i) {
+  for (std::size_t i = first; i < last; ++i) {
     float* v = &out.data[i * std::size_t(out.stride)];
     const glm::vec4 clip = modelViewProjection * glm::vec4(mesh.positions[i], 1.0f);
     v[0] = clip.x;
@@ -64,13 +61,44 @@ void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t
           mesh.normals.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : normalMatrix * mesh.normals[i];
       for (int k = 0; k < 3; ++k) attr[a.normal + k] = n[k];
     }
-    const std::uint8_t code = outcodeOf(v, out.stride, guardX, guardY);
-    out.outcode[i] = code;
-    if (!(code & (kNeedsClipping | kNotFinite))) {
-      const ScreenVertex s = projectToWindow(v[0], v[1], v[2], v[3], viewport);
-      out.screen[i] = s;
-      out.subpixel[i] = snapToSubpixel(s.windowX, s.windowY);
-    }
+    out.outcode[i] = outcodeOf(v, out.stride, guardX, guardY);
+  }
+}
+
+// Window position and snapped position of vertices [first, last), without a
+// branch per vertex so the compiler runs the divisions and the snap in SIMD
+// lanes (each lane's operations are the scalar ones, so the same bits). A
+// vertex that needs clipping or is not finite is projected as the origin
+// instead: its results are never read, and nothing non-finite reaches the
+// integer conversion.
+void projectBlock(const Viewport& viewport, std::size_t first, std::size_t last,
+                  TransformedVertices& out) {
+  for (std::size_t i = first; i < last; ++i) {
+    const float* v = &out.data[i * std::size_t(out.stride)];
+    const float x = v[0], y = v[1], z = v[2], w = v[3];
+    const bool valid = !(out.outcode[i] & (kNeedsClipping | kNotFinite));
+    const ScreenVertex s = projectToWindow(valid ? x : 0.0f, valid ? y : 0.0f, valid ? z : 0.0f,
+                                           valid ? w : 1.0f, viewport);
+    out.screen[i] = s;
+    out.subpixel[i] = snapToSubpixel(s.windowX, s.windowY);
+  }
+}
+
+void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t begin,
+                    std::size_t end, TransformedVertices& out) {
+  double guardX, guardY;
+  guardBand(viewport, guardX, guardY);
+  const glm::mat4 modelViewProjection = g.projection * g.modelView;
+  // Normals go to view space with the inverse transpose (non-uniform scale).
+  const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(g.modelView)));
+  const auto& texcoords = g.mesh->texcoords[g.texcoordSet];
+  // Blocks small enough to stay in L1 between the two passes.
+  constexpr std::size_t kBlock = 256;
+  for (std::size_t first = begin; first < end; first += kBlock) {
+    const std::size_t last = std::min(end, first + kBlock);
+    transformBlock(g, modelViewProjection, normalMatrix, texcoords, guardX, guardY, first, last,
+                   out);
+    projectBlock(viewport, first, last, out);
   }
 }
 
