@@ -206,38 +206,40 @@ void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, 
   // weights of each axis sum to zero, so subtracting terms constant along an
   // axis changes nothing, and what remains are exact integer sums over boxes
   // the size of this one, small enough to weight in double.
-  AxisExtension ex[6], ey[6];
-  long n[6];
-  bool inside = true;  // every bound within the table: each sum is one entry
+  long m[6], n[6];
+  bool insideX[6], insideY[6], inside = true;
   for (int i = 0; i < 6; ++i) {
-    const long m = xs[i / 3].index[i % 3];
-    n[i] = ys[i / 3].index[i % 3];
-    inside = inside && m >= 0 && m <= width_ && n[i] >= 0 && n[i] <= height_;
-    ex[i] = extendAxis(m, width_, view.wrapU);
-    ey[i] = extendAxis(n[i], height_, view.wrapV);
+    m[i] = xs[i / 3].index[i % 3], n[i] = ys[i / 3].index[i % 3];
+    insideX[i] = m[i] >= 0 && m[i] <= width_;
+    insideY[i] = n[i] >= 0 && n[i] <= height_;
+    inside = inside && insideX[i] && insideY[i];
   }
-  auto sumAt = [&](int a, int b, std::uint64_t out[4]) {
-    if (inside) {
-      const std::uint64_t* e = entry(xs[a / 3].index[a % 3], n[b]);
-      for (int c = 0; c < 4; ++c) out[c] = e[c];
-    } else {
-      extendedSum(view, ex[a], ey[b], n[b], out);
+  // The 6 x 6 prefix sums: table entries where both bounds lie in the table
+  // (every one, for most boxes), the wrap extension (integer divisions under
+  // repeat and mirror) only for the others.
+  const std::uint64_t* sumAt[6][6];
+  std::uint64_t extended[6][6][4];
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b)
+      sumAt[a][b] = insideX[a] && insideY[b] ? entry(m[a], n[b]) : extended[a][b];
+  if (!inside) {
+    AxisExtension ex[6], ey[6];
+    for (int i = 0; i < 6; ++i) {
+      ex[i] = extendAxis(m[i], width_, view.wrapU);
+      ey[i] = extendAxis(n[i], height_, view.wrapV);
     }
-  };
-  std::uint64_t ref[4], alongX[6][4], alongY[6][4];
-  sumAt(0, 0, ref);
-  for (int i = 1; i < 6; ++i) {
-    sumAt(i, 0, alongX[i]);
-    sumAt(0, i, alongY[i]);
+    for (int a = 0; a < 6; ++a)
+      for (int b = 0; b < 6; ++b)
+        if (!(insideX[a] && insideY[b])) extendedSum(view, ex[a], ey[b], n[b], extended[a][b]);
   }
+  const std::uint64_t* ref = sumAt[0][0];
   double sum[4] = {0.0, 0.0, 0.0, 0.0};
   for (int a = 1; a < 6; ++a) {  // a = 0 or b = 0 is the reference corner's own line: 0
     for (int b = 1; b < 6; ++b) {
-      std::uint64_t corner[4];
-      sumAt(a, b, corner);
+      const std::uint64_t *corner = sumAt[a][b], *alongX = sumAt[a][0], *alongY = sumAt[0][b];
       const double weight = xs[a / 3].weight[a % 3] * ys[b / 3].weight[b % 3];
       for (int c = 0; c < 4; ++c) {
-        const std::int64_t boxSum = std::int64_t(corner[c] - alongX[a][c] - alongY[b][c] + ref[c]);
+        const std::int64_t boxSum = std::int64_t(corner[c] - alongX[c] - alongY[c] + ref[c]);
         sum[c] += weight * double(boxSum);
       }
     }
