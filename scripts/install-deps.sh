@@ -6,7 +6,7 @@ set -euo pipefail
 # report textures` (the module quadra_oiio_peer.so, loaded only by that
 # report). quadra itself links neither.
 packages=(build-essential cmake pkg-config libtbb-dev libxsimd-dev libglm-dev libtinygltf-dev
-  libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libbenchmark-dev
+  libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libjpeg62-turbo-dev libbenchmark-dev
   libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git)
 missing=()
 for p in "${packages[@]}"; do

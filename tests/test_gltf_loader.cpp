@@ -905,6 +905,21 @@ TEST(GltfLoaderErrors, OversizedImagesAreRefusedBeforeDecoding) {
   }
 }
 
+// glTF allows PNG and JPEG images; other bytes (here a GIF header, which the
+// glTF library's stb_image would have decoded) are refused by name.
+TEST(GltfLoaderErrors, ImagesOtherThanPngOrJpegAreRefused) {
+  TempDir dir;
+  const std::vector<std::uint8_t> gif = {'G', 'I', 'F', '8', '9', 'a', 1, 0, 1, 0, 0, 0, 0};
+  Doc doc = squareDoc();
+  doc.images = {"{\"uri\":\"data:image/png;base64," + base64(gif) + "\"}"};
+  doc.textures = {"{\"source\":0}"};
+  doc.materials = {"{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}"};
+  const int uv = doc.addData(std::vector<float>(8, 0.5f), kFloat, 2);
+  doc.meshes.clear();
+  doc.addMesh(primitive({{"POSITION", 0}, {"TEXCOORD_0", uv}}, 1, -1, 0));
+  expectError(doc.writeGltf(dir, "gif"), "image 0 is neither PNG nor JPEG");
+}
+
 // ---- malformed files -------------------------------------------------------------------
 
 TEST(GltfLoaderErrors, MissingEmptyAndBadJson) {

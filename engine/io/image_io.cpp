@@ -1,12 +1,16 @@
 // Image files in and out. Writers go through a temporary beside the target and
 // rename on success, so a failed write never leaves a partial file under the
-// requested name. libpng's errors are confined to setjmp-guarded functions
-// that hold no C++ objects, and OpenEXR's exceptions become quadra::Error.
+// requested name. libpng's and libjpeg's errors are confined to
+// setjmp-guarded functions that hold no C++ objects, and OpenEXR's exceptions
+// become quadra::Error.
 #include "io/image_io.h"
 
 #include <png.h>
+// jpeglib.h needs FILE and size_t declared first.
+#include <jpeglib.h>
 #include <unistd.h>
 #include <zlib.h>
+#include <cstdio>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -18,6 +22,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <csetjmp>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -367,23 +372,26 @@ bool decodePngHeader(PngDecoder& d, PngLayout& layout) {
   return true;
 }
 
-// One decoded row (big-endian when 16-bit) -> linear float RGBA. 8-bit rows
-// (nearly every texture's) index the sRGB table fetched once per row: through
-// srgb8ToLinear, a call and a guard check per sample, a 2048² texture's
-// conversion took a fifth of its model's load.
+// One row of 8-bit codes, `channels` (3 or 4) per pixel, sRGB colour and
+// linear alpha -> linear float RGBA, through the sRGB table fetched once per
+// row: through srgb8ToLinear, a call and a guard check per sample, a 2048²
+// texture's conversion took a fifth of its model's load. Alpha decodes as
+// the 8-bit texel formats decode it (lossless rgba8srgb). PNG and JPEG rows.
+void srgb8RowToLinear(const std::uint8_t* samples, std::size_t channels, std::size_t width,
+                      float* out) {
+  const float* table = srgb8ToLinearTable();
+  for (std::size_t x = 0; x < width; ++x, samples += channels, out += 4) {
+    out[0] = table[samples[0]];
+    out[1] = table[samples[1]];
+    out[2] = table[samples[2]];
+    out[3] = channels == 4 ? float(samples[3]) * kUnorm8Scale : 1.0f;
+  }
+}
+
+// One decoded PNG row (big-endian when 16-bit) -> linear float RGBA.
 void pngRowToLinear(const png_byte* samples, const PngLayout& layout, float* out) {
   const std::size_t channels = std::size_t(layout.channels);  // 3 or 4 after png_set_expand
-  if (layout.bitDepth == 8) {
-    const float* table = srgb8ToLinearTable();
-    for (png_uint_32 x = 0; x < layout.width; ++x, samples += channels, out += 4) {
-      out[0] = table[samples[0]];
-      out[1] = table[samples[1]];
-      out[2] = table[samples[2]];
-      // 8-bit alpha as the 8-bit texel formats decode it (lossless rgba8srgb).
-      out[3] = channels == 4 ? float(samples[3]) * kUnorm8Scale : 1.0f;
-    }
-    return;
-  }
+  if (layout.bitDepth == 8) return srgb8RowToLinear(samples, channels, layout.width, out);
   const auto code = [&](std::size_t c) {
     return float((unsigned(samples[2 * c]) << 8) | samples[2 * c + 1]) / 65535.0f;
   };
@@ -467,6 +475,99 @@ class PngReader {
     return makeError(source, std::string("invalid or truncated PNG (") + decoder_.message + ")");
   }
   PngDecoder decoder_;
+};
+
+// ---- JPEG in ----------------------------------------------------------------
+
+// libjpeg-turbo's errors, like libpng's, unwind by longjmp out of functions
+// that hold no C++ objects. Its corrupt-data warnings (a truncated or
+// damaged stream, which it would fill with grey) are errors here: no image
+// is better than a silently wrong one.
+struct JpegDecoder {
+  jpeg_decompress_struct info{};
+  jpeg_error_mgr errors{};
+  std::jmp_buf jump;
+  char message[JMSG_LENGTH_MAX] = {};
+};
+
+[[noreturn]] void jpegFail(j_common_ptr info) {
+  auto* decoder = reinterpret_cast<JpegDecoder*>(info->client_data);
+  (*info->err->format_message)(info, decoder->message);
+  std::longjmp(decoder->jump, 1);
+}
+
+void jpegMessage(j_common_ptr info, int level) {
+  if (level < 0) jpegFail(info);  // a warning: corrupt data
+}
+
+bool createJpeg(JpegDecoder& d) {
+  if (setjmp(d.jump)) return false;
+  jpeg_create_decompress(&d.info);
+  return true;
+}
+
+bool decodeJpegHeader(JpegDecoder& d, const std::uint8_t* data, std::size_t size) {
+  if (setjmp(d.jump)) return false;
+  jpeg_mem_src(&d.info, data, static_cast<unsigned long>(size));
+  jpeg_read_header(&d.info, TRUE);
+  return true;
+}
+
+// Starts decompression into 8-bit RGB (greyscale expanded).
+bool startJpeg(JpegDecoder& d) {
+  if (setjmp(d.jump)) return false;
+  d.info.out_color_space = JCS_RGB;
+  jpeg_start_decompress(&d.info);
+  return true;
+}
+
+bool decodeJpegRows(JpegDecoder& d, JSAMPROW row, float* image, std::size_t rowFloats) {
+  if (setjmp(d.jump)) return false;
+  const std::size_t width = d.info.output_width;
+  while (d.info.output_scanline < d.info.output_height) {
+    const std::size_t y = d.info.output_scanline;
+    if (jpeg_read_scanlines(&d.info, &row, 1) != 1) return false;
+    srgb8RowToLinear(row, 3, width, image + y * rowFloats);
+  }
+  jpeg_finish_decompress(&d.info);
+  return true;
+}
+
+class JpegReader {
+ public:
+  JpegReader() {
+    decoder_.info.err = jpeg_std_error(&decoder_.errors);
+    decoder_.errors.error_exit = jpegFail;
+    decoder_.errors.emit_message = jpegMessage;
+    decoder_.info.client_data = &decoder_;
+    if (!createJpeg(decoder_)) throw std::bad_alloc();  // its only failure
+  }
+  ~JpegReader() { jpeg_destroy_decompress(&decoder_.info); }
+  JpegReader(const JpegReader&) = delete;
+  JpegReader& operator=(const JpegReader&) = delete;
+
+  Image read(const std::uint8_t* data, std::size_t size, const std::string& source,
+             const Executor* executor) {
+    if (!decodeJpegHeader(decoder_, data, size)) throw failure(source);
+    const J_COLOR_SPACE space = decoder_.info.jpeg_color_space;
+    if (space != JCS_GRAYSCALE && space != JCS_YCbCr && space != JCS_RGB)
+      throw makeError(source, "CMYK and YCCK JPEG images are not supported");
+    const std::int64_t width = decoder_.info.image_width, height = decoder_.info.image_height;
+    if (width * height > kMaxImagePixels) throw makeError(source, tooLargeText(width, height));
+    if (!startJpeg(decoder_)) throw failure(source);
+    Image image(int(decoder_.info.output_width), int(decoder_.info.output_height), executor);
+    std::vector<JSAMPLE> row(std::size_t(image.width) * 3);
+    if (!decodeJpegRows(decoder_, row.data(), image.rgba.data(), std::size_t(image.width) * 4))
+      throw failure(source);
+    return image;
+  }
+
+ private:
+  Error failure(const std::string& source) const {
+    return makeError(source,
+                     std::string("invalid or truncated JPEG (") + oneLine(decoder_.message) + ")");
+  }
+  JpegDecoder decoder_;
 };
 
 // ---- EXR in -----------------------------------------------------------------
@@ -558,6 +659,20 @@ Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& s
     return PngReader().read(data, size, source, bitsPerChannel, executor);
   } catch (const std::bad_alloc&) {
     throw makeError(source, "out of memory while decoding PNG");
+  }
+}
+
+bool isJpeg(const std::uint8_t* data, std::size_t size) {
+  return size >= 3 && data[0] == 0xFF && data[1] == 0xD8 && data[2] == 0xFF;
+}
+
+Image decodeJpeg(const std::uint8_t* data, std::size_t size, const std::string& source,
+                 const Executor* executor) {
+  if (!isJpeg(data, size)) throw makeError(source, "not a JPEG image");
+  try {
+    return JpegReader().read(data, size, source, executor);
+  } catch (const std::bad_alloc&) {
+    throw makeError(source, "out of memory while decoding JPEG");
   }
 }
 

@@ -37,4 +37,14 @@ bool isPng(const std::uint8_t* data, std::size_t size);
 Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& source,
                 int* bitsPerChannel = nullptr, const Executor* executor = nullptr);
 
+// Whether the bytes start with a JPEG start-of-image marker.
+bool isJpeg(const std::uint8_t* data, std::size_t size);
+// Decodes a baseline or progressive JPEG (greyscale, YCbCr or RGB) held in
+// memory with libjpeg-turbo to linear float RGBA (sRGB colour, alpha 1), the
+// 8-bit codes converted as decodePng converts them. A damaged or truncated
+// stream is an error, not a partly grey image. Throws
+// Error("<source>: <problem>").
+Image decodeJpeg(const std::uint8_t* data, std::size_t size, const std::string& source,
+                 const Executor* executor = nullptr);
+
 }  // namespace quadra
