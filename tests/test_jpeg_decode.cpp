@@ -1,4 +1,4 @@
-// JPEG decoding (io/image_io.h decodeJpeg): images encoded here with
+// JPEG decoding (io/image_io.h decodeJpeg, readImage): images encoded here with
 // libjpeg's own compressor, decoded by quadra, checked against the source
 // pixels they were encoded from (JPEG at quality 100 without chroma
 // subsampling stays within a few codes), against libjpeg's 8-bit output
@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -182,6 +184,37 @@ TEST(JpegDecode, CmykIsRefusedWithAClearError) {
   s.samples.clear();
   for (int i = 0; i < 16 * 16; ++i) s.samples.insert(s.samples.end(), {10, 20, 30, 40});
   expectError(encode(s, JCS_CMYK, false), "CMYK");
+}
+
+// readImage takes JPEG files too (quadra sample --texture, report textures):
+// the same decoder, the same floats; a cut file names its path.
+TEST(JpegDecode, ReadImageReadsJpegFiles) {
+  const Source s = pattern(40, 24, 3);
+  const std::vector<std::uint8_t> bytes = encode(s, JCS_RGB, false);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      ("quadra_jpeg_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "texture.jpg").string();
+  const auto write = [&](std::size_t count) {
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(count));
+  };
+  write(bytes.size());
+  const Image fromFile = readImage(path), fromMemory = decode(bytes);
+  ASSERT_EQ(fromFile.width, fromMemory.width);
+  ASSERT_EQ(fromFile.height, fromMemory.height);
+  EXPECT_EQ(fromFile.rgba, fromMemory.rgba);
+  write(bytes.size() / 2);
+  try {
+    readImage(path);
+    ADD_FAILURE() << "a truncated JPEG file was read";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("invalid or truncated JPEG"), std::string::npos) << message;
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

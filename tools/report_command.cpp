@@ -34,7 +34,7 @@ namespace {
 
 constexpr const char* kReportUsage =
     R"(usage: quadra report textures [--size N] [--lookups N] [--seed S] [--threads N] [--isa ISA]
-                              [--aniso N] [--texture FILE.png|FILE.exr] [--out-dir DIR]
+                              [--aniso N] [--texture FILE.png|FILE.jpg|FILE.exr] [--out-dir DIR]
                               [--oiio-peer FILE|none]
   --size N       generated textures are N x N (default 512)
   --lookups N    footprints per texture (default 4096)
@@ -43,7 +43,7 @@ constexpr const char* kReportUsage =
                  ns/lookup is always timed on one thread
   --isa ISA      auto|scalar|sse2|avx2|avx512 (default auto)
   --aniso N      max anisotropy of the aniso filter (default 16)
-  --texture FILE also measure on this texture (PNG read as sRGB, EXR as linear)
+  --texture FILE also measure on this texture (PNG and JPEG read as sRGB, EXR as linear)
   --out-dir DIR  where textures.csv and textures.svg go (default out)
   --oiio-peer FILE|none
                  the OpenImageIO module measured beside quadra's filters (default:

@@ -23,7 +23,7 @@ namespace quadra {
 namespace {
 
 constexpr const char* kSampleUsage =
-    R"(usage: quadra sample --texture FILE.png|FILE.exr --filter F --in LOOKUPS.csv --out VALUES.csv
+    R"(usage: quadra sample --texture FILE.png|FILE.jpg|FILE.exr --filter F --in LOOKUPS.csv --out VALUES.csv
                      [--aniso N] [--wrap repeat|mirror|clamp|border] [--threads N] [--isa ISA]
                      [--lod-bias B] [--min-lod L] [--max-lod L] [--format F]
   --filter nearest|bilinear|nearest-mip|trilinear|aniso|ewa|area|sat|ripmap

@@ -627,7 +627,7 @@ Image readExr(const std::string& path) {
   return image;
 }
 
-enum class FileKind { Png, Exr, Unknown };
+enum class FileKind { Png, Jpeg, Exr, Unknown };
 
 FileKind sniff(std::FILE* file, const std::string& path) {
   unsigned char magic[8] = {};
@@ -637,6 +637,7 @@ FileKind sniff(std::FILE* file, const std::string& path) {
     throw makeError(path, "cannot read file (" + errnoText(errno, "read failed") + ")");
   }
   if (got == sizeof(magic) && png_sig_cmp(magic, 0, sizeof(magic)) == 0) return FileKind::Png;
+  if (isJpeg(magic, got)) return FileKind::Jpeg;
   const unsigned char exrMagic[4] = {0x76, 0x2f, 0x31, 0x01};
   if (got >= 4 && std::memcmp(magic, exrMagic, 4) == 0) return FileKind::Exr;
   return FileKind::Unknown;
@@ -683,6 +684,18 @@ Image readImage(const std::string& path) {
   const FileKind kind = sniff(file.get(), path);
   try {
     if (kind == FileKind::Png) return PngReader().read(file.get(), path);
+    if (kind == FileKind::Jpeg) {
+      // libjpeg reads from memory here, as for glTF images: one decoder setup.
+      std::vector<std::uint8_t> bytes;
+      if (std::fseek(file.get(), 0, SEEK_END) != 0) throw makeError(path, "cannot seek in file");
+      const long size = std::ftell(file.get());
+      if (size < 0 || std::fseek(file.get(), 0, SEEK_SET) != 0)
+        throw makeError(path, "cannot seek in file");
+      bytes.resize(std::size_t(size));
+      if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size())
+        throw makeError(path, "cannot read file (" + errnoText(errno, "read failed") + ")");
+      return JpegReader().read(bytes.data(), bytes.size(), path, nullptr);
+    }
     if (kind == FileKind::Exr) {
       file.reset();
       return readExr(path);
@@ -692,11 +705,11 @@ Image readImage(const std::string& path) {
   } catch (const std::bad_alloc&) {
     throw makeError(path, "out of memory while reading image");
   } catch (const std::exception& e) {
-    const char* format = kind == FileKind::Png ? "PNG" : "EXR";
+    const char* format = kind == FileKind::Png ? "PNG" : kind == FileKind::Jpeg ? "JPEG" : "EXR";
     throw makeError(path,
                     std::string("invalid or truncated ") + format + " (" + oneLine(e.what()) + ")");
   }
-  throw makeError(path, "not a PNG or OpenEXR image");
+  throw makeError(path, "not a PNG, JPEG or OpenEXR image");
 }
 
 }  // namespace quadra

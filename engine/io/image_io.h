@@ -24,8 +24,9 @@ void writePng(const Frame& frame, const std::string& path, const Executor* execu
 // Chooses the writer from the extension (.exr or .png, any case).
 void writeFrame(const Frame& frame, const std::string& path, const Executor* executor = nullptr);
 
-// Reads a PNG (decoded from sRGB to linear; alpha stays linear) or an EXR
-// (already linear; missing channels: RGB 0, A 1) into linear float RGBA.
+// Reads a PNG or JPEG (decoded from sRGB to linear; alpha stays linear) or
+// an EXR (already linear; missing channels: RGB 0, A 1) into linear float
+// RGBA.
 Image readImage(const std::string& path);
 
 // Whether the bytes start with the PNG signature.
