@@ -6,11 +6,10 @@
 #include "io/image_io.h"
 
 #include <png.h>
-// jpeglib.h needs FILE and size_t declared first.
+// jpeglib.h needs FILE and size_t declared first: png.h above declares them.
 #include <jpeglib.h>
 #include <unistd.h>
 #include <zlib.h>
-#include <cstdio>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -34,6 +33,7 @@
 #include <thread>
 
 #include "core/error.h"
+#include "core/file_bytes.h"
 #include "core/large_buffer.h"
 #include "core/parallel.h"
 #include "io/srgb8.h"
@@ -686,14 +686,8 @@ Image readImage(const std::string& path) {
     if (kind == FileKind::Png) return PngReader().read(file.get(), path);
     if (kind == FileKind::Jpeg) {
       // libjpeg reads from memory here, as for glTF images: one decoder setup.
-      std::vector<std::uint8_t> bytes;
-      if (std::fseek(file.get(), 0, SEEK_END) != 0) throw makeError(path, "cannot seek in file");
-      const long size = std::ftell(file.get());
-      if (size < 0 || std::fseek(file.get(), 0, SEEK_SET) != 0)
-        throw makeError(path, "cannot seek in file");
-      bytes.resize(std::size_t(size));
-      if (std::fread(bytes.data(), 1, bytes.size(), file.get()) != bytes.size())
-        throw makeError(path, "cannot read file (" + errnoText(errno, "read failed") + ")");
+      file.reset();
+      const std::vector<std::uint8_t> bytes = readWholeFile(path);
       return JpegReader().read(bytes.data(), bytes.size(), path, nullptr);
     }
     if (kind == FileKind::Exr) {

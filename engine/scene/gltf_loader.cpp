@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <new>
 
@@ -17,6 +16,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/file_bytes.h"
 #include "core/parallel.h"
 #include "scene/gltf_internal.h"
 
@@ -26,10 +26,9 @@ namespace {
 
 using gltf::ModelRef;
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67;      // "glTF"
-constexpr std::uint32_t kChunkJson = 0x4E4F534A;     // "JSON"
-constexpr std::uint32_t kChunkBinary = 0x004E4942;   // "BIN\0"
-constexpr std::uint64_t kMaxFileSize = 0xFFFFFFFFu;  // tinygltf takes 32-bit sizes
+constexpr std::uint32_t kGlbMagic = 0x46546C67;     // "glTF"
+constexpr std::uint32_t kChunkJson = 0x4E4F534A;    // "JSON"
+constexpr std::uint32_t kChunkBinary = 0x004E4942;  // "BIN\0"
 
 std::string firstLine(const std::string& text) {
   std::size_t begin = text.find_first_not_of(" \t\r\n");
@@ -46,24 +45,6 @@ std::string oneLine(std::string text) {
     if (c == '\n' || c == '\r') c = ' ';
   }
   return text;
-}
-
-std::vector<std::uint8_t> readWholeFile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw makeError(path, "is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw makeError(path, "cannot open file");
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size < 0) throw makeError(path, "cannot read file");
-  if (size == 0) throw makeError(path, "file is empty");
-  if (std::uint64_t(size) > kMaxFileSize) throw makeError(path, "file is larger than 4 GiB");
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-  in.seekg(0, std::ios::beg);
-  if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) {
-    throw makeError(path, "cannot read file");
-  }
-  return bytes;
 }
 
 std::uint32_t readU32(const std::vector<std::uint8_t>& bytes, std::uint64_t offset) {
