@@ -102,9 +102,9 @@ struct LevelGeometry {
   typename L::I stride;  // texels per row (padded_level.h)
   int uniform;
   const TextureLevel* table;  // the levels the lanes' level indices refer to
-  // When set (and not uniform): each lane's level's first texel, looked up once
-  // for several fetches.
-  const std::uint8_t* const* laneBase;
+  // When set (and not uniform): the table's first texels, 16 entries 64-byte
+  // aligned (simd::laneAddresses), for lanes on several levels.
+  const std::uint8_t* const* levelTexels;
 };
 
 template <class L>
@@ -143,17 +143,16 @@ template <class L, class R>
 QUADRA_LANE_INLINE void texelPointers(const LevelGeometry<L>& g, const typename L::I& level,
                                       const typename L::I& offset,
                                       const std::uint8_t* out[L::kWidth]) {
+  constexpr int texelBytes = bytesPerTexel(R::kFormat);
+  if (g.levelTexels && g.uniform < 0) {
+    simd::laneAddresses<L, texelBytes>(g.levelTexels, level, offset, out);
+    return;
+  }
   alignas(64) std::int32_t off[L::kWidth], lv[L::kWidth];
   offset.store_aligned(off);
-  constexpr std::ptrdiff_t texelBytes = bytesPerTexel(R::kFormat);
   if (g.uniform >= 0) {
     const std::uint8_t* const base = g.table[g.uniform].texels;
     for (int k = 0; k < L::kWidth; ++k) out[k] = base + std::ptrdiff_t(off[k]) * texelBytes;
-    return;
-  }
-  if (g.laneBase) {
-    for (int k = 0; k < L::kWidth; ++k)
-      out[k] = g.laneBase[k] + std::ptrdiff_t(off[k]) * texelBytes;
     return;
   }
   level.store_aligned(lv);
@@ -658,6 +657,10 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
 
   // Each job's weighted sums (r, g, b, a), in job order.
   alignas(64) float partial[4][kMaxJobs + W];
+  static_assert(TextureView::kMaxLevels == 16, "simd::laneAddresses looks up 16 levels");
+  alignas(64) const std::uint8_t* levelTexels[TextureView::kMaxLevels];
+  for (int l = 0; l < TextureView::kMaxLevels; ++l)
+    levelTexels[l] = view.levels[std::min(l, view.levelCount - 1)].texels;
   for (int batch = 0; batch < jobs; batch += W) {
     const I run = I::load_aligned(jobRun + batch);
     const I lookup = run & I(W - 1);
@@ -668,19 +671,13 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
     const F scale = pick(plan.run[0].scale, plan.run[1].scale);
     const F levelF = pick(plan.run[0].level, plan.run[1].level);
     const I level = simd::toInt(levelF);
-    alignas(64) std::int32_t levelOf[W];
-    const std::uint8_t* base[W];
     const bool uniform = simd::all(levelF == F(levelF.get(0)));
-    if (!uniform) {
-      level.store_aligned(levelOf);
-      for (int k = 0; k < W; ++k) base[k] = view.levels[levelOf[k]].texels;
-    }
     const sampling::LevelGeometry<L> g{pick(plan.run[0].width, plan.run[1].width),
                                        pick(plan.run[0].height, plan.run[1].height),
                                        simd::toInt(pick(plan.run[0].stride, plan.run[1].stride)),
                                        uniform ? int(levelF.get(0)) : -1,
                                        view.levels,
-                                       uniform ? nullptr : base};
+                                       levelTexels};
     const F cu = simd::permute(plan.u, lookup), cv = simd::permute(plan.v, lookup);
     const F lineU = simd::permute(plan.lineU, lookup), lineV = simd::permute(plan.lineV, lookup);
     const F invRamp = simd::permute(plan.invRamp, lookup);
