@@ -13,6 +13,7 @@
 // Include only from per-ISA kernel translation units (see cmake/QuadraIsa.cmake).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -451,6 +452,40 @@ QUADRA_LANE_INLINE typename L::F expandLoad(std::uint32_t laneBits, const float*
   for (int k = 0, n = offset; k < L::kWidth; ++k)
     if (laneBits >> k & 1) out[k] = values[n++];
   return L::F::load_aligned(out);
+}
+
+// The smallest and the largest lane of `low` and `high`, by halving the
+// register: log2(width) steps where a store and a scalar loop took width.
+// Lanes are compared with min/max's semantics, so for finite lanes the value
+// is the same on every path (a -0 / +0 tie may come out either way).
+template <class L>
+QUADRA_LANE_INLINE void reduceMinMax(const typename L::F& low, const typename L::F& high,
+                                     float& lowest, float& highest) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+  if constexpr (L::kWidth == 16) {
+    lowest = _mm512_reduce_min_ps(low);
+    highest = _mm512_reduce_max_ps(high);
+    return;
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (L::kWidth == 8) {
+    auto halve = [](__m256 x, auto op) {
+      __m128 v = op(_mm256_castps256_ps128(x), _mm256_extractf128_ps(x, 1));
+      v = op(v, _mm_movehl_ps(v, v));
+      return _mm_cvtss_f32(op(v, _mm_shuffle_ps(v, v, 1)));
+    };
+    lowest = halve(low, [](__m128 a, __m128 b) { return _mm_min_ps(a, b); });
+    highest = halve(high, [](__m128 a, __m128 b) { return _mm_max_ps(a, b); });
+    return;
+  }
+#endif
+  alignas(64) float lows[L::kWidth], highs[L::kWidth];
+  low.store_aligned(lows);
+  high.store_aligned(highs);
+  lowest = lows[0], highest = highs[0];
+  for (int k = 1; k < L::kWidth; ++k)
+    lowest = std::min(lowest, lows[k]), highest = std::max(highest, highs[k]);
 }
 
 // Lane k's address base[index[k]] + offset[k] * kBytes (kBytes a power of

@@ -101,17 +101,18 @@ struct BlockEdges {
 // the coverage loop visits only those.
 struct BlockRange {
   int rowBegin, rowEnd, columnBegin, columnEnd;
-  std::uint64_t mask;
   BlockRange(int bx, int by, int xBegin, int xEnd, int yBegin, int yEnd)
       : rowBegin(std::max(yBegin - by, 0)),
         rowEnd(std::min(yEnd - by, kBlockSize)),
         columnBegin(std::max(xBegin - bx, 0)),
-        columnEnd(std::min(xEnd - bx, kBlockSize)) {
+        columnEnd(std::min(xEnd - bx, kBlockSize)) {}
+  // Only blockCoverage's bit masks need it; the lane-edge walk does not.
+  std::uint64_t mask() const {
     const std::uint64_t rowBits = ((1u << columnEnd) - 1u) & ~((1u << columnBegin) - 1u);
     constexpr std::uint64_t kFirstColumn = 0x0101010101010101u;  // bit 0 of every row
     const std::uint64_t rows = kFirstColumn * rowBits;           // rowBits in every row
     const std::uint64_t below = rowEnd == kBlockSize ? ~0ull : (1ull << (rowEnd * kBlockSize)) - 1;
-    mask = rows & below & ~((1ull << (rowBegin * kBlockSize)) - 1);
+    return rows & below & ~((1ull << (rowBegin * kBlockSize)) - 1);
   }
 };
 
@@ -127,7 +128,7 @@ std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, in
     if (corner[e] + edges.highOffset[e] <= 0) return 0;
     full = full && corner[e] + edges.lowOffset[e] > 0;
   }
-  if (full) return range.mask;
+  if (full) return range.mask();
   std::uint64_t mask = 0;
   for (int row = range.rowBegin; row < range.rowEnd; ++row) {
     std::int64_t start[3];
@@ -445,11 +446,8 @@ class BlockDepthTest {
 // it visited all of the block's groups, else added to the old bounds.
 QUADRA_LANE_INLINE void updateBlockDepth(TileBuffers& tile, int block, const F& low, const F& high,
                                          bool wholeBlock) {
-  alignas(64) float lows[L::kWidth], highs[L::kWidth];
-  low.store_aligned(lows);
-  high.store_aligned(highs);
-  float lo = lows[0], hi = highs[0];
-  for (int k = 1; k < L::kWidth; ++k) lo = std::min(lo, lows[k]), hi = std::max(hi, highs[k]);
+  float lo, hi;
+  simd::reduceMinMax<L>(low, high, lo, hi);
   if (!wholeBlock) {
     lo = std::min(lo, tile.blockDepthMin[block]);
     hi = std::max(hi, tile.blockDepthMax[block]);
