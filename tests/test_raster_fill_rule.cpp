@@ -227,6 +227,30 @@ TEST(RasterFillRule, EdgesEndingInsideCoveredTilesMatchReference) {
   expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
 }
 
+// Wedges whose only pixels in the viewport lie in one 8x8 block at a corner,
+// with their other vertices ~900 px outside: the small-triangle path
+// (tile_kernel_impl.h rasterizeInOneBlock) must hand such a triangle, whose
+// far edge is ~1e10 at the block's corner, back to the walk, and rasterize
+// the truly small ones (apexes alone, just inside) itself.
+TEST(RasterFillRule, TrianglesInOneBlockMatchReference) {
+  std::vector<WindowTriangle> wedges, small;
+  for (double apex : {0.6, 2.5, 4.2, 6.9, 7.5}) {
+    // Towards the top-left corner, and from the bottom-right one outward.
+    wedges.push_back({{{apex, apex + 0.4}, {-900.0, -600.0}, {-600.0, -900.0}}});
+    const double far = kSize + 850.0, inner = kSize - apex;
+    wedges.push_back({{{inner, inner - 0.3}, {far, far + 300.0}, {far + 300.0, far}}});
+    // A small triangle inside a block.
+    small.push_back({{{apex + 0.2, 12.1}, {apex + 3.3, 13.9}, {apex + 0.9, 15.7}}});
+  }
+  const ref::CoverageImage wedgesOnly =
+      expectCoverageMatches(sceneFromWindow(wedges, true), supportedIsas());
+  int covered = 0;
+  for (int count : wedgesOnly.count) covered += count;
+  EXPECT_GT(covered, 10);  // the wedges' tips do cover pixel centres
+  wedges.insert(wedges.end(), small.begin(), small.end());
+  expectCoverageMatches(sceneFromWindow(wedges, true), supportedIsas());
+}
+
 // Needles one grid unit wide that run along rows and columns of pixel centres
 // and across many tiles, at shallow and steep slopes.
 TEST(RasterFillRule, SliversMatchReference) {
