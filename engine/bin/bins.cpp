@@ -37,12 +37,17 @@ bool mayCover(const TriangleRecord& t, int x0, int y0, int x1, int y1) {
 // A triangle goes to the tiles its bounding box overlaps, except, when the
 // box spans several tiles both ways, those its edges leave empty: a thin
 // diagonal triangle is listed along its length, not in every tile of its box.
+// Most triangles of a dense mesh lie in one tile: the count pass notes it
+// (out.singleTile), and the fill pass lists them without another walk.
 void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid,
                   TileBins& out) {
   out.tileStart.assign(std::size_t(grid.tileCount()) + 1, 0);
+  out.singleTile.resize(triangles.size());
+  // Boxes lie in the viewport: non-negative, so tiles are unsigned quotients.
+  const auto tileOf = [](int pixel) { return int(unsigned(pixel) / kTileSize); };
   auto forEachTile = [&](const TriangleRecord& t, auto&& visit) {
-    const int tx0 = t.minX / kTileSize, tx1 = t.maxX / kTileSize;
-    const int ty0 = t.minY / kTileSize, ty1 = t.maxY / kTileSize;
+    const int tx0 = tileOf(t.minX), tx1 = tileOf(t.maxX);
+    const int ty0 = tileOf(t.minY), ty1 = tileOf(t.maxY);
     const bool edgeTested = tx1 > tx0 && ty1 > ty0;
     for (int ty = ty0; ty <= ty1; ++ty) {
       const int y0 = std::max<int>(ty * kTileSize, t.minY);
@@ -55,14 +60,29 @@ void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& 
       }
     }
   };
-  for (const TriangleRecord& t : triangles)
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    const TriangleRecord& t = triangles[i];
+    const int tx = tileOf(t.minX), ty = tileOf(t.minY);
+    if (tx == tileOf(t.maxX) && ty == tileOf(t.maxY)) {
+      const int tile = ty * grid.tilesX + tx;
+      out.singleTile[i] = tile;
+      ++out.tileStart[tile + 1];
+      continue;
+    }
+    out.singleTile[i] = -1;
     forEachTile(t, [&](int tile) { ++out.tileStart[tile + 1]; });
+  }
   for (int tile = 0; tile < grid.tileCount(); ++tile)
     out.tileStart[tile + 1] += out.tileStart[tile];
   out.triangleIndex.resize(out.tileStart.back());
   std::vector<std::uint32_t> cursor(out.tileStart.begin(), out.tileStart.end() - 1);
-  for (std::uint32_t i = 0; i < triangles.size(); ++i)
+  for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+    if (const int tile = out.singleTile[i]; tile >= 0) {
+      out.triangleIndex[cursor[tile]++] = i;
+      continue;
+    }
     forEachTile(triangles[i], [&](int tile) { out.triangleIndex[cursor[tile]++] = i; });
+  }
 }
 
 }  // namespace quadra

@@ -22,6 +22,9 @@ struct TileGrid {
 struct TileBins {
   std::vector<std::uint32_t> tileStart;
   std::vector<std::uint32_t> triangleIndex;
+  // Working memory of binTriangles, kept for the next frame: per triangle,
+  // its tile when it lies in one, else -1.
+  std::vector<std::int32_t> singleTile;
 };
 
 void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid,
