@@ -1,7 +1,10 @@
 // Lane types for the kernels: a thin layer over xsimd plus a plain-C++ scalar
 // path with the same interface, so each kernel is one source compiled per ISA.
 //
-// Lanes<Arch>::F (float lanes), ::I (int32 lanes), ::M (float lane mask).
+// Lanes<Arch>::F (float lanes), ::I (int32 lanes), ::M (float lane mask);
+// for the filters whose sums need double (the summed-area table), ::D (double
+// lanes, kDoubleWidth of them: half of F's, four on the scalar path), ::DM
+// (their mask) and ::I64 (int64 lanes beside them).
 // Lanes are grouped in 2x2 pixel quads: lane 4q + 2*ly + lx is pixel (lx, ly) of
 // quad q. SSE2 and scalar carry 1 quad, AVX2 2 quads, AVX-512 4 quads.
 //
@@ -15,6 +18,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include <xsimd/xsimd.hpp>
 
@@ -118,8 +122,12 @@ struct Lanes {
   using F = xsimd::batch<float, Arch>;
   using I = xsimd::batch<std::int32_t, Arch>;
   using M = xsimd::batch_bool<float, Arch>;
+  using D = xsimd::batch<double, Arch>;
+  using DM = xsimd::batch_bool<double, Arch>;
+  using I64 = xsimd::batch<std::int64_t, Arch>;
   static constexpr int kWidth = int(F::size);
   static constexpr int kQuads = kWidth / 4;
+  static constexpr int kDoubleWidth = int(D::size);
 };
 
 template <>
@@ -127,8 +135,12 @@ struct Lanes<ScalarArch> {
   using F = ScalarBatch<float>;
   using I = ScalarBatch<std::int32_t>;
   using M = ScalarMask;
+  using D = ScalarBatch<double>;
+  using DM = ScalarMask;
+  using I64 = ScalarBatch<std::int64_t>;
   static constexpr int kWidth = 4;
   static constexpr int kQuads = 1;
+  static constexpr int kDoubleWidth = 4;
 };
 
 // ------------------------------------------------------------ scalar functions
@@ -151,6 +163,24 @@ inline ScalarBatch<float> floor(const ScalarBatch<float>& a) {
 }
 inline ScalarBatch<float> sqrt(const ScalarBatch<float>& a) {
   return ScalarBatch<float>::map(a, a, [](float x, float) { return __builtin_sqrtf(x); });
+}
+inline ScalarBatch<double> select(const ScalarMask& m, const ScalarBatch<double>& a,
+                                  const ScalarBatch<double>& b) {
+  return {m.v[0] ? a.v[0] : b.v[0], m.v[1] ? a.v[1] : b.v[1], m.v[2] ? a.v[2] : b.v[2],
+          m.v[3] ? a.v[3] : b.v[3]};
+}
+inline ScalarBatch<double> abs(const ScalarBatch<double>& a) {
+  return ScalarBatch<double>::map(a, a, [](double x, double) { return __builtin_fabs(x); });
+}
+inline ScalarBatch<double> floor(const ScalarBatch<double>& a) {
+  return ScalarBatch<double>::map(a, a, [](double x, double) { return __builtin_floor(x); });
+}
+inline ScalarMask isNan(const ScalarBatch<double>& a) {
+  return ScalarBatch<double>::test(a, a, [](double x, double) { return x != x; });
+}
+// int64 -> double, rounded to nearest like the scalar conversion (cvtsi2sd).
+inline ScalarBatch<double> toDouble(const ScalarBatch<std::int64_t>& a) {
+  return {double(a.v[0]), double(a.v[1]), double(a.v[2]), double(a.v[3])};
 }
 inline ScalarBatch<std::int32_t> min(const ScalarBatch<std::int32_t>& a,
                                      const ScalarBatch<std::int32_t>& b) {
@@ -216,6 +246,12 @@ inline xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
                                      const xsimd::batch<float, A>& b) {
   return xsimd::select(m, a, b);
 }
+template <class A>
+inline xsimd::batch<double, A> select(const xsimd::batch_bool<double, A>& m,
+                                      const xsimd::batch<double, A>& a,
+                                      const xsimd::batch<double, A>& b) {
+  return xsimd::select(m, a, b);
+}
 template <class T, class A>
 inline xsimd::batch<T, A> min(const xsimd::batch<T, A>& a, const xsimd::batch<T, A>& b) {
   return xsimd::min(a, b);
@@ -224,13 +260,19 @@ template <class T, class A>
 inline xsimd::batch<T, A> max(const xsimd::batch<T, A>& a, const xsimd::batch<T, A>& b) {
   return xsimd::max(a, b);
 }
-template <class A>
-inline xsimd::batch<float, A> abs(const xsimd::batch<float, A>& a) {
+template <class T, class A>
+inline xsimd::batch<T, A> abs(const xsimd::batch<T, A>& a) {
   return xsimd::abs(a);
 }
-template <class A>
-inline xsimd::batch<float, A> floor(const xsimd::batch<float, A>& a) {
+template <class T, class A>
+inline xsimd::batch<T, A> floor(const xsimd::batch<T, A>& a) {
   return xsimd::floor(a);
+}
+// Not `a != a`: xsimd's != is the ordered compare on AVX (false for NaN) and
+// the unordered one on SSE2 (true), so only this names NaN on every path.
+template <class A>
+inline xsimd::batch_bool<double, A> isNan(const xsimd::batch<double, A>& a) {
+  return xsimd::isnan(a);
 }
 template <class A>
 inline xsimd::batch<float, A> sqrt(const xsimd::batch<float, A>& a) {
@@ -344,6 +386,22 @@ inline xsimd::batch<float, xsimd::avx512bw> permute2(
   return _mm512_permutex2var_ps(a, index, b);
 }
 #endif
+
+// int64 -> double, rounded to nearest like the scalar conversion (cvtsi2sd):
+// AVX-512DQ converts directly; SSE2 and AVX2 have no such instruction, and
+// xsimd splits each value into an exact high part and an exact low part that
+// one correctly rounded addition joins (the full-range method of
+// stackoverflow.com/questions/41144668). xsimd 8.1's AVX-512DQ conversion does
+// not compile (it names a parameter that does not exist), hence the intrinsic.
+template <class A>
+inline xsimd::batch<double, A> toDouble(const xsimd::batch<std::int64_t, A>& a) {
+#if defined(__AVX512F__) && defined(__AVX512DQ__)
+  if constexpr (std::is_same_v<A, xsimd::avx512bw>)
+    return _mm512_cvtepi64_pd(a);
+  else
+#endif
+    return xsimd::to_float(a);
+}
 
 // ------------------------------------------------------- shared lane helpers
 // Lane constants given per lane (width W entries).

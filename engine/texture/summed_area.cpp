@@ -11,14 +11,9 @@ namespace quadra {
 
 namespace {
 
-// A lookup's box is at most this many texture periods on a side; the fixed
-// point leaves room for its sum (and a few texels of margin) in 63 bits.
-constexpr double kMaxBoxPeriods = 64.0;
+// A lookup's box is at most kMaxBoxPeriods texture periods on a side; the
+// fixed point leaves room for its sum (and a few texels of margin) in 63 bits.
 constexpr int kMaxFractionBits = 40;  // 1e-12 per texel: finer buys nothing
-// The smallest half side of a box: a footprint of zero size (zero derivatives)
-// becomes a box this small, whose average is the bilinear value to about
-// this many texels times the local slope.
-constexpr double kMinHalfSide = 1.0 / 65536.0;
 
 double finiteOrZero(float value) {
   return std::isfinite(value) ? double(value) : 0.0;
@@ -198,10 +193,8 @@ void SummedAreaTable::extendedSum(const TextureView& view, const AxisExtension& 
   }
 }
 
-void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, double y0,
-                                 double y1, double rgba[4]) const {
-  const CornerTerms xs[2] = {cornerTerms(x0, -1.0), cornerTerms(x1, 1.0)};
-  const CornerTerms ys[2] = {cornerTerms(y0, -1.0), cornerTerms(y1, 1.0)};
+void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corners,
+                              std::int64_t* out, std::size_t stride) const {
   // Every entry is read relative to the box's first corner (mRef, nRef): the
   // weights of each axis sum to zero, so subtracting terms constant along an
   // axis changes nothing, and what remains are exact integer sums over boxes
@@ -209,7 +202,7 @@ void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, 
   long m[6], n[6];
   bool insideX[6], insideY[6], inside = true;
   for (int i = 0; i < 6; ++i) {
-    m[i] = xs[i / 3].index[i % 3], n[i] = ys[i / 3].index[i % 3];
+    m[i] = corners.m[i / 3] + i % 3, n[i] = corners.n[i / 3] + i % 3;
     insideX[i] = m[i] >= 0 && m[i] <= width_;
     insideY[i] = n[i] >= 0 && n[i] <= height_;
     inside = inside && insideX[i] && insideY[i];
@@ -234,15 +227,28 @@ void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, 
         if (!(insideX[a] && insideY[b])) extendedSum(view, ex[a], ey[b], n[b], extended[a][b]);
   }
   const std::uint64_t* ref = sumAt[0][0];
-  double sum[4] = {0.0, 0.0, 0.0, 0.0};
   for (int a = 1; a < 6; ++a) {  // a = 0 or b = 0 is the reference corner's own line: 0
     for (int b = 1; b < 6; ++b) {
       const std::uint64_t *corner = sumAt[a][b], *alongX = sumAt[a][0], *alongY = sumAt[0][b];
+      std::int64_t* box = out + ((a - 1) * 5 + b - 1) * 4 * stride;
+      for (int c = 0; c < 4; ++c)
+        box[c * stride] = std::int64_t(corner[c] - alongX[c] - alongY[c] + ref[c]);
+    }
+  }
+}
+
+void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, double y0,
+                                 double y1, double rgba[4]) const {
+  const CornerTerms xs[2] = {cornerTerms(x0, -1.0), cornerTerms(x1, 1.0)};
+  const CornerTerms ys[2] = {cornerTerms(y0, -1.0), cornerTerms(y1, 1.0)};
+  std::int64_t boxSum[25][4];
+  boxSums(view, {{xs[0].index[0], xs[1].index[0]}, {ys[0].index[0], ys[1].index[0]}}, &boxSum[0][0],
+          1);
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  for (int a = 1; a < 6; ++a) {
+    for (int b = 1; b < 6; ++b) {
       const double weight = xs[a / 3].weight[a % 3] * ys[b / 3].weight[b % 3];
-      for (int c = 0; c < 4; ++c) {
-        const std::int64_t boxSum = std::int64_t(corner[c] - alongX[c] - alongY[c] + ref[c]);
-        sum[c] += weight * double(boxSum);
-      }
+      for (int c = 0; c < 4; ++c) sum[c] += weight * double(boxSum[(a - 1) * 5 + b - 1][c]);
     }
   }
   const double norm = 1.0 / (std::ldexp(1.0, fractionBits_) * (x1 - x0) * (y1 - y0));
@@ -296,16 +302,11 @@ void SummedAreaTable::lookup(const TextureView& view, float u, float v, float du
   for (int c = 0; c < 4; ++c) rgba[c] = float(average[c]);
 }
 
-void SummedAreaTable::prefetch(const TextureView& view, float u, float v, float dudx, float dvdx,
-                               float dudy, float dvdy) const {
-  const Box box = boxOf(view, u, v, dudx, dvdx, dudy, dvdy);
-  // Each corner reads entries (m .. m + 2, n .. n + 2) from its cornerTerms:
-  // three rows of 96 bytes, two cache lines each at most.
-  const CornerTerms xs[2] = {cornerTerms(box.x0, -1.0), cornerTerms(box.x1, 1.0)};
-  const CornerTerms ys[2] = {cornerTerms(box.y0, -1.0), cornerTerms(box.y1, 1.0)};
-  for (const CornerTerms& y : ys)
-    for (const CornerTerms& x : xs) {
-      const long m = x.index[0], n = y.index[0];
+void SummedAreaTable::prefetch(const CornerIndices& corners) const {
+  // Each corner reads entries (m .. m + 2, n .. n + 2): three rows of 96
+  // bytes, two cache lines each at most.
+  for (const long n : corners.n)
+    for (const long m : corners.m) {
       if (m < 0 || m + 2 > width_ || n < 0 || n + 2 > height_) continue;
       for (long row = n; row <= n + 2; ++row) {
         __builtin_prefetch(entry(m, row));

@@ -51,12 +51,34 @@ class SummedAreaTable {
   // most 64 texture periods on a side. NaN/Inf positions read as 0.
   void lookup(const TextureView& view, float u, float v, float dudx, float dvdx, float dudy,
               float dvdy, float rgba[4]) const;
-  // Asks the memory system for the table entries lookup() will read with
-  // these arguments (where the box lies inside the table) and returns: the
-  // entries are 12 scattered cache lines per lookup, so a SIMD group
-  // prefetches all its lanes' before the first lane waits on one.
-  void prefetch(const TextureView& view, float u, float v, float dudx, float dvdx, float dudy,
-                float dvdy) const;
+
+  // lookup() in parts, for the lane kernels (sampleSummedArea in
+  // sample_lanes.h): they form the box, its corner terms and the weighted sum
+  // across lanes in double, with the operations of lookup() in its order, and
+  // leave to these scalar functions the table reads and their exact integer
+  // sums. The box's side limits, which boxOf applies:
+  static constexpr double kMaxBoxPeriods = 64.0;
+  // A footprint of zero size (zero derivatives) becomes a box this small,
+  // whose average is the bilinear value to about this many texels times the
+  // local slope.
+  static constexpr double kMinHalfSide = 1.0 / 65536.0;
+  // A box corner's three prefix indices per axis are first, first + 1 and
+  // first + 2 (cornerTerms in summed_area.cpp); these are the firsts of x0
+  // and x1 (m) and of y0 and y1 (n).
+  struct CornerIndices {
+    long m[2], n[2];
+  };
+  // Asks the memory system for the table entries boxSums() will read (where
+  // the box lies inside the table) and returns: they are 12 scattered cache
+  // lines per lookup, so a SIMD group prefetches all its lanes' before the
+  // first lane waits on one.
+  void prefetch(const CornerIndices& corners) const;
+  // The box sums boxAverage() weights: for a and b in 1 .. 5 (the six prefix
+  // indices along x, x0's three then x1's, and the six along y), the exact
+  // sum over the box from the first corner (index 0, 0) to (a, b), modulo
+  // 2^64, channel c at out[(((a - 1) * 5 + b - 1) * 4 + c) * stride].
+  void boxSums(const TextureView& view, const CornerIndices& corners, std::int64_t* out,
+               std::size_t stride) const;
 
   // The exact average of the level's bilinear reconstruction over the texel-
   // space box [x0, x1] x [y0, y1] (texel i covers [i, i + 1)), up to the
