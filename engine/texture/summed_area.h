@@ -105,6 +105,11 @@ class SummedAreaTable {
   // modulo 2^64; x and y are m and n extended along their axes.
   void extendedSum(const TextureView& view, const AxisExtension& x, const AxisExtension& y, long n,
                    std::uint64_t out[4]) const;
+  // boxSums() where the wrap modes of both axes are periodic (repeat or
+  // mirrored repeat) and the box leaves the table; m and n are its six
+  // prefix bounds per axis (summed_area.cpp).
+  void periodicBoxSums(const TextureView& view, const long m[6], const long n[6], std::int64_t* out,
+                       std::size_t stride) const;
   const std::uint64_t* entry(long m, long n) const {
     return &sums_[(std::size_t(n) * std::size_t(width_ + 1) + std::size_t(m)) * 4];
   }
