@@ -1039,7 +1039,7 @@ Rgba<L> sampleSummedArea(const TextureView& view, const typename L::F& u, const 
   for (int k = 0; k < W; ++k) {
     corners[k] = {{long(firstX[0][k]), long(firstX[1][k])},
                   {long(firstY[0][k]), long(firstY[1][k])}};
-    table.prefetch(corners[k]);
+    table.prefetch(view, corners[k]);
   }
   alignas(64) std::int64_t boxSum[25][4][W];
   for (int k = 0; k < W; ++k) table.boxSums(view, corners[k], &boxSum[0][0][k], W);

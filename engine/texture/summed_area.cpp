@@ -193,6 +193,50 @@ void SummedAreaTable::extendedSum(const TextureView& view, const AxisExtension& 
   }
 }
 
+namespace {
+
+// The whole-period terms of a periodic box sum (periodicBoxSums, below).
+struct PeriodTerms {
+  std::uint64_t dqX[6], dqY[6];  // periods counted at each bound, relative to bound 0
+  std::uint64_t columns[6][4];   // s_a T(r_a, H) - s_0 T(r_0, H), where some dqY is not 0
+  std::uint64_t rows[6][4];      // s_b T(W, r_b) - s_0 T(W, r_0), where some dqX is not 0
+  const std::uint64_t* whole;    // T(W, H)
+};
+
+// The box sums S(a, b) - S(a, 0) - S(0, b) + S(0, 0) of 6 x 6 prefix sums (plus
+// the period terms, where given), laid out as boxSums() writes them. The
+// reference lines are held in locals: out (int64) may alias the uint64 sums,
+// so every store would otherwise reload them.
+void writeBoxSums(const std::uint64_t* const sumAt[6][6], const PeriodTerms* periods,
+                  std::int64_t* out, std::size_t stride) {
+  std::uint64_t alongY[6][4];  // S(0, b) - S(0, 0)
+  for (int b = 1; b < 6; ++b)
+    for (int c = 0; c < 4; ++c) alongY[b][c] = sumAt[0][b][c] - sumAt[0][0][c];
+  for (int a = 1; a < 6; ++a) {  // a = 0 or b = 0 is the reference corner's own line: 0
+    std::uint64_t alongX[4];
+    for (int c = 0; c < 4; ++c) alongX[c] = sumAt[a][0][c];
+    for (int b = 1; b < 6; ++b) {
+      const std::uint64_t* corner = sumAt[a][b];
+      std::uint64_t sum[4];
+      for (int c = 0; c < 4; ++c) sum[c] = corner[c] - alongX[c] - alongY[b][c];
+      if (periods && (periods->dqX[a] | periods->dqY[b]) != 0) {
+        const std::uint64_t dqX = periods->dqX[a], dqY = periods->dqY[b];
+        for (int c = 0; c < 4; ++c)
+          sum[c] += dqY * periods->columns[a][c] + dqX * periods->rows[b][c] +
+                    dqX * dqY * periods->whole[c];
+      }
+      std::int64_t* box = out + ((a - 1) * 5 + b - 1) * 4 * stride;
+      for (int c = 0; c < 4; ++c) box[c * stride] = std::int64_t(sum[c]);
+    }
+  }
+}
+
+bool isPeriodic(WrapMode mode) {
+  return mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat;
+}
+
+}  // namespace
+
 void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corners,
                               std::int64_t* out, std::size_t stride) const {
   // Every entry is read relative to the box's first corner (mRef, nRef): the
@@ -207,14 +251,10 @@ void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corn
     insideY[i] = n[i] >= 0 && n[i] <= height_;
     inside = inside && insideX[i] && insideY[i];
   }
-  const auto periodic = [](WrapMode mode) {
-    return mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat;
-  };
-  if (!inside && periodic(view.wrapU) && periodic(view.wrapV))
+  if (!inside && isPeriodic(view.wrapU) && isPeriodic(view.wrapV))
     return periodicBoxSums(view, m, n, out, stride);
   // The 6 x 6 prefix sums: table entries where both bounds lie in the table
-  // (every one, for most boxes), the wrap extension (integer divisions under
-  // repeat and mirror) only for the others.
+  // (every one, for most boxes), the wrap extension only for the others.
   const std::uint64_t* sumAt[6][6];
   std::uint64_t extended[6][6][4];
   for (int a = 0; a < 6; ++a)
@@ -231,15 +271,7 @@ void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corn
       for (int b = 0; b < 6; ++b)
         if (!(insideX[a] && insideY[b])) extendedSum(view, ex[a], ey[b], n[b], extended[a][b]);
   }
-  const std::uint64_t* ref = sumAt[0][0];
-  for (int a = 1; a < 6; ++a) {  // a = 0 or b = 0 is the reference corner's own line: 0
-    for (int b = 1; b < 6; ++b) {
-      const std::uint64_t *corner = sumAt[a][b], *alongX = sumAt[a][0], *alongY = sumAt[0][b];
-      std::int64_t* box = out + ((a - 1) * 5 + b - 1) * 4 * stride;
-      for (int c = 0; c < 4; ++c)
-        box[c * stride] = std::int64_t(corner[c] - alongX[c] - alongY[c] + ref[c]);
-    }
-  }
+  writeBoxSums(sumAt, nullptr, out, stride);
 }
 
 // Under repeat and mirrored repeat, extendAxis gives every prefix sum as
@@ -273,36 +305,47 @@ void SummedAreaTable::periodicBoxSums(const TextureView& view, const long m[6], 
   const auto signedSum = [](const std::uint64_t* sum, std::uint64_t negate, int c) {
     return (sum[c] ^ negate) - negate;
   };
-  std::uint64_t g[6][6][4];
+  // The signed entries G: the entries themselves, negated where one bound
+  // (not both) reads a mirrored period backwards.
+  const std::uint64_t* sumAt[6][6];
+  std::uint64_t negated[6][6][4];
   for (int a = 0; a < 6; ++a)
     for (int b = 0; b < 6; ++b) {
-      const std::uint64_t* sum = entry(x[a].r, y[b].r);
-      for (int c = 0; c < 4; ++c) g[a][b][c] = signedSum(sum, x[a].negate ^ y[b].negate, c);
+      sumAt[a][b] = entry(x[a].r, y[b].r);
+      const std::uint64_t negate = x[a].negate ^ y[b].negate;
+      if (negate == 0) continue;
+      for (int c = 0; c < 4; ++c) negated[a][b][c] = signedSum(sumAt[a][b], negate, c);
+      sumAt[a][b] = negated[a][b];
     }
-  // Whole columns at each x bound and whole rows at each y bound, relative to bound 0.
-  std::uint64_t columns[6][4], rows[6][4], dqX[6], dqY[6];
+  PeriodTerms periods;
+  std::uint64_t anyX = 0, anyY = 0;
   for (int i = 0; i < 6; ++i) {
-    dqX[i] = x[i].periods - x[0].periods, dqY[i] = y[i].periods - y[0].periods;
-    const std::uint64_t *column = entry(x[i].r, height_), *column0 = entry(x[0].r, height_);
-    const std::uint64_t *row = entry(width_, y[i].r), *row0 = entry(width_, y[0].r);
-    for (int c = 0; c < 4; ++c) {
-      columns[i][c] = signedSum(column, x[i].negate, c) - signedSum(column0, x[0].negate, c);
-      rows[i][c] = signedSum(row, y[i].negate, c) - signedSum(row0, y[0].negate, c);
+    periods.dqX[i] = x[i].periods - x[0].periods, periods.dqY[i] = y[i].periods - y[0].periods;
+    anyX |= periods.dqX[i], anyY |= periods.dqY[i];
+  }
+  // Whole columns and rows only where some bound counts them: each is a
+  // table line of its own, a cache miss on a large table.
+  for (int i = 0; i < 6; ++i)
+    for (int c = 0; c < 4; ++c) periods.columns[i][c] = periods.rows[i][c] = 0;
+  if (anyY != 0) {
+    const std::uint64_t* column0 = entry(x[0].r, height_);
+    for (int i = 1; i < 6; ++i) {
+      const std::uint64_t* column = entry(x[i].r, height_);
+      for (int c = 0; c < 4; ++c)
+        periods.columns[i][c] =
+            signedSum(column, x[i].negate, c) - signedSum(column0, x[0].negate, c);
     }
   }
-  const std::uint64_t* whole = entry(width_, height_);
-  for (int a = 1; a < 6; ++a) {
-    for (int b = 1; b < 6; ++b) {
-      std::int64_t* box = out + ((a - 1) * 5 + b - 1) * 4 * stride;
-      std::uint64_t sum[4];
-      for (int c = 0; c < 4; ++c) sum[c] = g[a][b][c] - g[a][0][c] - g[0][b][c] + g[0][0][c];
-      if ((dqX[a] | dqY[b]) != 0) {
-        for (int c = 0; c < 4; ++c)
-          sum[c] += dqY[b] * columns[a][c] + dqX[a] * rows[b][c] + dqX[a] * dqY[b] * whole[c];
-      }
-      for (int c = 0; c < 4; ++c) box[c * stride] = std::int64_t(sum[c]);
+  if (anyX != 0) {
+    const std::uint64_t* row0 = entry(width_, y[0].r);
+    for (int i = 1; i < 6; ++i) {
+      const std::uint64_t* row = entry(width_, y[i].r);
+      for (int c = 0; c < 4; ++c)
+        periods.rows[i][c] = signedSum(row, y[i].negate, c) - signedSum(row0, y[0].negate, c);
     }
   }
+  periods.whole = entry(width_, height_);
+  writeBoxSums(sumAt, &periods, out, stride);
 }
 
 void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, double y0,
@@ -370,17 +413,42 @@ void SummedAreaTable::lookup(const TextureView& view, float u, float v, float du
   for (int c = 0; c < 4; ++c) rgba[c] = float(average[c]);
 }
 
-void SummedAreaTable::prefetch(const CornerIndices& corners) const {
+void SummedAreaTable::prefetch(const TextureView& view, const CornerIndices& corners) const {
+  // A corner's first prefix index, or where a periodic wrap reads it
+  // (periodicBoxSums): its remainder, the start of the three entries read
+  // backwards in a mirrored period. -1: read from the extension, no entry.
+  const bool periodic = isPeriodic(view.wrapU) && isPeriodic(view.wrapV);
+  bool wrapped = false;
+  const auto first = [&](long at, long size, WrapMode mode) {
+    if (at >= 0 && at + 2 <= size) return at;
+    if (!periodic || size < 2) return -1L;
+    wrapped = true;
+    const AxisExtension e = extendAxis(at, size, mode);
+    return std::clamp(e.weight[0] < 0 ? e.index[0] - 2 : e.index[0], 0L, size - 2);
+  };
+  const long m[2] = {first(corners.m[0], width_, view.wrapU),
+                     first(corners.m[1], width_, view.wrapU)};
+  const long n[2] = {first(corners.n[0], height_, view.wrapV),
+                     first(corners.n[1], height_, view.wrapV)};
   // Each corner reads entries (m .. m + 2, n .. n + 2): three rows of 96
   // bytes, two cache lines each at most.
-  for (const long n : corners.n)
-    for (const long m : corners.m) {
-      if (m < 0 || m + 2 > width_ || n < 0 || n + 2 > height_) continue;
-      for (long row = n; row <= n + 2; ++row) {
-        __builtin_prefetch(entry(m, row));
-        __builtin_prefetch(entry(m + 2, row) + 3);
+  for (const long row0 : n)
+    for (const long column : m) {
+      if (column < 0 || row0 < 0) continue;
+      for (long row = row0; row <= row0 + 2; ++row) {
+        __builtin_prefetch(entry(column, row));
+        __builtin_prefetch(entry(column + 2, row) + 3);
       }
     }
+  if (!wrapped) return;
+  // The whole columns (the last row) and whole rows (the last column) a
+  // wrapped box may count.
+  for (const long column : m) {
+    __builtin_prefetch(entry(column, height_));
+    __builtin_prefetch(entry(column + 2, height_) + 3);
+  }
+  for (const long row0 : n)
+    for (long row = row0; row <= row0 + 2; ++row) __builtin_prefetch(entry(width_, row));
 }
 
 }  // namespace quadra

@@ -69,10 +69,10 @@ class SummedAreaTable {
     long m[2], n[2];
   };
   // Asks the memory system for the table entries boxSums() will read (where
-  // the box lies inside the table) and returns: they are 12 scattered cache
-  // lines per lookup, so a SIMD group prefetches all its lanes' before the
-  // first lane waits on one.
-  void prefetch(const CornerIndices& corners) const;
+  // the box lies inside the table, or anywhere under periodic wraps) and
+  // returns: they are 12 or more scattered cache lines per lookup, so a SIMD
+  // group prefetches all its lanes' before the first lane waits on one.
+  void prefetch(const TextureView& view, const CornerIndices& corners) const;
   // The box sums boxAverage() weights: for a and b in 1 .. 5 (the six prefix
   // indices along x, x0's three then x1's, and the six along y), the exact
   // sum over the box from the first corner (index 0, 0) to (a, b), modulo
