@@ -178,10 +178,6 @@ inline ScalarBatch<double> floor(const ScalarBatch<double>& a) {
 inline ScalarMask isNan(const ScalarBatch<double>& a) {
   return ScalarBatch<double>::test(a, a, [](double x, double) { return x != x; });
 }
-// int64 -> double, rounded to nearest like the scalar conversion (cvtsi2sd).
-inline ScalarBatch<double> toDouble(const ScalarBatch<std::int64_t>& a) {
-  return {double(a.v[0]), double(a.v[1]), double(a.v[2]), double(a.v[3])};
-}
 inline ScalarBatch<std::int32_t> min(const ScalarBatch<std::int32_t>& a,
                                      const ScalarBatch<std::int32_t>& b) {
   return ScalarBatch<std::int32_t>::map(
@@ -387,22 +383,6 @@ inline xsimd::batch<float, xsimd::avx512bw> permute2(
 }
 #endif
 
-// int64 -> double, rounded to nearest like the scalar conversion (cvtsi2sd):
-// AVX-512DQ converts directly; SSE2 and AVX2 have no such instruction, and
-// xsimd splits each value into an exact high part and an exact low part that
-// one correctly rounded addition joins (the full-range method of
-// stackoverflow.com/questions/41144668). xsimd 8.1's AVX-512DQ conversion does
-// not compile (it names a parameter that does not exist), hence the intrinsic.
-template <class A>
-inline xsimd::batch<double, A> toDouble(const xsimd::batch<std::int64_t, A>& a) {
-#if defined(__AVX512F__) && defined(__AVX512DQ__)
-  if constexpr (std::is_same_v<A, xsimd::avx512bw>)
-    return _mm512_cvtepi64_pd(a);
-  else
-#endif
-    return xsimd::to_float(a);
-}
-
 // ------------------------------------------------------- shared lane helpers
 // Lane constants given per lane (width W entries).
 template <class V, class T>
@@ -509,6 +489,32 @@ QUADRA_LANE_INLINE typename L::F expandLoad(std::uint32_t laneBits, const float*
   for (int k = 0, n = offset; k < L::kWidth; ++k)
     if (laneBits >> k & 1) out[k] = values[n++];
   return L::F::load_aligned(out);
+}
+
+// kDoubleWidth int64 values from `values` (register-aligned) as doubles,
+// rounded to nearest like the scalar conversion (cvtsi2sd). AVX-512DQ
+// converts a register (xsimd 8.1's own conversion there does not compile: it
+// names a parameter that does not exist); AVX2 has no such instruction, and
+// xsimd splits each value into an exact high part and an exact low part that
+// one correctly rounded addition joins (the full-range method of
+// stackoverflow.com/questions/41144668); on SSE2 that takes ten operations
+// for two values, where two scalar conversions from memory take five.
+template <class L>
+QUADRA_LANE_INLINE typename L::D loadAsDouble(const std::int64_t* values) {
+  if constexpr (std::is_same_v<L, Lanes<ScalarArch>>) {
+    return {double(values[0]), double(values[1]), double(values[2]), double(values[3])};
+#if defined(__AVX512F__) && defined(__AVX512DQ__)
+  } else if constexpr (L::kDoubleWidth == 8) {
+    return _mm512_cvtepi64_pd(_mm512_load_si512(values));
+#endif
+#if defined(__AVX2__)
+  } else if constexpr (L::kDoubleWidth == 4) {
+    return xsimd::to_float(L::I64::load_aligned(values));
+#endif
+  } else {
+    static_assert(L::kDoubleWidth == 2, "SSE2: two doubles");
+    return _mm_setr_pd(double(values[0]), double(values[1]));
+  }
 }
 
 // log2(x) for x > 0 finite, absolute error below 1e-6 over the whole range:

@@ -1005,7 +1005,6 @@ template <class L>
 Rgba<L> sampleSummedArea(const TextureView& view, const typename L::F& u, const typename L::F& v,
                          const UvDerivatives<L>& d) {
   using D = typename L::D;
-  using I64 = typename L::I64;
   constexpr int W = L::kWidth, DW = L::kDoubleWidth;
   const SummedAreaTable& table = *view.summedArea;
   const LaneLookups<L> in(u, v, d);
@@ -1053,8 +1052,7 @@ Rgba<L> sampleSummedArea(const TextureView& view, const typename L::F& u, const 
       for (int b = 1; b < 6; ++b) {
         const D weight = wx * D::load_aligned(&weightY[b][k]);
         const std::int64_t(&box)[4][W] = boxSum[(a - 1) * 5 + b - 1];
-        for (int c = 0; c < 4; ++c)
-          sum[c] = sum[c] + weight * simd::toDouble(I64::load_aligned(&box[c][k]));
+        for (int c = 0; c < 4; ++c) sum[c] = sum[c] + weight * simd::loadAsDouble<L>(&box[c][k]);
       }
     }
     const D scale = D::load_aligned(&norm[k]);
