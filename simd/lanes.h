@@ -517,6 +517,21 @@ QUADRA_LANE_INLINE typename L::D loadAsDouble(const std::int64_t* values) {
   }
 }
 
+// Element i of the result is perLane[i / 4] (for SSE2, whose two elements
+// are two channels of one lane: perLane[0]): per-lane doubles repeated over
+// the four channels of an RGBA lane group stored [lane][channel].
+template <class L>
+QUADRA_LANE_INLINE typename L::D repeatPerChannel(const double* perLane) {
+  if constexpr (L::kDoubleWidth == 8) {
+#if defined(__AVX512F__)
+    return _mm512_permutexvar_pd(_mm512_setr_epi64(0, 0, 0, 0, 1, 1, 1, 1),
+                                 _mm512_castpd128_pd512(_mm_loadu_pd(perLane)));
+#endif
+  } else {
+    return typename L::D(perLane[0]);
+  }
+}
+
 // log2(x) for x > 0 finite, absolute error below 1e-6 over the whole range:
 // exponent from the bits, mantissa m in [sqrt(1/2), sqrt(2)), and log2(m) =
 // t*q(t), t = m - 1, with q of degree 6 interpolating log2(1+t)/t at Chebyshev

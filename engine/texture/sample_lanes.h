@@ -1040,28 +1040,28 @@ Rgba<L> sampleSummedArea(const TextureView& view, const typename L::F& u, const 
                   {long(firstY[0][k]), long(firstY[1][k])}};
     table.prefetch(view, corners[k]);
   }
-  alignas(64) std::int64_t boxSum[25][4][W];
-  for (int k = 0; k < W; ++k) table.boxSums(view, corners[k], &boxSum[0][0][k], W);
+  alignas(64) std::int64_t boxSum[25][W][4];
+  for (int k = 0; k < W; ++k) table.boxSums(view, corners[k], &boxSum[0][k][0], 4 * W);
 
-  // The weighted sums, in boxAverage's order.
-  alignas(64) float out[4][W];
-  for (int k = 0; k < W; k += DW) {
-    D sum[4] = {D(0.0), D(0.0), D(0.0), D(0.0)};
+  // The weighted sums, in boxAverage's order, over DW of the W x 4 (lane,
+  // channel) sums at a time: the layout the table reads wrote (a lane's
+  // channels side by side), with each lane's weights repeated over its channels.
+  alignas(64) double average[W * 4];
+  for (int e = 0; e < W * 4; e += DW) {
+    const int lane = e / 4;
+    D sum(0.0);
     for (int a = 1; a < 6; ++a) {
-      const D wx = D::load_aligned(&weightX[a][k]);
+      const D wx = simd::repeatPerChannel<L>(&weightX[a][lane]);
       for (int b = 1; b < 6; ++b) {
-        const D weight = wx * D::load_aligned(&weightY[b][k]);
-        const std::int64_t(&box)[4][W] = boxSum[(a - 1) * 5 + b - 1];
-        for (int c = 0; c < 4; ++c) sum[c] = sum[c] + weight * simd::loadAsDouble<L>(&box[c][k]);
+        const D weight = wx * simd::repeatPerChannel<L>(&weightY[b][lane]);
+        sum = sum + weight * simd::loadAsDouble<L>(&boxSum[(a - 1) * 5 + b - 1][0][0] + e);
       }
     }
-    const D scale = D::load_aligned(&norm[k]);
-    for (int c = 0; c < 4; ++c) {
-      alignas(64) double average[DW];
-      (sum[c] * scale).store_aligned(average);
-      for (int j = 0; j < DW; ++j) out[c][k + j] = float(average[j]);
-    }
+    (sum * simd::repeatPerChannel<L>(&norm[lane])).store_aligned(&average[e]);
   }
+  alignas(64) float out[4][W];
+  for (int k = 0; k < W; ++k)
+    for (int c = 0; c < 4; ++c) out[c][k] = float(average[k * 4 + c]);
   using F = typename L::F;
   return {F::load_aligned(out[0]), F::load_aligned(out[1]), F::load_aligned(out[2]),
           F::load_aligned(out[3])};

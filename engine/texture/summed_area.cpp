@@ -208,7 +208,7 @@ struct PeriodTerms {
 // reference lines are held in locals: out (int64) may alias the uint64 sums,
 // so every store would otherwise reload them.
 void writeBoxSums(const std::uint64_t* const sumAt[6][6], const PeriodTerms* periods,
-                  std::int64_t* out, std::size_t stride) {
+                  std::int64_t* out, std::size_t boxStride) {
   std::uint64_t alongY[6][4];  // S(0, b) - S(0, 0)
   for (int b = 1; b < 6; ++b)
     for (int c = 0; c < 4; ++c) alongY[b][c] = sumAt[0][b][c] - sumAt[0][0][c];
@@ -225,8 +225,8 @@ void writeBoxSums(const std::uint64_t* const sumAt[6][6], const PeriodTerms* per
           sum[c] += dqY * periods->columns[a][c] + dqX * periods->rows[b][c] +
                     dqX * dqY * periods->whole[c];
       }
-      std::int64_t* box = out + ((a - 1) * 5 + b - 1) * 4 * stride;
-      for (int c = 0; c < 4; ++c) box[c * stride] = std::int64_t(sum[c]);
+      std::int64_t* box = out + ((a - 1) * 5 + b - 1) * boxStride;
+      for (int c = 0; c < 4; ++c) box[c] = std::int64_t(sum[c]);
     }
   }
 }
@@ -238,7 +238,7 @@ bool isPeriodic(WrapMode mode) {
 }  // namespace
 
 void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corners,
-                              std::int64_t* out, std::size_t stride) const {
+                              std::int64_t* out, std::size_t boxStride) const {
   // Every entry is read relative to the box's first corner (mRef, nRef): the
   // weights of each axis sum to zero, so subtracting terms constant along an
   // axis changes nothing, and what remains are exact integer sums over boxes
@@ -252,7 +252,7 @@ void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corn
     inside = inside && insideX[i] && insideY[i];
   }
   if (!inside && isPeriodic(view.wrapU) && isPeriodic(view.wrapV))
-    return periodicBoxSums(view, m, n, out, stride);
+    return periodicBoxSums(view, m, n, out, boxStride);
   // The 6 x 6 prefix sums: table entries where both bounds lie in the table
   // (every one, for most boxes), the wrap extension only for the others.
   const std::uint64_t* sumAt[6][6];
@@ -271,7 +271,7 @@ void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corn
       for (int b = 0; b < 6; ++b)
         if (!(insideX[a] && insideY[b])) extendedSum(view, ex[a], ey[b], n[b], extended[a][b]);
   }
-  writeBoxSums(sumAt, nullptr, out, stride);
+  writeBoxSums(sumAt, nullptr, out, boxStride);
 }
 
 // Under repeat and mirrored repeat, extendAxis gives every prefix sum as
@@ -288,7 +288,7 @@ void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corn
 // period), where the entry-by-entry extension multiplied four entries for
 // every one of the 36 prefix sums, a third of an extended lookup's time.
 void SummedAreaTable::periodicBoxSums(const TextureView& view, const long m[6], const long n[6],
-                                      std::int64_t* out, std::size_t stride) const {
+                                      std::int64_t* out, std::size_t boxStride) const {
   struct Bound {
     long r;
     std::uint64_t negate;  // all ones where s = -1: (x ^ negate) - negate is s x
@@ -345,7 +345,7 @@ void SummedAreaTable::periodicBoxSums(const TextureView& view, const long m[6], 
     }
   }
   periods.whole = entry(width_, height_);
-  writeBoxSums(sumAt, &periods, out, stride);
+  writeBoxSums(sumAt, &periods, out, boxStride);
 }
 
 void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, double y0,
@@ -354,7 +354,7 @@ void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, 
   const CornerTerms ys[2] = {cornerTerms(y0, -1.0), cornerTerms(y1, 1.0)};
   std::int64_t boxSum[25][4];
   boxSums(view, {{xs[0].index[0], xs[1].index[0]}, {ys[0].index[0], ys[1].index[0]}}, &boxSum[0][0],
-          1);
+          4);
   double sum[4] = {0.0, 0.0, 0.0, 0.0};
   for (int a = 1; a < 6; ++a) {
     for (int b = 1; b < 6; ++b) {

@@ -76,9 +76,11 @@ class SummedAreaTable {
   // The box sums boxAverage() weights: for a and b in 1 .. 5 (the six prefix
   // indices along x, x0's three then x1's, and the six along y), the exact
   // sum over the box from the first corner (index 0, 0) to (a, b), modulo
-  // 2^64, channel c at out[(((a - 1) * 5 + b - 1) * 4 + c) * stride].
+  // 2^64, channel c at out[((a - 1) * 5 + b - 1) * boxStride + c]: the
+  // channels side by side (4 SSE2 or 2 AVX2 registers of them), boxStride 4
+  // for one lookup, 4 W for a lane group's [box][lane][channel] layout.
   void boxSums(const TextureView& view, const CornerIndices& corners, std::int64_t* out,
-               std::size_t stride) const;
+               std::size_t boxStride) const;
 
   // The exact average of the level's bilinear reconstruction over the texel-
   // space box [x0, x1] x [y0, y1] (texel i covers [i, i + 1)), up to the
@@ -109,7 +111,7 @@ class SummedAreaTable {
   // mirrored repeat) and the box leaves the table; m and n are its six
   // prefix bounds per axis (summed_area.cpp).
   void periodicBoxSums(const TextureView& view, const long m[6], const long n[6], std::int64_t* out,
-                       std::size_t stride) const;
+                       std::size_t boxStride) const;
   const std::uint64_t* entry(long m, long n) const {
     return &sums_[(std::size_t(n) * std::size_t(width_ + 1) + std::size_t(m)) * 4];
   }
