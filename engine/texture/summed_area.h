@@ -45,8 +45,10 @@ class SummedAreaTable {
   int height() const { return height_; }
   int fractionBits() const { return fractionBits_; }
 
-  // The box filter for one lookup: (u, v) normalized, derivatives the
-  // Jacobian per pixel; wrap modes and border colour from `view`. The box is
+  // The box filter for one lookup, in scalar double arithmetic: the
+  // reference the lane kernels (sampleSummedArea, sample_lanes.h), which do
+  // the same across SIMD lanes, match bit for bit. (u, v) normalized,
+  // derivatives the Jacobian per pixel; wrap modes and border colour from `view`. The box is
   // the footprint parallelogram's bounding box, at least 2^-15 texels and at
   // most 64 texture periods on a side. NaN/Inf positions read as 0.
   void lookup(const TextureView& view, float u, float v, float dudx, float dvdx, float dudy,
