@@ -114,9 +114,10 @@ void lookupArguments(benchmark::internal::Benchmark* b) {
         for (const int side : {kSideL1, kSideL2, kSideDram})
           for (const int threads : {1, 2})
             b->Args({int(filter), int(format), int(isa), side, threads, 0});
-  // The offline filters (lookup by lookup: one format and ISA tells their cost).
+  // The offline filters (lookup by lookup: one format tells their cost; every
+  // ISA, as their lane code is compiled per ISA).
   for (const Filter filter : {Filter::Ewa, Filter::Area, Filter::SummedArea})
-    for (const Isa isa : {Isa::Avx2, Isa::Avx512})
+    for (const Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
       for (const int side : {kSideL1, kSideL2, kSideDram})
         b->Args({int(filter), int(TexelFormat::Rgba32F), int(isa), side, 1, 0});
   // The gather alternative of the float fetch, where the ISA has gathers

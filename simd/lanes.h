@@ -1,7 +1,10 @@
 // Lane types for the kernels: a thin layer over xsimd plus a plain-C++ scalar
 // path with the same interface, so each kernel is one source compiled per ISA.
 //
-// Lanes<Arch>::F (float lanes), ::I (int32 lanes), ::M (float lane mask).
+// Lanes<Arch>::F (float lanes), ::I (int32 lanes), ::M (float lane mask);
+// for the filters whose sums need double (the summed-area table), ::D (double
+// lanes, kDoubleWidth of them: half of F's, four on the scalar path), ::DM
+// (their mask) and ::I64 (int64 lanes beside them).
 // Lanes are grouped in 2x2 pixel quads: lane 4q + 2*ly + lx is pixel (lx, ly) of
 // quad q. SSE2 and scalar carry 1 quad, AVX2 2 quads, AVX-512 4 quads.
 //
@@ -16,6 +19,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include <xsimd/xsimd.hpp>
 
@@ -119,8 +123,12 @@ struct Lanes {
   using F = xsimd::batch<float, Arch>;
   using I = xsimd::batch<std::int32_t, Arch>;
   using M = xsimd::batch_bool<float, Arch>;
+  using D = xsimd::batch<double, Arch>;
+  using DM = xsimd::batch_bool<double, Arch>;
+  using I64 = xsimd::batch<std::int64_t, Arch>;
   static constexpr int kWidth = int(F::size);
   static constexpr int kQuads = kWidth / 4;
+  static constexpr int kDoubleWidth = int(D::size);
 };
 
 template <>
@@ -128,8 +136,12 @@ struct Lanes<ScalarArch> {
   using F = ScalarBatch<float>;
   using I = ScalarBatch<std::int32_t>;
   using M = ScalarMask;
+  using D = ScalarBatch<double>;
+  using DM = ScalarMask;
+  using I64 = ScalarBatch<std::int64_t>;
   static constexpr int kWidth = 4;
   static constexpr int kQuads = 1;
+  static constexpr int kDoubleWidth = 4;
 };
 
 // ------------------------------------------------------------ scalar functions
@@ -152,6 +164,20 @@ inline ScalarBatch<float> floor(const ScalarBatch<float>& a) {
 }
 inline ScalarBatch<float> sqrt(const ScalarBatch<float>& a) {
   return ScalarBatch<float>::map(a, a, [](float x, float) { return __builtin_sqrtf(x); });
+}
+inline ScalarBatch<double> select(const ScalarMask& m, const ScalarBatch<double>& a,
+                                  const ScalarBatch<double>& b) {
+  return {m.v[0] ? a.v[0] : b.v[0], m.v[1] ? a.v[1] : b.v[1], m.v[2] ? a.v[2] : b.v[2],
+          m.v[3] ? a.v[3] : b.v[3]};
+}
+inline ScalarBatch<double> abs(const ScalarBatch<double>& a) {
+  return ScalarBatch<double>::map(a, a, [](double x, double) { return __builtin_fabs(x); });
+}
+inline ScalarBatch<double> floor(const ScalarBatch<double>& a) {
+  return ScalarBatch<double>::map(a, a, [](double x, double) { return __builtin_floor(x); });
+}
+inline ScalarMask isNan(const ScalarBatch<double>& a) {
+  return ScalarBatch<double>::test(a, a, [](double x, double) { return x != x; });
 }
 inline ScalarBatch<std::int32_t> min(const ScalarBatch<std::int32_t>& a,
                                      const ScalarBatch<std::int32_t>& b) {
@@ -217,6 +243,12 @@ inline xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
                                      const xsimd::batch<float, A>& b) {
   return xsimd::select(m, a, b);
 }
+template <class A>
+inline xsimd::batch<double, A> select(const xsimd::batch_bool<double, A>& m,
+                                      const xsimd::batch<double, A>& a,
+                                      const xsimd::batch<double, A>& b) {
+  return xsimd::select(m, a, b);
+}
 template <class T, class A>
 inline xsimd::batch<T, A> min(const xsimd::batch<T, A>& a, const xsimd::batch<T, A>& b) {
   return xsimd::min(a, b);
@@ -225,13 +257,19 @@ template <class T, class A>
 inline xsimd::batch<T, A> max(const xsimd::batch<T, A>& a, const xsimd::batch<T, A>& b) {
   return xsimd::max(a, b);
 }
-template <class A>
-inline xsimd::batch<float, A> abs(const xsimd::batch<float, A>& a) {
+template <class T, class A>
+inline xsimd::batch<T, A> abs(const xsimd::batch<T, A>& a) {
   return xsimd::abs(a);
 }
-template <class A>
-inline xsimd::batch<float, A> floor(const xsimd::batch<float, A>& a) {
+template <class T, class A>
+inline xsimd::batch<T, A> floor(const xsimd::batch<T, A>& a) {
   return xsimd::floor(a);
+}
+// Not `a != a`: xsimd's != is the ordered compare on AVX (false for NaN) and
+// the unordered one on SSE2 (true), so only this names NaN on every path.
+template <class A>
+inline xsimd::batch_bool<double, A> isNan(const xsimd::batch<double, A>& a) {
+  return xsimd::isnan(a);
 }
 template <class A>
 inline xsimd::batch<float, A> sqrt(const xsimd::batch<float, A>& a) {
@@ -519,6 +557,47 @@ QUADRA_LANE_INLINE void laneAddresses(const std::uint8_t* const* base, const typ
   index.store_aligned(lane);
   offset.store_aligned(off);
   for (int k = 0; k < L::kWidth; ++k) out[k] = base[lane[k]] + std::ptrdiff_t(off[k]) * kBytes;
+}
+
+// kDoubleWidth int64 values from `values` (register-aligned) as doubles,
+// rounded to nearest like the scalar conversion (cvtsi2sd). AVX-512DQ
+// converts a register (xsimd 8.1's own conversion there does not compile: it
+// names a parameter that does not exist); AVX2 has no such instruction, and
+// xsimd splits each value into an exact high part and an exact low part that
+// one correctly rounded addition joins (the full-range method of
+// stackoverflow.com/questions/41144668); on SSE2 that takes ten operations
+// for two values, where two scalar conversions from memory take five.
+template <class L>
+QUADRA_LANE_INLINE typename L::D loadAsDouble(const std::int64_t* values) {
+  if constexpr (std::is_same_v<L, Lanes<ScalarArch>>) {
+    return {double(values[0]), double(values[1]), double(values[2]), double(values[3])};
+#if defined(__AVX512F__) && defined(__AVX512DQ__)
+  } else if constexpr (L::kDoubleWidth == 8) {
+    return _mm512_cvtepi64_pd(_mm512_load_si512(values));
+#endif
+#if defined(__AVX2__)
+  } else if constexpr (L::kDoubleWidth == 4) {
+    return xsimd::to_float(L::I64::load_aligned(values));
+#endif
+  } else {
+    static_assert(L::kDoubleWidth == 2, "SSE2: two doubles");
+    return _mm_setr_pd(double(values[0]), double(values[1]));
+  }
+}
+
+// Element i of the result is perLane[i / 4] (for SSE2, whose two elements
+// are two channels of one lane: perLane[0]): per-lane doubles repeated over
+// the four channels of an RGBA lane group stored [lane][channel].
+template <class L>
+QUADRA_LANE_INLINE typename L::D repeatPerChannel(const double* perLane) {
+  if constexpr (L::kDoubleWidth == 8) {
+#if defined(__AVX512F__)
+    return _mm512_permutexvar_pd(_mm512_setr_epi64(0, 0, 0, 0, 1, 1, 1, 1),
+                                 _mm512_castpd128_pd512(_mm_loadu_pd(perLane)));
+#endif
+  } else {
+    return typename L::D(perLane[0]);
+  }
 }
 
 // log2(x) for x > 0 finite, absolute error below 1e-6 over the whole range:

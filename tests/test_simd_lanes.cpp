@@ -64,5 +64,34 @@ TEST(SimdLanes, QuadBroadcastAndMaskBitsAgree) {
   }
 }
 
+// The double lanes the summed-area kernel uses: int64 loads convert as the
+// scalar conversion does over the whole int64 range, NaN is named on every
+// path, and per-lane values repeat over a lane's channels.
+TEST(SimdLanes, DoubleLanesConvertNameNanAndRepeatLikeScalar) {
+  std::mt19937_64 rng(9);
+  for (int i = 0; i < 20000; ++i) {
+    alignas(64) std::int64_t values[4];
+    for (std::int64_t& v : values) v = std::int64_t(rng() >> (rng() % 64));  // every magnitude
+    if (i % 2) values[1] = -values[1];
+    alignas(64) double scalar[4], sse2[4];
+    simd::loadAsDouble<Scalar>(values).store_aligned(scalar);
+    simd::loadAsDouble<Sse2>(values).store_aligned(sse2);
+    simd::loadAsDouble<Sse2>(values + 2).store_aligned(sse2 + 2);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(scalar[k], double(values[k])) << values[k];
+      EXPECT_EQ(sse2[k], double(values[k])) << values[k];
+    }
+  }
+  const double nan = std::nan("");
+  EXPECT_EQ(simd::bits(simd::isNan(Scalar::D(nan, 1.0, -INFINITY, nan))), 0b1001u);
+  alignas(16) double lanes[2] = {nan, 0.0}, repeated[2];
+  const auto sse2Nan = simd::isNan(Sse2::D::load_aligned(lanes));
+  EXPECT_TRUE(sse2Nan.get(0));
+  EXPECT_FALSE(sse2Nan.get(1));
+  simd::repeatPerChannel<Sse2>(lanes + 1).store_aligned(repeated);
+  EXPECT_EQ(repeated[0], 0.0);
+  EXPECT_EQ(repeated[1], 0.0);
+}
+
 }  // namespace
 }  // namespace quadra

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -213,6 +214,52 @@ TEST(SummedArea, EveryIsaAndThreadCountGivesTheSameBits) {
   parallelView.summedArea->texelSum(parallelView, -40, 77, -3, 51, a);
   serialView.summedArea->texelSum(serialView, -40, 77, -3, 51, b);
   for (int c = 0; c < 4; ++c) EXPECT_EQ(a[c], b[c]);
+}
+
+// The lane kernels against the scalar reference, SummedAreaTable::lookup, bit
+// for bit on every ISA and wrap mode, over footprints from sub-texel to past
+// the 64-period limit and the inputs that take special paths (NaN, Inf, zero
+// derivatives, far positions); and the reference itself against a hash of its
+// output before the kernels were vectorized (commit d828d93: lookup called lane
+// by lane), so the lane code is checked against that code, not only against
+// what the reference has become.
+TEST(SummedArea, LaneKernelsGiveTheScalarReferenceBitsInEveryWrapMode) {
+  const auto image = std::make_shared<Image>(makeValueNoiseTexture(37, 23, 5));
+  std::vector<Lookup> lookups = randomLookups(997, 21);  // not a whole number of lane groups
+  for (const Lookup& l : randomLookups(64, 22))          // boxes beyond 64 periods, clamped
+    lookups.push_back({l[0] * 100.0f, l[1], l[2] * 200.0f, l[3] * 200.0f, l[4], l[5]});
+  const float inf = INFINITY, nan = NAN;
+  const std::vector<Lookup> special = {
+      {0.3f, 0.7f, 0.0f, 0.0f, 0.0f, 0.0f},     {nan, 0.5f, 0.01f, 0.0f, 0.0f, 0.01f},
+      {0.5f, inf, 0.01f, 0.0f, 0.0f, 0.01f},    {0.5f, 0.5f, nan, 0.0f, 0.0f, 0.01f},
+      {0.5f, 0.5f, inf, 0.0f, 0.0f, -inf},      {-1e30f, 1e30f, 0.02f, 0.0f, 0.0f, 0.02f},
+      {-7.25f, 40.5f, 3.0f, -1.0f, 2.0f, 5.0f}, {0.0f, 1.0f, 1e-9f, 0.0f, 0.0f, 1e-9f}};
+  lookups.insert(lookups.end(), special.begin(), special.end());
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a over every mode's reference bits
+  for (const WrapMode wrap : {WrapMode::Repeat, WrapMode::MirroredRepeat, WrapMode::ClampToEdge,
+                              WrapMode::ClampToBorder}) {
+    const Texture texture(image, samplerWith(wrap, kBorder), TexelFormat::Rgba32F);
+    const TextureView view = makeTextureView(texture, FilterSettings(Filter::SummedArea));
+    std::vector<std::uint32_t> reference(lookups.size() * 4);
+    for (std::size_t i = 0; i < lookups.size(); ++i) {
+      const Lookup& l = lookups[i];
+      float rgba[4];
+      view.summedArea->lookup(view, l[0], l[1], l[2], l[3], l[4], l[5], rgba);
+      std::memcpy(&reference[i * 4], rgba, sizeof(rgba));
+    }
+    for (const std::uint32_t bits : reference)
+      for (int byte = 0; byte < 4; ++byte)
+        hash = (hash ^ ((bits >> (8 * byte)) & 0xFF)) * 1099511628211ull;
+    for (const Isa isa : supportedIsas()) {
+      const std::vector<float> got = sampleAll(texture, Filter::SummedArea, isa, lookups);
+      std::vector<std::uint32_t> gotBits(got.size());
+      std::memcpy(gotBits.data(), got.data(), got.size() * sizeof(float));
+      for (std::size_t i = 0; i < gotBits.size(); ++i)
+        ASSERT_EQ(gotBits[i], reference[i])
+            << wrapName(wrap) << " " << isaName(isa) << " lookup " << i / 4 << " channel " << i % 4;
+    }
+  }
+  EXPECT_EQ(hash, 12025791041729856473ull) << "the reference's bits changed";
 }
 
 // `quadra report sat-precision` prints, per texture and box size, a float

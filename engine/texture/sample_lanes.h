@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 
 #include <type_traits>
 
@@ -769,8 +770,8 @@ struct LaneLookups {
   }
 };
 
-// A filter that works lookup by lookup in scalar code compiled once (EWA,
-// the summed-area table): `lookup(k, rgba)` fills lane k. Their per-lookup
+// A filter that works lookup by lookup in scalar code compiled once (EWA's
+// plan): `lookup(k, rgba)` fills lane k. Their per-lookup
 // work varies with the footprint, so lanes would mostly wait on each other;
 // and one compiled copy gives every ISA path the same bits.
 template <class L, class LaneLookup>
@@ -927,23 +928,145 @@ Rgba<L> sampleEwa(const TextureView& view, const typename L::F& u, const typenam
   });
 }
 
-// The summed-area table (texture/summed_area.h): lane by lane in scalar
-// integer and double arithmetic (the same bits on every path), after every
-// lane's table entries are prefetched: on a table beyond the caches the
-// lookups wait on memory (12 scattered cache lines each, 32 bytes a texel),
-// 680 -> 468 ns a lookup on the sampler benchmark's 2048² texture; on a
-// cached one (128²) the arithmetic's ~400 ns is all there is.
+namespace sat {
+
+// SummedAreaTable::lookup's steps (summed_area.cpp) on double lanes: the same
+// exactly rounded operations in the same order (the kernels are compiled
+// without FP contraction), so every lane gets lookup()'s bits.
+
+// A lane group's floats, kDoubleWidth of them from `values`, as doubles.
+template <class L>
+QUADRA_LANE_INLINE typename L::D widen(const float* values) {
+  alignas(64) double wide[L::kDoubleWidth];
+  for (int k = 0; k < L::kDoubleWidth; ++k) wide[k] = double(values[k]);
+  return L::D::load_aligned(wide);
+}
+
+// std::clamp(t, lo, hi): its comparisons, so NaN passes through as there.
+template <class L>
+QUADRA_LANE_INLINE typename L::D clamp(const typename L::D& t, double lo, double hi) {
+  using D = typename L::D;
+  return simd::select(t < D(lo), D(lo), simd::select(D(hi) < t, D(hi), t));
+}
+
+// Half a side of the footprint's bounding box in texels (boxOf's halfSide).
+template <class L>
+QUADRA_LANE_INLINE typename L::D halfSide(const typename L::D& a, const typename L::D& b,
+                                          double size) {
+  using D = typename L::D;
+  const D side = D(0.5) * (simd::abs(a) + simd::abs(b)) * D(size);
+  const D clamped =
+      clamp<L>(side, SummedAreaTable::kMinHalfSide, 0.5 * SummedAreaTable::kMaxBoxPeriods * size);
+  return simd::select(simd::isNan(side), D(SummedAreaTable::kMinHalfSide), clamped);
+}
+
+// The box centre brought near the texture (boxOf's centre), from a
+// coordinate whose NaN and Inf count as 0.
+template <class L>
+QUADRA_LANE_INLINE typename L::D centre(const typename L::D& coordinate, WrapMode mode) {
+  using D = typename L::D;
+  const D t = simd::select(simd::abs(coordinate) < D(INFINITY), coordinate, D(0.0));
+  if (mode == WrapMode::Repeat) return t - simd::floor(t);
+  if (mode == WrapMode::MirroredRepeat) return t - D(2.0) * simd::floor(D(0.5) * t);
+  return clamp<L>(t, -1.0 - 0.5 * SummedAreaTable::kMaxBoxPeriods,
+                  2.0 + 0.5 * SummedAreaTable::kMaxBoxPeriods);
+}
+
+// A box corner's three prefix indices (first, first + 1, first + 2) and
+// their weights along one axis (summed_area.cpp's cornerTerms).
+template <class L>
+struct CornerTerms {
+  typename L::D first, weight[3];
+};
+
+template <class L>
+QUADRA_LANE_INLINE CornerTerms<L> cornerTerms(const typename L::D& x, double sign) {
+  using D = typename L::D;
+  const D j = simd::floor(x - D(0.5)), s = x - D(0.5) - j;
+  return {j,
+          {D(sign * 0.5) * (D(1.0) - s) * (D(1.0) - s), D(sign) * (D(0.5) + s - s * s),
+           D(sign * 0.5) * s * s}};
+}
+
+}  // namespace sat
+
+// The summed-area table (texture/summed_area.h) across lanes: the boxes,
+// their corner terms and the weighted box sums in double lanes, in lookup()'s
+// operations and order (the same bits on every path; lookup() stays the
+// scalar reference the tests compare with). Only the table reads and their
+// exact integer sums go lane by lane, in SummedAreaTable::boxSums (no fast
+// gathers here, and the wrap extension branches per lane), after every
+// lane's entries are prefetched: on a table beyond the caches the lookups
+// wait on memory (12 scattered cache lines each, 32 bytes a texel). The box
+// sums pass through memory as [box][lane][channel], the layout the scalar
+// code writes fastest. Against the lane-by-lane lookup() this replaced
+// (docs/performance.md): 262 -> 157 ns a lookup at 128², 280 -> 190 at 2048²
+// on AVX-512; 267 -> 169 / 278 -> 201 on AVX2; SSE2 and scalar lanes gain
+// 13-27%.
 template <class L>
 Rgba<L> sampleSummedArea(const TextureView& view, const typename L::F& u, const typename L::F& v,
                          const UvDerivatives<L>& d) {
+  using D = typename L::D;
+  constexpr int W = L::kWidth, DW = L::kDoubleWidth;
+  const SummedAreaTable& table = *view.summedArea;
   const LaneLookups<L> in(u, v, d);
-  for (int k = 0; k < L::kWidth; ++k)
-    view.summedArea->prefetch(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k],
-                              in.dvdy[k]);
-  return sampleEachLane<L>([&](int k, float rgba[4]) {
-    view.summedArea->lookup(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k],
-                            rgba);
-  });
+  const double width = table.width(), height = table.height();
+  const double fixedPointScale = std::ldexp(1.0, table.fractionBits());
+
+  // The boxes and their corner terms (lookup's boxOf and boxAverage).
+  alignas(64) double firstX[2][W], firstY[2][W], weightX[6][W], weightY[6][W], norm[W];
+  for (int k = 0; k < W; k += DW) {
+    using sat::widen;
+    const D hx = sat::halfSide<L>(widen<L>(in.dudx + k), widen<L>(in.dudy + k), width);
+    const D hy = sat::halfSide<L>(widen<L>(in.dvdx + k), widen<L>(in.dvdy + k), height);
+    const D cx = sat::centre<L>(widen<L>(in.u + k), view.wrapU) * D(width);
+    const D cy = sat::centre<L>(widen<L>(in.v + k), view.wrapV) * D(height);
+    const D x0 = cx - hx, x1 = cx + hx, y0 = cy - hy, y1 = cy + hy;
+    const sat::CornerTerms<L> xs[2] = {sat::cornerTerms<L>(x0, -1.0), sat::cornerTerms<L>(x1, 1.0)};
+    const sat::CornerTerms<L> ys[2] = {sat::cornerTerms<L>(y0, -1.0), sat::cornerTerms<L>(y1, 1.0)};
+    for (int corner = 0; corner < 2; ++corner) {
+      xs[corner].first.store_aligned(&firstX[corner][k]);
+      ys[corner].first.store_aligned(&firstY[corner][k]);
+      for (int i = 0; i < 3; ++i) {
+        xs[corner].weight[i].store_aligned(&weightX[corner * 3 + i][k]);
+        ys[corner].weight[i].store_aligned(&weightY[corner * 3 + i][k]);
+      }
+    }
+    (D(1.0) / (D(fixedPointScale) * (x1 - x0) * (y1 - y0))).store_aligned(&norm[k]);
+  }
+
+  // The table reads, lane by lane.
+  SummedAreaTable::CornerIndices corners[W];
+  for (int k = 0; k < W; ++k) {
+    corners[k] = {{long(firstX[0][k]), long(firstX[1][k])},
+                  {long(firstY[0][k]), long(firstY[1][k])}};
+    table.prefetch(view, corners[k]);
+  }
+  alignas(64) std::int64_t boxSum[25][W][4];
+  for (int k = 0; k < W; ++k) table.boxSums(view, corners[k], &boxSum[0][k][0], 4 * W);
+
+  // The weighted sums, in boxAverage's order, over DW of the W x 4 (lane,
+  // channel) sums at a time: the layout the table reads wrote (a lane's
+  // channels side by side), with each lane's weights repeated over its channels.
+  alignas(64) double average[W * 4];
+  for (int e = 0; e < W * 4; e += DW) {
+    const int lane = e / 4;
+    D sum(0.0);
+    for (int a = 1; a < 6; ++a) {
+      const D wx = simd::repeatPerChannel<L>(&weightX[a][lane]);
+      for (int b = 1; b < 6; ++b) {
+        const D weight = wx * simd::repeatPerChannel<L>(&weightY[b][lane]);
+        sum = sum + weight * simd::loadAsDouble<L>(&boxSum[(a - 1) * 5 + b - 1][0][0] + e);
+      }
+    }
+    (sum * simd::repeatPerChannel<L>(&norm[lane])).store_aligned(&average[e]);
+  }
+  alignas(64) float out[4][W];
+  for (int k = 0; k < W; ++k)
+    for (int c = 0; c < 4; ++c) out[c][k] = float(average[k * 4 + c]);
+  using F = typename L::F;
+  return {F::load_aligned(out[0]), F::load_aligned(out[1]), F::load_aligned(out[2]),
+          F::load_aligned(out[3])};
 }
 
 // The area filter (texture/area_filter.h), lookup by lane: each lane's grid

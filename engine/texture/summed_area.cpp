@@ -11,14 +11,9 @@ namespace quadra {
 
 namespace {
 
-// A lookup's box is at most this many texture periods on a side; the fixed
-// point leaves room for its sum (and a few texels of margin) in 63 bits.
-constexpr double kMaxBoxPeriods = 64.0;
+// A lookup's box is at most kMaxBoxPeriods texture periods on a side; the
+// fixed point leaves room for its sum (and a few texels of margin) in 63 bits.
 constexpr int kMaxFractionBits = 40;  // 1e-12 per texel: finer buys nothing
-// The smallest half side of a box: a footprint of zero size (zero derivatives)
-// becomes a box this small, whose average is the bilinear value to about
-// this many texels times the local slope.
-constexpr double kMinHalfSide = 1.0 / 65536.0;
 
 double finiteOrZero(float value) {
   return std::isfinite(value) ? double(value) : 0.0;
@@ -198,10 +193,52 @@ void SummedAreaTable::extendedSum(const TextureView& view, const AxisExtension& 
   }
 }
 
-void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, double y0,
-                                 double y1, double rgba[4]) const {
-  const CornerTerms xs[2] = {cornerTerms(x0, -1.0), cornerTerms(x1, 1.0)};
-  const CornerTerms ys[2] = {cornerTerms(y0, -1.0), cornerTerms(y1, 1.0)};
+namespace {
+
+// The whole-period terms of a periodic box sum (periodicBoxSums, below).
+struct PeriodTerms {
+  std::uint64_t dqX[6], dqY[6];  // periods counted at each bound, relative to bound 0
+  std::uint64_t columns[6][4];   // s_a T(r_a, H) - s_0 T(r_0, H), where some dqY is not 0
+  std::uint64_t rows[6][4];      // s_b T(W, r_b) - s_0 T(W, r_0), where some dqX is not 0
+  const std::uint64_t* whole;    // T(W, H)
+};
+
+// The box sums S(a, b) - S(a, 0) - S(0, b) + S(0, 0) of 6 x 6 prefix sums (plus
+// the period terms, where given), laid out as boxSums() writes them. The
+// reference lines are held in locals: out (int64) may alias the uint64 sums,
+// so every store would otherwise reload them.
+void writeBoxSums(const std::uint64_t* const sumAt[6][6], const PeriodTerms* periods,
+                  std::int64_t* out, std::size_t boxStride) {
+  std::uint64_t alongY[6][4];  // S(0, b) - S(0, 0)
+  for (int b = 1; b < 6; ++b)
+    for (int c = 0; c < 4; ++c) alongY[b][c] = sumAt[0][b][c] - sumAt[0][0][c];
+  for (int a = 1; a < 6; ++a) {  // a = 0 or b = 0 is the reference corner's own line: 0
+    std::uint64_t alongX[4];
+    for (int c = 0; c < 4; ++c) alongX[c] = sumAt[a][0][c];
+    for (int b = 1; b < 6; ++b) {
+      const std::uint64_t* corner = sumAt[a][b];
+      std::uint64_t sum[4];
+      for (int c = 0; c < 4; ++c) sum[c] = corner[c] - alongX[c] - alongY[b][c];
+      if (periods && (periods->dqX[a] | periods->dqY[b]) != 0) {
+        const std::uint64_t dqX = periods->dqX[a], dqY = periods->dqY[b];
+        for (int c = 0; c < 4; ++c)
+          sum[c] += dqY * periods->columns[a][c] + dqX * periods->rows[b][c] +
+                    dqX * dqY * periods->whole[c];
+      }
+      std::int64_t* box = out + ((a - 1) * 5 + b - 1) * boxStride;
+      for (int c = 0; c < 4; ++c) box[c] = std::int64_t(sum[c]);
+    }
+  }
+}
+
+bool isPeriodic(WrapMode mode) {
+  return mode == WrapMode::Repeat || mode == WrapMode::MirroredRepeat;
+}
+
+}  // namespace
+
+void SummedAreaTable::boxSums(const TextureView& view, const CornerIndices& corners,
+                              std::int64_t* out, std::size_t boxStride) const {
   // Every entry is read relative to the box's first corner (mRef, nRef): the
   // weights of each axis sum to zero, so subtracting terms constant along an
   // axis changes nothing, and what remains are exact integer sums over boxes
@@ -209,14 +246,15 @@ void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, 
   long m[6], n[6];
   bool insideX[6], insideY[6], inside = true;
   for (int i = 0; i < 6; ++i) {
-    m[i] = xs[i / 3].index[i % 3], n[i] = ys[i / 3].index[i % 3];
+    m[i] = corners.m[i / 3] + i % 3, n[i] = corners.n[i / 3] + i % 3;
     insideX[i] = m[i] >= 0 && m[i] <= width_;
     insideY[i] = n[i] >= 0 && n[i] <= height_;
     inside = inside && insideX[i] && insideY[i];
   }
+  if (!inside && isPeriodic(view.wrapU) && isPeriodic(view.wrapV))
+    return periodicBoxSums(view, m, n, out, boxStride);
   // The 6 x 6 prefix sums: table entries where both bounds lie in the table
-  // (every one, for most boxes), the wrap extension (integer divisions under
-  // repeat and mirror) only for the others.
+  // (every one, for most boxes), the wrap extension only for the others.
   const std::uint64_t* sumAt[6][6];
   std::uint64_t extended[6][6][4];
   for (int a = 0; a < 6; ++a)
@@ -233,16 +271,95 @@ void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, 
       for (int b = 0; b < 6; ++b)
         if (!(insideX[a] && insideY[b])) extendedSum(view, ex[a], ey[b], n[b], extended[a][b]);
   }
-  const std::uint64_t* ref = sumAt[0][0];
+  writeBoxSums(sumAt, nullptr, out, boxStride);
+}
+
+// Under repeat and mirrored repeat, extendAxis gives every prefix sum as
+// P(m) = s P(r) + q P(n): r inside the table, the sign s = +-1 (-1 where a
+// mirrored row is read backwards) and q rows or columns counted whole. The
+// box sum from bound 0 to bound a along x and b along y (the difference of
+// four such products) is then, with the signed entries G(a, b) =
+// s_a s_b T(r_a, r_b) and dq_i = q_i - q_0,
+//   G(a, b) - G(a, 0) - G(0, b) + G(0, 0)           the entries' own box sum
+//   + dq_b (s_a T(r_a, H) - s_0 T(r_0, H))         whole columns, rows r_0 .. r_a
+//   + dq_a (s_b T(W, r_b) - s_0 T(W, r_0))         whole rows
+//   + dq_a dq_b T(W, H)                             whole periods,
+// all modulo 2^64. Most dq are 0 (the bounds of one corner lie in one
+// period), where the entry-by-entry extension multiplied four entries for
+// every one of the 36 prefix sums, a third of an extended lookup's time.
+void SummedAreaTable::periodicBoxSums(const TextureView& view, const long m[6], const long n[6],
+                                      std::int64_t* out, std::size_t boxStride) const {
+  struct Bound {
+    long r;
+    std::uint64_t negate;  // all ones where s = -1: (x ^ negate) - negate is s x
+    std::uint64_t periods;
+  };
+  const auto bound = [](long at, long size, WrapMode mode) {
+    if (at >= 0 && at <= size) return Bound{at, 0, 0};  // no division inside the table
+    const AxisExtension e = extendAxis(at, size, mode);
+    return Bound{e.index[0], e.weight[0] < 0 ? ~std::uint64_t(0) : 0, std::uint64_t(e.weight[1])};
+  };
+  Bound x[6], y[6];
+  for (int i = 0; i < 6; ++i)
+    x[i] = bound(m[i], width_, view.wrapU), y[i] = bound(n[i], height_, view.wrapV);
+  const auto signedSum = [](const std::uint64_t* sum, std::uint64_t negate, int c) {
+    return (sum[c] ^ negate) - negate;
+  };
+  // The signed entries G: the entries themselves, negated where one bound
+  // (not both) reads a mirrored period backwards.
+  const std::uint64_t* sumAt[6][6];
+  std::uint64_t negated[6][6][4];
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      sumAt[a][b] = entry(x[a].r, y[b].r);
+      const std::uint64_t negate = x[a].negate ^ y[b].negate;
+      if (negate == 0) continue;
+      for (int c = 0; c < 4; ++c) negated[a][b][c] = signedSum(sumAt[a][b], negate, c);
+      sumAt[a][b] = negated[a][b];
+    }
+  PeriodTerms periods;
+  std::uint64_t anyX = 0, anyY = 0;
+  for (int i = 0; i < 6; ++i) {
+    periods.dqX[i] = x[i].periods - x[0].periods, periods.dqY[i] = y[i].periods - y[0].periods;
+    anyX |= periods.dqX[i], anyY |= periods.dqY[i];
+  }
+  // Whole columns and rows only where some bound counts them: each is a
+  // table line of its own, a cache miss on a large table.
+  for (int i = 0; i < 6; ++i)
+    for (int c = 0; c < 4; ++c) periods.columns[i][c] = periods.rows[i][c] = 0;
+  if (anyY != 0) {
+    const std::uint64_t* column0 = entry(x[0].r, height_);
+    for (int i = 1; i < 6; ++i) {
+      const std::uint64_t* column = entry(x[i].r, height_);
+      for (int c = 0; c < 4; ++c)
+        periods.columns[i][c] =
+            signedSum(column, x[i].negate, c) - signedSum(column0, x[0].negate, c);
+    }
+  }
+  if (anyX != 0) {
+    const std::uint64_t* row0 = entry(width_, y[0].r);
+    for (int i = 1; i < 6; ++i) {
+      const std::uint64_t* row = entry(width_, y[i].r);
+      for (int c = 0; c < 4; ++c)
+        periods.rows[i][c] = signedSum(row, y[i].negate, c) - signedSum(row0, y[0].negate, c);
+    }
+  }
+  periods.whole = entry(width_, height_);
+  writeBoxSums(sumAt, &periods, out, boxStride);
+}
+
+void SummedAreaTable::boxAverage(const TextureView& view, double x0, double x1, double y0,
+                                 double y1, double rgba[4]) const {
+  const CornerTerms xs[2] = {cornerTerms(x0, -1.0), cornerTerms(x1, 1.0)};
+  const CornerTerms ys[2] = {cornerTerms(y0, -1.0), cornerTerms(y1, 1.0)};
+  std::int64_t boxSum[25][4];
+  boxSums(view, {{xs[0].index[0], xs[1].index[0]}, {ys[0].index[0], ys[1].index[0]}}, &boxSum[0][0],
+          4);
   double sum[4] = {0.0, 0.0, 0.0, 0.0};
-  for (int a = 1; a < 6; ++a) {  // a = 0 or b = 0 is the reference corner's own line: 0
+  for (int a = 1; a < 6; ++a) {
     for (int b = 1; b < 6; ++b) {
-      const std::uint64_t *corner = sumAt[a][b], *alongX = sumAt[a][0], *alongY = sumAt[0][b];
       const double weight = xs[a / 3].weight[a % 3] * ys[b / 3].weight[b % 3];
-      for (int c = 0; c < 4; ++c) {
-        const std::int64_t boxSum = std::int64_t(corner[c] - alongX[c] - alongY[c] + ref[c]);
-        sum[c] += weight * double(boxSum);
-      }
+      for (int c = 0; c < 4; ++c) sum[c] += weight * double(boxSum[(a - 1) * 5 + b - 1][c]);
     }
   }
   const double norm = 1.0 / (std::ldexp(1.0, fractionBits_) * (x1 - x0) * (y1 - y0));
@@ -296,22 +413,42 @@ void SummedAreaTable::lookup(const TextureView& view, float u, float v, float du
   for (int c = 0; c < 4; ++c) rgba[c] = float(average[c]);
 }
 
-void SummedAreaTable::prefetch(const TextureView& view, float u, float v, float dudx, float dvdx,
-                               float dudy, float dvdy) const {
-  const Box box = boxOf(view, u, v, dudx, dvdx, dudy, dvdy);
-  // Each corner reads entries (m .. m + 2, n .. n + 2) from its cornerTerms:
-  // three rows of 96 bytes, two cache lines each at most.
-  const CornerTerms xs[2] = {cornerTerms(box.x0, -1.0), cornerTerms(box.x1, 1.0)};
-  const CornerTerms ys[2] = {cornerTerms(box.y0, -1.0), cornerTerms(box.y1, 1.0)};
-  for (const CornerTerms& y : ys)
-    for (const CornerTerms& x : xs) {
-      const long m = x.index[0], n = y.index[0];
-      if (m < 0 || m + 2 > width_ || n < 0 || n + 2 > height_) continue;
-      for (long row = n; row <= n + 2; ++row) {
-        __builtin_prefetch(entry(m, row));
-        __builtin_prefetch(entry(m + 2, row) + 3);
+void SummedAreaTable::prefetch(const TextureView& view, const CornerIndices& corners) const {
+  // A corner's first prefix index, or where a periodic wrap reads it
+  // (periodicBoxSums): its remainder, the start of the three entries read
+  // backwards in a mirrored period. -1: read from the extension, no entry.
+  const bool periodic = isPeriodic(view.wrapU) && isPeriodic(view.wrapV);
+  bool wrapped = false;
+  const auto first = [&](long at, long size, WrapMode mode) {
+    if (at >= 0 && at + 2 <= size) return at;
+    if (!periodic || size < 2) return -1L;
+    wrapped = true;
+    const AxisExtension e = extendAxis(at, size, mode);
+    return std::clamp(e.weight[0] < 0 ? e.index[0] - 2 : e.index[0], 0L, size - 2);
+  };
+  const long m[2] = {first(corners.m[0], width_, view.wrapU),
+                     first(corners.m[1], width_, view.wrapU)};
+  const long n[2] = {first(corners.n[0], height_, view.wrapV),
+                     first(corners.n[1], height_, view.wrapV)};
+  // Each corner reads entries (m .. m + 2, n .. n + 2): three rows of 96
+  // bytes, two cache lines each at most.
+  for (const long row0 : n)
+    for (const long column : m) {
+      if (column < 0 || row0 < 0) continue;
+      for (long row = row0; row <= row0 + 2; ++row) {
+        __builtin_prefetch(entry(column, row));
+        __builtin_prefetch(entry(column + 2, row) + 3);
       }
     }
+  if (!wrapped) return;
+  // The whole columns (the last row) and whole rows (the last column) a
+  // wrapped box may count.
+  for (const long column : m) {
+    __builtin_prefetch(entry(column, height_));
+    __builtin_prefetch(entry(column + 2, height_) + 3);
+  }
+  for (const long row0 : n)
+    for (long row = row0; row <= row0 + 2; ++row) __builtin_prefetch(entry(width_, row));
 }
 
 }  // namespace quadra

@@ -45,18 +45,44 @@ class SummedAreaTable {
   int height() const { return height_; }
   int fractionBits() const { return fractionBits_; }
 
-  // The box filter for one lookup: (u, v) normalized, derivatives the
-  // Jacobian per pixel; wrap modes and border colour from `view`. The box is
+  // The box filter for one lookup, in scalar double arithmetic: the
+  // reference the lane kernels (sampleSummedArea, sample_lanes.h), which do
+  // the same across SIMD lanes, match bit for bit. (u, v) normalized,
+  // derivatives the Jacobian per pixel; wrap modes and border colour from `view`. The box is
   // the footprint parallelogram's bounding box, at least 2^-15 texels and at
   // most 64 texture periods on a side. NaN/Inf positions read as 0.
   void lookup(const TextureView& view, float u, float v, float dudx, float dvdx, float dudy,
               float dvdy, float rgba[4]) const;
-  // Asks the memory system for the table entries lookup() will read with
-  // these arguments (where the box lies inside the table) and returns: the
-  // entries are 12 scattered cache lines per lookup, so a SIMD group
-  // prefetches all its lanes' before the first lane waits on one.
-  void prefetch(const TextureView& view, float u, float v, float dudx, float dvdx, float dudy,
-                float dvdy) const;
+
+  // lookup() in parts, for the lane kernels (sampleSummedArea in
+  // sample_lanes.h): they form the box, its corner terms and the weighted sum
+  // across lanes in double, with the operations of lookup() in its order, and
+  // leave to these scalar functions the table reads and their exact integer
+  // sums. The box's side limits, which boxOf applies:
+  static constexpr double kMaxBoxPeriods = 64.0;
+  // A footprint of zero size (zero derivatives) becomes a box this small,
+  // whose average is the bilinear value to about this many texels times the
+  // local slope.
+  static constexpr double kMinHalfSide = 1.0 / 65536.0;
+  // A box corner's three prefix indices per axis are first, first + 1 and
+  // first + 2 (cornerTerms in summed_area.cpp); these are the firsts of x0
+  // and x1 (m) and of y0 and y1 (n).
+  struct CornerIndices {
+    long m[2], n[2];
+  };
+  // Asks the memory system for the table entries boxSums() will read (where
+  // the box lies inside the table, or anywhere under periodic wraps) and
+  // returns: they are 12 or more scattered cache lines per lookup, so a SIMD
+  // group prefetches all its lanes' before the first lane waits on one.
+  void prefetch(const TextureView& view, const CornerIndices& corners) const;
+  // The box sums boxAverage() weights: for a and b in 1 .. 5 (the six prefix
+  // indices along x, x0's three then x1's, and the six along y), the exact
+  // sum over the box from the first corner (index 0, 0) to (a, b), modulo
+  // 2^64, channel c at out[((a - 1) * 5 + b - 1) * boxStride + c]: the
+  // channels side by side (4 SSE2 or 2 AVX2 registers of them), boxStride 4
+  // for one lookup, 4 W for a lane group's [box][lane][channel] layout.
+  void boxSums(const TextureView& view, const CornerIndices& corners, std::int64_t* out,
+               std::size_t boxStride) const;
 
   // The exact average of the level's bilinear reconstruction over the texel-
   // space box [x0, x1] x [y0, y1] (texel i covers [i, i + 1)), up to the
@@ -83,6 +109,11 @@ class SummedAreaTable {
   // modulo 2^64; x and y are m and n extended along their axes.
   void extendedSum(const TextureView& view, const AxisExtension& x, const AxisExtension& y, long n,
                    std::uint64_t out[4]) const;
+  // boxSums() where the wrap modes of both axes are periodic (repeat or
+  // mirrored repeat) and the box leaves the table; m and n are its six
+  // prefix bounds per axis (summed_area.cpp).
+  void periodicBoxSums(const TextureView& view, const long m[6], const long n[6], std::int64_t* out,
+                       std::size_t boxStride) const;
   const std::uint64_t* entry(long m, long n) const {
     return &sums_[(std::size_t(n) * std::size_t(width_ + 1) + std::size_t(m)) * 4];
   }
