@@ -23,13 +23,15 @@ namespace quadra {
 struct Renderer::Impl {
   Executor executor;
   TileKernelSelection kernels;
+  const CullKernel& cull;
   // The front end's buffers, kept from frame to frame (sized to the largest
   // frame so far): allocated afresh, dense-mesh's ~100 MB of them cost it a
   // fifth of each frame in page faults.
   std::vector<TransformedVertices> vertices;
   std::vector<FrontEndChunk> chunks;
   std::vector<TileTimes> tileTimes;
-  explicit Impl(int threads, Isa isa) : executor(threads), kernels(selectTileKernels(isa)) {}
+  explicit Impl(int threads, Isa isa)
+      : executor(threads), kernels(selectTileKernels(isa)), cull(cullKernel(isa)) {}
 };
 
 namespace {
@@ -251,7 +253,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
       for (std::size_t i = chunkStart[c]; i < chunkStart[c + 1]; ++i) {
         const DrawRange& r = ranges[i];
         setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
-                       chunk.setup);
+                       impl_->cull, chunk.setup);
       }
       const double setUp = stageClockMs();
       binTriangles(chunk.setup.triangles, grid, chunk.bins);

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "setup/cull_kernel.h"
 #include "setup/triangle_record.h"
 #include "vertex/draw.h"
 #include "vertex/vertex_stage.h"
@@ -31,9 +32,10 @@ struct SetupOutput {
   }
 };
 
-// Sets up triangles [firstTriangle, lastTriangle) of a draw into out (appending).
+// Sets up triangles [firstTriangle, lastTriangle) of a draw into out
+// (appending), culling them first with cullKernel (setup/cull_kernel.h).
 void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& vertices,
                     std::uint32_t drawIndex, std::size_t firstTriangle, std::size_t lastTriangle,
-                    const Viewport& viewport, SetupOutput& out);
+                    const Viewport& viewport, const CullKernel& cullKernel, SetupOutput& out);
 
 }  // namespace quadra

@@ -1,0 +1,124 @@
+// The cull kernel for one ISA (included by the generated per-ISA file; see
+// cull_kernel.h for what it decides).
+#pragma once
+
+#include "setup/cull_kernel.h"
+#include "simd/kernel_isa.h"
+
+namespace quadra {
+namespace QUADRA_KERNEL_NAMESPACE {
+namespace {
+
+using L = simd::Lanes<QUADRA_KERNEL_ARCH>;
+using F = L::F;
+using I = L::I;
+constexpr int kLanes = L::kWidth;
+static_assert(kLanes <= kMaxCullLanes);
+
+// Lanes holding a non-zero value. Every value tested here is below 2^24, so
+// the float conversion is exact and the float mask's bits serve.
+std::uint32_t nonZero(const I& v) {
+  return simd::bits(simd::toFloat(v) != F(0.0f));
+}
+
+// First and last pixel index whose centre px + 0.5 lies in [lo, hi] (1/256
+// units), clamped to [0, limit): setup's pixel span, per lane.
+void pixelSpan(const I& lo, const I& hi, int limit, I& first, I& last) {
+  const I half(kSubpixelScale / 2);
+  first = simd::max(I(0) - ((half - lo) >> kSubpixelBits), I(0));
+  last = simd::min((hi - half) >> kSubpixelBits, I(limit - 1));
+}
+
+int lanesSet(std::uint32_t bits) {
+  return __builtin_popcount(bits);
+}
+
+void cull(const std::uint32_t* indices, int count, const SubpixelPosition* subpixel,
+          const std::uint8_t* outcode, const Viewport& viewport, FaceCulling faces,
+          CullGroup& out) {
+  // A short group repeats its first triangle, so the gather below has no
+  // per-lane test.
+  alignas(64) std::uint32_t padded[3 * kLanes];
+  if (count < kLanes) {
+    for (int k = 0; k < 3 * kLanes; ++k) padded[k] = indices[k < 3 * count ? k : k % 3];
+    indices = padded;
+  }
+  // The vertices are scattered: loaded one by one into lanes (the hardware
+  // gathers are slower on this project's machines).
+  I x[3], y[3], code[3];
+  for (int k = 0; k < 3; ++k) {  // a corner at a time, each index loaded once
+    const auto vertex = [&](int t) { return indices[3 * t + k]; };
+    x[k] = simd::laneInts<L>([&](int t) { return subpixel[vertex(t)].x; });
+    y[k] = simd::laneInts<L>([&](int t) { return subpixel[vertex(t)].y; });
+    code[k] = simd::laneInts<L>([&](int t) { return std::int32_t(outcode[vertex(t)]); });
+  }
+  const I x0 = x[0], x1 = x[1], x2 = x[2], y0 = y[0], y1 = y[1], y2 = y[2];
+  const I c0 = code[0], c1 = code[1], c2 = code[2];
+  std::uint32_t rest = count >= 32 ? ~0u : (1u << count) - 1;
+
+  constexpr std::int32_t kOutsideViewport =
+      kOutsideNear | kOutsideFar | kOutsideLeft | kOutsideRight | kOutsideBottom | kOutsideTop;
+  const I some = c0 | c1 | c2;
+  const std::uint32_t notFinite = nonZero(some & I(kNotFinite)) & rest;
+  rest &= ~notFinite;
+  const std::uint32_t outside = nonZero(c0 & c1 & c2 & I(kOutsideViewport)) & rest;
+  rest &= ~outside;
+  out.clip = nonZero(some & I(kNeedsClipping)) & rest;
+  rest &= ~out.clip;
+
+  // The area's cross product dx1*dy2 - dx2*dy1: the deltas (below 2^23) are
+  // exact floats and each product is rounded once, and rounding is
+  // monotonic, so products that differ as floats differ the same way
+  // exactly. Equal ones (area 0, or a difference below their rounding) are
+  // decided in int64.
+  const F p = simd::toFloat(x1 - x0) * simd::toFloat(y2 - y0);
+  const F q = simd::toFloat(x2 - x0) * simd::toFloat(y1 - y0);
+  std::uint32_t negative = simd::bits(p < q);
+  std::uint32_t degenerate = 0;
+  for (std::uint32_t tie = rest & ~(negative | simd::bits(p > q)); tie; tie &= tie - 1) {
+    const int t = __builtin_ctz(tie);
+    const SubpixelPosition v0 = subpixel[indices[3 * t]], v1 = subpixel[indices[3 * t + 1]],
+                           v2 = subpixel[indices[3 * t + 2]];
+    const std::int64_t area = (std::int64_t(v1.x) - v0.x) * (std::int64_t(v2.y) - v0.y) -
+                              (std::int64_t(v2.x) - v0.x) * (std::int64_t(v1.y) - v0.y);
+    if (area < 0) negative |= 1u << t;
+    if (area == 0) degenerate |= 1u << t;
+  }
+  rest &= ~degenerate;
+  std::uint32_t backFace = 0;
+  if (faces.cullBackFaces) {
+    // glTF front faces are counter-clockwise with y up: negative area here.
+    backFace = rest & (faces.frontIsClockwise ? negative : ~negative);
+    rest &= ~backFace;
+  }
+
+  I minX, maxX, minY, maxY;
+  pixelSpan(simd::min(simd::min(x0, x1), x2), simd::max(simd::max(x0, x1), x2), viewport.width,
+            minX, maxX);
+  pixelSpan(simd::min(simd::min(y0, y1), y2), simd::max(simd::max(y0, y1), y2), viewport.height,
+            minY, maxY);
+  const std::uint32_t noPixel = simd::bits((simd::toFloat(minX) > simd::toFloat(maxX)) |
+                                           (simd::toFloat(minY) > simd::toFloat(maxY))) &
+                                rest;
+  out.keep = rest & ~noPixel;
+  out.negative = negative & out.keep;
+  out.notFinite = lanesSet(notFinite);
+  out.outside = lanesSet(outside) + lanesSet(noPixel);
+  out.degenerate = lanesSet(degenerate);
+  out.backFace = lanesSet(backFace);
+  minX.store_aligned(out.minX);
+  minY.store_aligned(out.minY);
+  maxX.store_aligned(out.maxX);
+  maxY.store_aligned(out.maxY);
+}
+
+}  // namespace
+}  // namespace QUADRA_KERNEL_NAMESPACE
+
+const CullKernel& QUADRA_KERNEL_ENTRY(cullKernel)() {
+  static constexpr CullKernel kernel{QUADRA_KERNEL_NAMESPACE::kLanes,
+                                     QUADRA_KERNEL_NAMESPACE::cull};
+  return kernel;
+}
+
+}  // namespace quadra

@@ -1,0 +1,160 @@
+// Setup's cull kernel on every ISA path against a reference written here in
+// int64 and double: each triangle's verdict in setup's order (not finite,
+// beyond one viewport plane, needs clipping, zero area, back face, no pixel
+// centre), including triangles whose two cross-product terms round to the
+// same float, and a kept triangle's pixel-centre box and winding.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <utility>
+
+#include "setup/cull_kernel.h"
+
+namespace quadra {
+namespace {
+
+enum class Verdict { NotFinite, Outside, Clip, Degenerate, BackFace, NoPixel, Keep };
+
+struct Expected {
+  Verdict verdict;
+  std::int64_t area;
+  bool productsTie;  // the two terms of the area are the same float
+  std::int32_t minX, minY, maxX, maxY;
+};
+
+// Pixels whose centre px + 0.5 lies in [lo, hi] (1/256 units), in [0, limit):
+// by the definition, in floating point on exact values.
+void centresIn(std::int64_t lo, std::int64_t hi, int limit, std::int32_t& first,
+               std::int32_t& last) {
+  first = std::int32_t(std::max(0.0, std::ceil(double(lo) / kSubpixelScale - 0.5)));
+  last = std::int32_t(std::min(double(limit - 1), std::floor(double(hi) / kSubpixelScale - 0.5)));
+}
+
+Expected expect(const TransformedVertices& v, const std::uint32_t* corner, const Viewport& view,
+                FaceCulling faces) {
+  constexpr std::uint8_t kOutsideViewport =
+      kOutsideNear | kOutsideFar | kOutsideLeft | kOutsideRight | kOutsideBottom | kOutsideTop;
+  const std::uint8_t c0 = v.outcode[corner[0]], c1 = v.outcode[corner[1]],
+                     c2 = v.outcode[corner[2]];
+  Expected e;
+  std::int64_t x[3], y[3];
+  for (int k = 0; k < 3; ++k) x[k] = v.subpixel[corner[k]].x, y[k] = v.subpixel[corner[k]].y;
+  e.area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+  e.productsTie =
+      float(x[1] - x[0]) * float(y[2] - y[0]) == float(x[2] - x[0]) * float(y[1] - y[0]);
+  centresIn(std::min({x[0], x[1], x[2]}), std::max({x[0], x[1], x[2]}), view.width, e.minX, e.maxX);
+  centresIn(std::min({y[0], y[1], y[2]}), std::max({y[0], y[1], y[2]}), view.height, e.minY,
+            e.maxY);
+  const bool front = (e.area < 0) != faces.frontIsClockwise;
+  if ((c0 | c1 | c2) & kNotFinite)
+    e.verdict = Verdict::NotFinite;
+  else if (c0 & c1 & c2 & kOutsideViewport)
+    e.verdict = Verdict::Outside;
+  else if ((c0 | c1 | c2) & kNeedsClipping)
+    e.verdict = Verdict::Clip;
+  else if (e.area == 0)
+    e.verdict = Verdict::Degenerate;
+  else if (faces.cullBackFaces && !front)
+    e.verdict = Verdict::BackFace;
+  else if (e.minX > e.maxX || e.minY > e.maxY)
+    e.verdict = Verdict::NoPixel;
+  else
+    e.verdict = Verdict::Keep;
+  return e;
+}
+
+TEST(CullKernel, EveryPathMatchesTheExactReference) {
+  const Viewport view{1920, 1080};
+  // Within the guard band a snapped coordinate is below 2^22 in magnitude.
+  constexpr std::int32_t kLimit = (1 << 22) - 1;
+  std::mt19937 rng(11);
+  TransformedVertices v;
+  std::vector<std::uint32_t> indices;
+  const auto add = [&](SubpixelPosition p, std::uint8_t code) {
+    v.subpixel.push_back(p);
+    v.outcode.push_back(code);
+    indices.push_back(std::uint32_t(v.subpixel.size() - 1));
+  };
+  std::uniform_int_distribution<std::int32_t> anywhere(-kLimit, kLimit);
+  std::uniform_int_distribution<std::int32_t> onScreen(-512, 2000 * kSubpixelScale);
+  std::uniform_int_distribution<std::int32_t> small(-700, 700);
+  std::uniform_int_distribution<int> codeBit(0, 15);
+  int nearTies = 0;  // non-zero areas whose products are equal floats
+  for (int t = 0; t < 20000; ++t) {
+    const int kind = t % 4;
+    SubpixelPosition p[3];
+    if (kind == 0) {  // anywhere in the guard band
+      for (auto& q : p) q = {anywhere(rng), anywhere(rng)};
+    } else if (kind == 1) {  // small, near or across pixel centres
+      const SubpixelPosition at{onScreen(rng), onScreen(rng)};
+      for (auto& q : p) q = {at.x + small(rng), at.y + small(rng)};
+    } else if (kind == 2) {  // (a+1)(a-1) against a*a: one apart, the same as floats
+      const std::int32_t a = std::uniform_int_distribution<std::int32_t>(1 << 20, 1 << 21)(rng);
+      const std::int32_t x0 = -a / 2, y0 = -a / 2;
+      const int flip = t / 4 % 3;  // area -1, +1 or 0
+      p[0] = {x0, y0};
+      if (flip == 0) p[1] = {x0 + a + 1, y0 + a}, p[2] = {x0 + a, y0 + a - 1};
+      if (flip == 1) p[1] = {x0 + a, y0 + a - 1}, p[2] = {x0 + a + 1, y0 + a};
+      if (flip == 2) p[1] = {x0 + a, y0 + a}, p[2] = {x0 + a / 2, y0 + a / 2};
+    } else {  // collinear on a random line, or a repeated vertex
+      const SubpixelPosition at{onScreen(rng), onScreen(rng)}, d{small(rng), small(rng)};
+      p[0] = at, p[1] = {at.x + d.x, at.y + d.y};
+      p[2] = t % 8 == 3 ? at : SubpixelPosition{at.x + 3 * d.x, at.y + 3 * d.y};
+    }
+    for (const auto& q : p) {
+      const int bit = codeBit(rng);  // mostly none, sometimes one flag of the eight
+      add(q, bit < 8 ? std::uint8_t(1u << bit) : std::uint8_t(0));
+    }
+  }
+  // Every compiled kernel, the 16-lane one too (setup runs the 8-lane one on
+  // AVX-512 machines).
+  const std::pair<Isa, const CullKernel& (*)()> kernels[] = {{Isa::Scalar, cullKernelScalar},
+                                                             {Isa::Sse2, cullKernelSse2},
+                                                             {Isa::Avx2, cullKernelAvx2},
+                                                             {Isa::Avx512, cullKernelAvx512}};
+  for (const auto& [isa, kernelOf] : kernels) {
+    if (!isaSupported(isa)) continue;
+    const CullKernel& kernel = kernelOf();
+    const std::size_t triangles = indices.size() / 3;
+    for (const FaceCulling faces :
+         {FaceCulling{true, false}, FaceCulling{true, true}, FaceCulling{false, false}}) {
+      for (std::size_t first = 0; first < triangles;) {
+        // Every group size, the short last group included.
+        const int count = int(std::min<std::size_t>(
+            std::size_t(kernel.lanes) - first / std::size_t(kernel.lanes) % 3, triangles - first));
+        CullGroup group;
+        kernel.cull(&indices[3 * first], count, v.subpixel.data(), v.outcode.data(), view, faces,
+                    group);
+        int counted[7] = {};
+        for (int k = 0; k < count; ++k) {
+          const Expected e = expect(v, &indices[3 * (first + k)], view, faces);
+          SCOPED_TRACE(testing::Message() << isaName(isa) << " triangle " << first + k);
+          ++counted[int(e.verdict)];
+          EXPECT_EQ(bool(group.keep >> k & 1), e.verdict == Verdict::Keep);
+          EXPECT_EQ(bool(group.clip >> k & 1), e.verdict == Verdict::Clip);
+          if (e.verdict == Verdict::Keep) {
+            EXPECT_EQ(bool(group.negative >> k & 1), e.area < 0);
+            EXPECT_EQ(group.minX[k], e.minX);
+            EXPECT_EQ(group.minY[k], e.minY);
+            EXPECT_EQ(group.maxX[k], e.maxX);
+            EXPECT_EQ(group.maxY[k], e.maxY);
+          }
+          if (isa == Isa::Scalar && e.area != 0 && e.productsTie) ++nearTies;
+        }
+        const std::uint32_t beyond = count == 32 ? 0u : ~0u << count;
+        EXPECT_EQ((group.keep | group.clip) & beyond, 0u);
+        EXPECT_EQ(group.notFinite, counted[int(Verdict::NotFinite)]);
+        EXPECT_EQ(group.outside, counted[int(Verdict::Outside)] + counted[int(Verdict::NoPixel)]);
+        EXPECT_EQ(group.degenerate, counted[int(Verdict::Degenerate)]);
+        EXPECT_EQ(group.backFace, counted[int(Verdict::BackFace)]);
+        first += std::size_t(count);
+      }
+    }
+  }
+  EXPECT_GT(nearTies, 1000);
+}
+
+}  // namespace
+}  // namespace quadra
