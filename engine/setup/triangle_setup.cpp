@@ -25,14 +25,14 @@ void SetupCounters::add(const SetupCounters& o) {
 
 namespace {
 
-constexpr int kMaxAttributes = kMaxClipVertexFloats - 4;
-
-// A projected vertex with the attribute values its planes interpolate.
-struct SetupVertex {
-  std::int64_t x, y;        // snapped, 1/256 pixel: coverage
-  double windowX, windowY;  // unsnapped, pixels: attribute planes
-  double z, invW;
-  double attr[kMaxAttributes];  // attribute / w
+// A triangle corner as setup reads it, where the vertex stage (or the clip)
+// left it: nothing is copied for it, and each attribute is divided by w as
+// its plane is solved.
+template <class T>
+struct Corner {
+  const ScreenVertex& screen;  // unsnapped window position, depth, 1/w: the planes
+  SubpixelPosition snapped;    // coverage
+  const T* attributes;         // not yet divided by w
 };
 
 struct SetupContext {
@@ -43,18 +43,6 @@ struct SetupContext {
   int attributeCount;
   SetupOutput& out;
 };
-
-// `snapped`: s's window position snapped (the vertex stage's, or snapped here
-// for a clipped vertex).
-template <class T>
-SetupVertex makeSetupVertex(const ScreenVertex& s, SubpixelPosition snapped, const T* attributes,
-                            int count) {
-  SetupVertex v;  // attr[count..] stay unset: nothing reads them
-  v.x = snapped.x, v.y = snapped.y;
-  v.windowX = s.windowX, v.windowY = s.windowY, v.z = s.z, v.invW = s.invW;
-  for (int k = 0; k < count; ++k) v.attr[k] = double(attributes[k]) * s.invW;
-  return v;
-}
 
 struct SnappedTriangle {
   std::int64_t x[3], y[3];
@@ -104,14 +92,16 @@ bool coversAPixelCentre(const TriangleRecord& t) {
 // and size are then rounding, not geometry) do the snapped positions serve.
 struct PlaneSolver {
   double x0, y0, x1, y1, x2, y2, invDet;
-  explicit PlaneSolver(const SetupVertex* const v[3]) {
+  template <class T>
+  explicit PlaneSolver(const Corner<T>* const v[3]) {
     double x[3], y[3];
-    for (int i = 0; i < 3; ++i) x[i] = v[i]->windowX, y[i] = v[i]->windowY;
+    for (int i = 0; i < 3; ++i) x[i] = v[i]->screen.windowX, y[i] = v[i]->screen.windowY;
     const double det = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
     constexpr double kGridCellArea = 1.0 / (double(kSubpixelScale) * kSubpixelScale);
     if (!(std::fabs(det) >= kGridCellArea))
       for (int i = 0; i < 3; ++i)
-        x[i] = double(v[i]->x) / kSubpixelScale, y[i] = double(v[i]->y) / kSubpixelScale;
+        x[i] = double(v[i]->snapped.x) / kSubpixelScale,
+        y[i] = double(v[i]->snapped.y) / kSubpixelScale;
     x0 = x[0], y0 = y[0];
     x1 = x[1] - x0, y1 = y[1] - y0, x2 = x[2] - x0, y2 = y[2] - y0;
     invDet = 1.0 / (x1 * y2 - x2 * y1);
@@ -127,13 +117,13 @@ struct PlaneSolver {
 };
 
 // Emits a triangle that passed culling (snapped holds its vertices' snapped
-// positions, box and the area's sign what culling found). vertexOf(i) makes the setup
-// vertex of corner i; it is called only once the snapped edges show the
+// positions, box and the area's sign what culling found). cornerOf(i) is
+// corner i (a Corner); it is called only once the snapped edges show the
 // triangle covers a pixel centre, so the triangles dropped between pixel
 // centres never touch their attributes.
-template <class VertexOf>
+template <class CornerOf>
 void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const PixelBox& box,
-              bool negativeArea, const VertexOf& vertexOf) {
+              bool negativeArea, const CornerOf& cornerOf) {
   TriangleRecord t;
   t.minX = std::int16_t(box.minX), t.minY = std::int16_t(box.minY);
   t.maxX = std::int16_t(box.maxX), t.maxY = std::int16_t(box.maxY);
@@ -149,27 +139,30 @@ void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const Pix
   t.draw = ctx.drawIndex;
   t.firstPlane = std::uint32_t(ctx.out.planes.size());
 
-  const SetupVertex v0 = vertexOf(corner[0]), v1 = vertexOf(corner[1]), v2 = vertexOf(corner[2]);
-  const SetupVertex* const v[3] = {&v0, &v1, &v2};
+  const auto v0 = cornerOf(corner[0]), v1 = cornerOf(corner[1]), v2 = cornerOf(corner[2]);
+  const decltype(v0)* const v[3] = {&v0, &v1, &v2};
   const PlaneSolver solver(v);
+  const ScreenVertex &s0 = v0.screen, &s1 = v1.screen, &s2 = v2.screen;
   const auto plane = [&](double f0, double f1, double f2) {
     ctx.out.planes.push_back(solver.solve(f0, f1, f2, t.minX, t.minY));
   };
-  plane(v0.z, v1.z, v2.z);
-  plane(v0.invW, v1.invW, v2.invW);
-  for (int k = 0; k < ctx.attributeCount; ++k) plane(v0.attr[k], v1.attr[k], v2.attr[k]);
+  plane(s0.z, s1.z, s2.z);
+  plane(s0.invW, s1.invW, s2.invW);
+  for (int k = 0; k < ctx.attributeCount; ++k)
+    plane(double(v0.attributes[k]) * s0.invW, double(v1.attributes[k]) * s1.invW,
+          double(v2.attributes[k]) * s2.invW);
   ctx.out.triangles.push_back(t);
   ++ctx.out.counters.drawn;
 }
 
 // Culls `triangles` triangles, corners[3t .. 3t+2] indexing subpixel and
 // outcode, a group of cullKernel.lanes at a time, and emits what is left in
-// submission order: clipOf(t) for a triangle that needs clipping,
-// emitKept with vertexOf(t, corner) for a kept one.
-template <class ClipOf, class VertexOf>
+// submission order: clipOf(its corners) for a triangle that needs clipping,
+// emitKept with cornerOf(vertex index) for a kept one.
+template <class ClipOf, class CornerOf>
 void cullAndEmit(const SetupContext& ctx, const std::uint32_t* corners, std::size_t triangles,
                  const SubpixelPosition* subpixel, const std::uint8_t* outcode,
-                 const ClipOf& clipOf, const VertexOf& vertexOf) {
+                 const ClipOf& clipOf, const CornerOf& cornerOf) {
   const CullKernel& kernel = ctx.cullKernel;
   const FaceCulling faces{ctx.geometry.cullBackFaces, ctx.geometry.frontIsClockwise};
   SetupCounters& n = ctx.out.counters;
@@ -194,7 +187,7 @@ void cullAndEmit(const SetupContext& ctx, const std::uint32_t* corners, std::siz
           {subpixel[index[0]].y, subpixel[index[1]].y, subpixel[index[2]].y}};
       const PixelBox box{group.minX[t], group.minY[t], group.maxX[t], group.maxY[t]};
       emitKept(ctx, snapped, box, group.negative >> t & 1,
-               [&](int corner) { return vertexOf(index[corner]); });
+               [&](int corner) { return cornerOf(index[corner]); });
     }
   }
 }
@@ -217,15 +210,14 @@ void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats)
       return;
     }
   ++ctx.out.counters.clipped;
-  SetupVertex fan[kMaxClipPolygon];
+  ScreenVertex projected[kMaxClipPolygon];
   SubpixelPosition snapped[kMaxClipPolygon];
   const std::uint8_t inside[kMaxClipPolygon] = {};  // the clip put every vertex inside
   std::uint32_t corners[3 * (kMaxClipPolygon - 2)];
   for (int i = 0; i < polygon.count; ++i) {
     const double* c = polygon.vertices[i].v;
-    const ScreenVertex projected = projectToWindow(c[0], c[1], c[2], c[3], ctx.viewport);
-    snapped[i] = snapToSubpixel(projected.windowX, projected.windowY);
-    fan[i] = makeSetupVertex(projected, snapped[i], c + 4, ctx.attributeCount);
+    projected[i] = projectToWindow(c[0], c[1], c[2], c[3], ctx.viewport);
+    snapped[i] = snapToSubpixel(projected[i].windowX, projected[i].windowY);
   }
   // The fan's pieces count as drawn (or culled) separately.
   const int pieces = polygon.count - 2;
@@ -234,7 +226,9 @@ void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats)
                 corners[3 * i + 2] = std::uint32_t(i + 2);
   cullAndEmit(
       ctx, corners, std::size_t(pieces), snapped, inside, [](const std::uint32_t*) {},
-      [&](std::uint32_t i) { return fan[i]; });
+      [&](std::uint32_t i) {
+        return Corner<double>{projected[i], snapped[i], polygon.vertices[i].v + 4};
+      });
 }
 
 }  // namespace
@@ -269,8 +263,7 @@ void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& ver
         emitClipped(ctx, tri, vertices.stride);
       },
       [&](std::uint32_t i) {
-        return makeSetupVertex(vertices.screen[i], vertices.subpixel[i], vertices.vertex(i) + 4,
-                               ctx.attributeCount);
+        return Corner<float>{vertices.screen[i], vertices.subpixel[i], vertices.vertex(i) + 4};
       });
 }
 
