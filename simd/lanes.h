@@ -529,7 +529,8 @@ QUADRA_LANE_INLINE void reduceMinMax(const typename L::F& low, const typename L:
 // Int lanes whose lane k is value(k), built in registers from the scalars:
 // storing them one by one and loading the register back cannot be forwarded
 // from the stores and waits for them to reach the cache (setup's culling
-// gathered its vertices that way 8% slower than it does now).
+// gathered its vertices that way about 12% slower on AVX2: 10.4 against 9.2
+// ms on dense-mesh).
 template <class L, class Value>
 QUADRA_LANE_INLINE typename L::I laneInts(const Value& value) {
   if constexpr (std::is_same_v<L, Lanes<ScalarArch>>) {

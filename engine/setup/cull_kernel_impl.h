@@ -54,7 +54,7 @@ void cull(const std::uint32_t* indices, int count, const SubpixelPosition* subpi
   }
   const I x0 = x[0], x1 = x[1], x2 = x[2], y0 = y[0], y1 = y[1], y2 = y[2];
   const I c0 = code[0], c1 = code[1], c2 = code[2];
-  std::uint32_t rest = count >= 32 ? ~0u : (1u << count) - 1;
+  std::uint32_t rest = (1u << count) - 1;  // count <= kLanes <= 16
 
   constexpr std::int32_t kOutsideViewport =
       kOutsideNear | kOutsideFar | kOutsideLeft | kOutsideRight | kOutsideBottom | kOutsideTop;

@@ -221,9 +221,11 @@ void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats)
   }
   // The fan's pieces count as drawn (or culled) separately.
   const int pieces = polygon.count - 2;
-  for (int i = 0; i < pieces; ++i)
-    corners[3 * i] = 0, corners[3 * i + 1] = std::uint32_t(i + 1),
-                corners[3 * i + 2] = std::uint32_t(i + 2);
+  for (int i = 0; i < pieces; ++i) {
+    corners[3 * i] = 0;
+    corners[3 * i + 1] = std::uint32_t(i + 1);
+    corners[3 * i + 2] = std::uint32_t(i + 2);
+  }
   cullAndEmit(
       ctx, corners, std::size_t(pieces), snapped, inside, [](const std::uint32_t*) {},
       [&](std::uint32_t i) {
