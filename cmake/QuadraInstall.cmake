@@ -14,7 +14,7 @@ set(QUADRA_PUBLIC_HEADERS
     io/frame.h io/image_io.h
     texture/texture.h texture/image.h texture/sampler_state.h texture/texel_format.h
     texture/texture_sampler.h texture/texture_view.h
-    window/window_space.h
+    window/window_space.h window/sample_pattern.h
     core/error.h
     simd/isa.h)
 foreach(header ${QUADRA_PUBLIC_HEADERS})

@@ -125,7 +125,7 @@ TEST(CullKernel, EveryPathMatchesTheExactReference) {
         const int count = int(std::min<std::size_t>(
             std::size_t(kernel.lanes) - first / std::size_t(kernel.lanes) % 3, triangles - first));
         CullGroup group;
-        kernel.cull(&indices[3 * first], count, v.subpixel.data(), v.outcode.data(), view, faces,
+        kernel.cull(&indices[3 * first], count, v.subpixel.data(), v.outcode.data(), view, 0, faces,
                     group);
         int counted[7] = {};
         for (int k = 0; k < count; ++k) {

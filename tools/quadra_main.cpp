@@ -20,6 +20,7 @@
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 #include "render_options.h"
+#include "window/sample_pattern.h"
 
 namespace quadra {
 namespace {
@@ -54,6 +55,11 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --opaque-shading two-pass|forward
                          opaque draws: visibility pass then shading of the visible pixels
                          (default), or shaded as rasterized; the same image either way
+  --samples N            coverage and depth samples per pixel: 1, 2, 4, 8 or 16 (default 1),
+                         resolved with the pixel box filter
+  --shading-rate pixel|sample
+                         with --samples: shade once per pixel and visible triangle
+                         (default, multisampling) or every sample (supersampling)
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
                          kernel path (default auto: the best this CPU has)
@@ -107,6 +113,15 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--opaque-shading", "opaque shading",
                  {{"two-pass", OpaqueShading::TwoPass}, {"forward", OpaqueShading::Forward}},
                  cmd.settings.opaqueShading);
+  options.value("--samples", [&cmd](const std::string& option, const std::string& value) {
+    const double n = parseNumber(option, value);
+    if (!(n >= 1 && n <= kMaxSamples) || double(int(n)) != n || !isSampleCount(int(n)))
+      throw Error(option + ": '" + value + "' must be 1, 2, 4, 8 or 16");
+    cmd.settings.samples = int(n);
+  });
+  options.choice("--shading-rate", "shading rate",
+                 {{"pixel", ShadingRate::Pixel}, {"sample", ShadingRate::Sample}},
+                 cmd.settings.shadingRate);
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);

@@ -16,6 +16,7 @@
 #include "texture/texture_sampler.h"
 #include "tile/tile_stage.h"
 #include "vertex/vertex_stage.h"
+#include "window/sample_pattern.h"
 #include "window/window_space.h"
 
 namespace quadra {
@@ -114,6 +115,8 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   }
 
   s.derivatives = settings.derivatives;
+  if (settings.shadingRate == ShadingRate::Sample)
+    s.footprintScale = float(1.0 / std::sqrt(double(settings.samples)));
   s.twoPass = s.alphaMode != AlphaMode::Blend && s.blend == BlendMode::Replace && s.depthTest &&
               s.depthWrite && s.output == ShadeOutput::Color &&
               s.derivatives == DerivativeMode::Analytic &&
@@ -153,6 +156,9 @@ void checkSettings(const RenderSettings& s) {
                 " is out of range (1.." + std::to_string(kMaxViewport) + " per side)");
   if (!(std::fabs(s.lodBias) <= 32.0f))
     throw Error("render: LOD bias " + std::to_string(s.lodBias) + " is out of range (-32..32)");
+  if (!isSampleCount(s.samples))
+    throw Error("render: " + std::to_string(s.samples) +
+                " samples per pixel is not supported (1, 2, 4, 8 or 16)");
   if (s.maxAniso < 1 || s.maxAniso > 64)
     throw Error("render: max anisotropy " + std::to_string(s.maxAniso) +
                 " is out of range (1..64)");
@@ -243,6 +249,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   }
   chunkStart.push_back(ranges.size());
   const TileGrid grid = TileGrid::forViewport(settings.width, settings.height);
+  const SamplePattern& samples = samplePattern(settings.samples);
   std::vector<FrontEndChunk>& chunks = impl_->chunks;
   chunks.resize(chunkStart.size() - 1);
   executor.parallelFor(chunks.size(), 1, [&](std::size_t begin, std::size_t end) {
@@ -253,7 +260,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
       for (std::size_t i = chunkStart[c]; i < chunkStart[c + 1]; ++i) {
         const DrawRange& r = ranges[i];
         setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
-                       impl_->cull, chunk.setup);
+                       samples, impl_->cull, chunk.setup);
       }
       const double setUp = stageClockMs();
       binTriangles(chunk.setup.triangles, grid, chunk.bins);
@@ -270,8 +277,16 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   resizeLarge(out.rgba, pixels * 4, 0.0f, &executor);
   resizeLarge(out.depth, settings.frameDepth ? pixels : 0, 0.0f, &executor);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
-  renderTiles(grid, draws, chunks, impl_->kernels, settings.clearColor, clearDepth, executor, out,
-              impl_->tileTimes);
+  const TileFrame tileFrame{grid,
+                            draws,
+                            chunks,
+                            impl_->kernels,
+                            settings.clearColor,
+                            clearDepth,
+                            settings.depth == DepthMode::Reversed,
+                            samples,
+                            settings.shadingRate == ShadingRate::Sample};
+  renderTiles(tileFrame, executor, out, impl_->tileTimes);
   const double tilesDone = stageClockMs();
 
   SetupCounters total;

@@ -20,6 +20,7 @@
 #include "scene/scene.h"
 #include "simd/isa.h"
 #include "texture/sampler_state.h"
+#include "window/sample_pattern.h"
 #include "window/window_space.h"
 
 namespace quadra {
@@ -72,6 +73,12 @@ struct RenderSettings {
   // from 2x2 quad differences as GPUs take them; Quad shades forward.
   DerivativeMode derivatives = DerivativeMode::Analytic;
   OpaqueShading opaqueShading = OpaqueShading::TwoPass;
+  // Coverage and depth samples per pixel: 1, 2, 4, 8 or 16, at the
+  // positions of window/sample_pattern.h. The frame is their pixel box
+  // filter (equal weights, premultiplied linear); its depth the nearest
+  // sample's.
+  int samples = 1;
+  ShadingRate shadingRate = ShadingRate::Pixel;  // window/sample_pattern.h
   // Fill Frame::depth (the EXR Z channel); off, the frame's depth stays empty
   // and resolve writes a fifth less memory.
   bool frameDepth = true;

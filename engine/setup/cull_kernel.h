@@ -24,7 +24,8 @@ struct CullGroup {
   // not finite, beyond one viewport plane, zero area, back-facing, no pixel
   // centre in their bounding box).
   int notFinite = 0, outside = 0, degenerate = 0, backFace = 0;
-  // A kept triangle's box of pixel centres, clamped to the viewport.
+  // A kept triangle's box of the pixels whose centres lie within `reach`
+  // of its bounding box, clamped to the viewport.
   alignas(64) std::int32_t minX[kMaxCullLanes], minY[kMaxCullLanes], maxX[kMaxCullLanes],
       maxY[kMaxCullLanes];
   // A kept triangle's area is negative (counter-clockwise with y up).
@@ -42,9 +43,10 @@ struct CullKernel {
   int lanes;  // triangles per group
   // Triangles t = 0 .. count-1 (count <= lanes) whose corners
   // indices[3t .. 3t+2] index the vertices' snapped positions and outcodes
-  // (TransformedVertices').
+  // (TransformedVertices'). reach (1/256 pixel): how far from a pixel's
+  // centre its samples lie (SamplePattern::reachSubpixels; 0 for one sample).
   void (*cull)(const std::uint32_t* indices, int count, const SubpixelPosition* subpixel,
-               const std::uint8_t* outcode, const Viewport& viewport, FaceCulling faces,
+               const std::uint8_t* outcode, const Viewport& viewport, int reach, FaceCulling faces,
                CullGroup& out);
 };
 

@@ -34,7 +34,7 @@ int lanesSet(std::uint32_t bits) {
 }
 
 void cull(const std::uint32_t* indices, int count, const SubpixelPosition* subpixel,
-          const std::uint8_t* outcode, const Viewport& viewport, FaceCulling faces,
+          const std::uint8_t* outcode, const Viewport& viewport, int reach, FaceCulling faces,
           CullGroup& out) {
   // A short group repeats its first triangle, so the gather below has no
   // per-lane test.
@@ -93,10 +93,11 @@ void cull(const std::uint32_t* indices, int count, const SubpixelPosition* subpi
   }
 
   I minX, maxX, minY, maxY;
-  pixelSpan(simd::min(simd::min(x0, x1), x2), simd::max(simd::max(x0, x1), x2), viewport.width,
-            minX, maxX);
-  pixelSpan(simd::min(simd::min(y0, y1), y2), simd::max(simd::max(y0, y1), y2), viewport.height,
-            minY, maxY);
+  const I widen(reach);
+  pixelSpan(simd::min(simd::min(x0, x1), x2) - widen, simd::max(simd::max(x0, x1), x2) + widen,
+            viewport.width, minX, maxX);
+  pixelSpan(simd::min(simd::min(y0, y1), y2) - widen, simd::max(simd::max(y0, y1), y2) + widen,
+            viewport.height, minY, maxY);
   const std::uint32_t noPixel = simd::bits((simd::toFloat(minX) > simd::toFloat(maxX)) |
                                            (simd::toFloat(minY) > simd::toFloat(maxY))) &
                                 rest;

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "window/sample_pattern.h"
+
 namespace quadra {
 
 // Edge i covers pixel (px, py) exactly when a*px + b*py + c > 0 (integer pixel
@@ -18,6 +20,11 @@ struct EdgeFunction {
   std::int64_t at(std::int64_t px, std::int64_t py) const {
     return std::int64_t(a) * px + std::int64_t(b) * py + c;
   }
+  // The same edge with each pixel's sample at offset o standing in for its
+  // centre. Exact: a and b are multiples of 256, o is in 1/16 pixel.
+  EdgeFunction atSample(SampleOffset o) const {
+    return {a, b, c + (std::int64_t(a) * o.x + std::int64_t(b) * o.y) / kSampleUnitsPerPixel};
+  }
 };
 
 // A value interpolated linearly in screen space: at the centre of pixel
@@ -27,6 +34,11 @@ struct Plane {
   float dx = 0.0f;
   float dy = 0.0f;
   float c = 0.0f;
+  // The plane with each pixel's sample at offset o standing in for its centre.
+  Plane atSample(SampleOffset o) const {
+    const double shift = (double(dx) * o.x + double(dy) * o.y) / kSampleUnitsPerPixel;
+    return {dx, dy, float(double(c) + shift)};
+  }
 };
 
 // One cache line, so a record the tile stage reads (a tile's records lie
@@ -41,5 +53,14 @@ struct alignas(64) TriangleRecord {
   std::uint32_t draw = 0;
 };
 static_assert(sizeof(TriangleRecord) == 64);
+
+// The record whose coverage at pixel (px, py) is the original's at that
+// pixel's sample o (its box already reaches every pixel a sample can: setup
+// widens it by the pattern's reach).
+inline TriangleRecord atSample(const TriangleRecord& t, SampleOffset o) {
+  TriangleRecord shifted = t;
+  for (EdgeFunction& e : shifted.edges) e = e.atSample(o);
+  return shifted;
+}
 
 }  // namespace quadra

@@ -38,6 +38,7 @@ struct Corner {
 struct SetupContext {
   const DrawGeometry& geometry;
   const Viewport& viewport;
+  const SamplePattern& samples;
   const CullKernel& cullKernel;
   std::uint32_t drawIndex;
   int attributeCount;
@@ -68,16 +69,22 @@ EdgeFunction makeEdge(const SnappedTriangle& s, int p, int q) {
   return e;
 }
 
-// Whether a triangle whose bbox spans at most 2x2 pixel centres covers any
-// of them; larger ones are assumed to. A dense mesh has many triangles
-// between pixel centres (about a third of MetalRoughSpheresNoTextures' at
-// 1080p); dropped here, they cost no planes, bins or tile work.
-bool coversAPixelCentre(const TriangleRecord& t) {
-  if (t.maxX - t.minX > 1 || t.maxY - t.minY > 1) return true;
-  for (std::int32_t py = t.minY; py <= t.maxY; ++py)
-    for (std::int32_t px = t.minX; px <= t.maxX; ++px)
-      if (t.edges[0].at(px, py) > 0 && t.edges[1].at(px, py) > 0 && t.edges[2].at(px, py) > 0)
-        return true;
+// Whether a triangle whose box spans at most 2x2 pixels (3x3 with several
+// samples, whose reach widens every box) covers one of their samples; larger
+// ones are assumed to. A dense mesh has many triangles between pixel centres
+// (about a third of MetalRoughSpheresNoTextures' at 1080p); dropped here,
+// they cost no planes, bins or tile work.
+bool coversASample(const TriangleRecord& t, const SamplePattern& samples) {
+  const int span = samples.count == 1 ? 1 : 2;
+  if (t.maxX - t.minX > span || t.maxY - t.minY > span) return true;
+  for (int s = 0; s < samples.count; ++s) {
+    const EdgeFunction e0 = t.edges[0].atSample(samples.offsets[s]),
+                       e1 = t.edges[1].atSample(samples.offsets[s]),
+                       e2 = t.edges[2].atSample(samples.offsets[s]);
+    for (std::int32_t py = t.minY; py <= t.maxY; ++py)
+      for (std::int32_t px = t.minX; px <= t.maxX; ++px)
+        if (e0.at(px, py) > 0 && e1.at(px, py) > 0 && e2.at(px, py) > 0) return true;
+  }
   return false;
 }
 
@@ -132,7 +139,7 @@ void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const Pix
   t.edges[0] = makeEdge(snapped, corner[1], corner[2]);
   t.edges[1] = makeEdge(snapped, corner[2], corner[0]);
   t.edges[2] = makeEdge(snapped, corner[0], corner[1]);
-  if (!coversAPixelCentre(t)) {
+  if (!coversASample(t, ctx.samples)) {
     ++ctx.out.counters.outside;
     return;
   }
@@ -165,12 +172,13 @@ void cullAndEmit(const SetupContext& ctx, const std::uint32_t* corners, std::siz
                  const ClipOf& clipOf, const CornerOf& cornerOf) {
   const CullKernel& kernel = ctx.cullKernel;
   const FaceCulling faces{ctx.geometry.cullBackFaces, ctx.geometry.frontIsClockwise};
+  const int reach = ctx.samples.reachSubpixels();
   SetupCounters& n = ctx.out.counters;
   CullGroup group;
   for (std::size_t first = 0; first < triangles; first += std::size_t(kernel.lanes)) {
     const int count = int(std::min<std::size_t>(std::size_t(kernel.lanes), triangles - first));
     const std::uint32_t* groupCorners = corners + 3 * first;
-    kernel.cull(groupCorners, count, subpixel, outcode, ctx.viewport, faces, group);
+    kernel.cull(groupCorners, count, subpixel, outcode, ctx.viewport, reach, faces, group);
     n.invalid += std::size_t(group.notFinite);
     n.outside += std::size_t(group.outside);
     n.degenerate += std::size_t(group.degenerate);
@@ -253,8 +261,10 @@ const CullKernel& cullKernel(Isa isa) {
 
 void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& vertices,
                     std::uint32_t drawIndex, std::size_t firstTriangle, std::size_t lastTriangle,
-                    const Viewport& viewport, const CullKernel& cullKernel, SetupOutput& out) {
-  const SetupContext ctx{geometry, viewport, cullKernel, drawIndex, geometry.attributes.count, out};
+                    const Viewport& viewport, const SamplePattern& samples,
+                    const CullKernel& cullKernel, SetupOutput& out) {
+  const SetupContext ctx{
+      geometry, viewport, samples, cullKernel, drawIndex, geometry.attributes.count, out};
   out.counters.in += lastTriangle - firstTriangle;
   cullAndEmit(
       ctx, geometry.mesh->indices.data() + 3 * firstTriangle, lastTriangle - firstTriangle,

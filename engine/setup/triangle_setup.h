@@ -11,6 +11,7 @@
 #include "setup/triangle_record.h"
 #include "vertex/draw.h"
 #include "vertex/vertex_stage.h"
+#include "window/sample_pattern.h"
 
 namespace quadra {
 
@@ -33,9 +34,12 @@ struct SetupOutput {
 };
 
 // Sets up triangles [firstTriangle, lastTriangle) of a draw into out
-// (appending), culling them first with cullKernel (setup/cull_kernel.h).
+// (appending), culling them first with cullKernel (setup/cull_kernel.h). A
+// record's box holds every pixel one of whose `samples` it may cover, and
+// only triangles that cover a sample are kept.
 void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& vertices,
                     std::uint32_t drawIndex, std::size_t firstTriangle, std::size_t lastTriangle,
-                    const Viewport& viewport, const CullKernel& cullKernel, SetupOutput& out);
+                    const Viewport& viewport, const SamplePattern& samples,
+                    const CullKernel& cullKernel, SetupOutput& out);
 
 }  // namespace quadra

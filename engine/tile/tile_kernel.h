@@ -45,6 +45,17 @@ constexpr int kShadePlaneStride = 3 * (1 + kMaxShadedAttributes);
 // TileBuffers::visible for ids in [firstTriangle, endTriangle) (a draw's
 // triangles are consecutive; cheaper when one draw has the whole tile).
 constexpr std::uint32_t kMaxScannedTriangles = 1u << 24;  // exact as float ids
+
+// A multisampled pixel's visible triangle, shaded once at its own tile-local
+// position (pixel centres at whole numbers): the pixels whose samples
+// several triangles share.
+struct ShadeJob {
+  float x, y;
+  std::uint32_t triangle;  // tile triangle id
+  std::uint16_t pixel;     // TileBuffers index
+  std::uint16_t samples;   // bit s: the triangle holds sample s
+};
+
 struct ShadeRun {
   bool scanTile = false;
   std::uint32_t firstTriangle = 0, endTriangle = 0;
@@ -53,6 +64,11 @@ struct ShadeRun {
   const std::uint16_t* pixels = nullptr;  // the other pixels, in tile order
   int pixelCount = 0;
   const float* planes = nullptr;  // kShadePlaneStride floats per tile triangle
+  // Instead of the above: jobs, whose colours (R, G, B; alpha is 1) go to
+  // jobColor, 3 floats each, not to the tile.
+  const ShadeJob* jobs = nullptr;
+  int jobCount = 0;
+  float* jobColor = nullptr;
 };
 
 struct TileKernels {

@@ -250,6 +250,9 @@ QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const
         d = {(pu.dx - u * invW.dx) * w, (pv.dx - v * invW.dx) * w, (pu.dy - u * invW.dy) * w,
              (pv.dy - v * invW.dy) * w};
       }
+      // Supersampled frames filter for the sample spacing (1 otherwise: exact).
+      const F scale(shade.footprintScale);
+      d = {d.dudx * scale, d.dvdx * scale, d.dudy * scale, d.dvdy * scale};
       if constexpr (kOutput == ShadeOutput::Derivatives) {
         r = d.dudx, g = d.dvdx, b = d.dudy, a = d.dvdy;
       } else {
@@ -669,7 +672,29 @@ class RunShader {
     }
   }
 
+  // run_.jobs[first .. first+count) (count 1..kWidth), each at its own
+  // position with its own triangle; colours to run_.jobColor.
+  void jobs(int first, int count) const {
+    alignas(64) float xs[L::kWidth], ys[L::kWidth];
+    alignas(64) float out[3][L::kWidth];
+    alignas(64) std::uint32_t ids[L::kWidth];
+    for (int k = 0; k < L::kWidth; ++k) {
+      const ShadeJob& job = run_.jobs[first + std::min(k, count - 1)];
+      xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
+    }
+    LanePlane p[1 + kMaxShadedAttributes];
+    lanePlanes(run_.planes, ids, planeCount_, p);
+    const Rgba<L> c = Feat::color(shade_, F::load_aligned(xs), F::load_aligned(ys), p[0], p + 1);
+    c.r.store_aligned(out[0]);
+    c.g.store_aligned(out[1]);
+    c.b.store_aligned(out[2]);
+    for (int k = 0; k < count; ++k)
+      for (int ch = 0; ch < 3; ++ch) run_.jobColor[3 * (first + k) + ch] = out[ch][k];
+  }
+
   void listed() const {
+    for (int first = 0; first < run_.jobCount; first += L::kWidth)
+      jobs(first, std::min(L::kWidth, run_.jobCount - first));
     for (int g = 0; g < run_.groupCount; ++g) group(run_.groups[g]);
     for (int first = 0; first < run_.pixelCount; first += L::kWidth)
       packed(run_.pixels + first, std::min(L::kWidth, run_.pixelCount - first));

@@ -2,6 +2,14 @@
 // two-pass draws' triangles, the shading pass over their visible pixels draw
 // by draw, then the forward draws, then the tile's resolve. The per-pixel work
 // is in the ISA kernels (tile_kernel_impl.h).
+//
+// Samples: a multisampled tile is one TileBuffers plane per sample, plane s
+// holding every pixel's sample s. The kernels see each plane as a frame of
+// its own, rendered with the triangle moved by minus sample s's offset
+// (atSample): coverage and depth per sample with no kernel of their own,
+// exact on the fixed-point grid. The shading pass then shades each pixel's
+// visible triangles once (or, shading per sample, each plane), and the
+// resolve averages the planes.
 #include "tile/tile_stage.h"
 
 #include <algorithm>
@@ -19,7 +27,10 @@ namespace {
 
 // One task's working memory, reused from tile to tile.
 struct TileScratch {
-  TileBuffers tile;
+  explicit TileScratch(int samples) : planes(new TileBuffers[std::size_t(samples)]) {}
+  // One per sample (tile_stage.cpp's opening comment). Not value-initialized:
+  // every tile clears what it reads.
+  std::unique_ptr<TileBuffers[]> planes;
   std::vector<TileTriangle> visibleTriangles;  // indexed by TileBuffers::visible
   std::vector<TileTriangle> forward;           // forward-path triangles, in order
   std::vector<float> shadePlanes;              // kShadePlaneStride per visible triangle
@@ -28,6 +39,12 @@ struct TileScratch {
   // Per run: where its whole groups and its other pixels start in the lists.
   std::vector<std::uint32_t> runGroups, runPixels, groupCursor, pixelCursor;
   std::vector<std::uint16_t> groupList, pixelList;
+  // Multisampled shading: plane 0's ids with the pixels whose samples several
+  // triangles share taken out, and those pixels' jobs and their colours.
+  std::vector<std::uint32_t> uniformVisible;
+  std::vector<ShadeJob> jobs, sortedJobs;
+  std::vector<float> jobColor;
+  std::vector<std::uint32_t> runJobs;
 };
 
 // How far ahead the visibility pass fetches triangle records and planes.
@@ -71,10 +88,13 @@ bool forwardWins(int tileIndex, const std::vector<Draw>& draws,
 // order; the forward ones are kept for after the shading pass (the renderer
 // puts every two-pass draw before them). A tile where forward shading wins
 // (forwardWins) sends every triangle forward: the same bits either way.
-void visibilityPass(int tileIndex, const std::vector<Draw>& draws,
-                    const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                    TileScratch& s) {
-  const bool allForward = forwardWins(tileIndex, draws, chunks);
+void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
+  const std::vector<Draw>& draws = frame.draws;
+  const std::vector<FrontEndChunk>& chunks = frame.chunks;
+  const int samples = frame.samples.count;
+  // Several samples: the two passes shade each pixel's triangles once where
+  // forward shading would shade every sample.
+  const bool allForward = samples == 1 && forwardWins(tileIndex, draws, chunks);
   for (const FrontEndChunk& chunk : chunks) {
     const std::uint32_t begin = chunk.bins.tileStart[tileIndex];
     const std::uint32_t end = chunk.bins.tileStart[tileIndex + 1];
@@ -99,57 +119,78 @@ void visibilityPass(int tileIndex, const std::vector<Draw>& draws,
       }
       QUADRA_CHECK(s.forward.empty());  // two-pass draws come first
       const auto id = std::uint32_t(s.visibleTriangles.size());
-      if (kernels.forWidth(t.maxX - t.minX + 1).visibility(t, entry.planes, shade, id, s.tile))
-        s.visibleTriangles.push_back(entry);
+      const TileKernels& kernel = frame.kernels.forWidth(t.maxX - t.minX + 1);
+      bool won = false;
+      if (samples == 1) {
+        won = kernel.visibility(t, entry.planes, shade, id, s.planes[0]);
+      } else {
+        // Depth alone, or a masked draw's alpha test's planes too.
+        const int planeCount = shade.alphaMode == AlphaMode::Mask ? 2 + shade.attributes.count : 1;
+        Plane moved[2 + kMaxShadedAttributes];
+        for (int k = 0; k < samples; ++k) {
+          const SampleOffset o = frame.samples.offsets[k];
+          for (int j = 0; j < planeCount; ++j) moved[j] = entry.planes[j].atSample(o);
+          won |= kernel.visibility(atSample(t, o), moved, shade, id, s.planes[k]);
+        }
+      }
+      if (won) s.visibleTriangles.push_back(entry);
     }
   }
 }
 
-// Every visible triangle's 1/w and attribute planes, rebased to the tile.
-void rebaseShadePlanes(const std::vector<Draw>& draws, TileScratch& s) {
+// Every visible triangle's 1/w and attribute planes, rebased to the tile,
+// with each pixel's sample at `offset` standing in for its centre.
+void rebaseShadePlanes(const std::vector<Draw>& draws, const TileBuffers& tile, SampleOffset offset,
+                       TileScratch& s) {
   s.shadePlanes.resize(s.visibleTriangles.size() * kShadePlaneStride);
   for (std::size_t i = 0; i < s.visibleTriangles.size(); ++i) {
     const TileTriangle& v = s.visibleTriangles[i];
     const int planeCount = 1 + draws[v.draw].shade.attributes.count;
     float* out = &s.shadePlanes[i * kShadePlaneStride];
     for (int j = 0; j < planeCount; ++j) {
-      const Plane q = planeInTile(v.planes[1 + j], *v.triangle, s.tile);
+      const Plane q = planeInTile(v.planes[1 + j].atSample(offset), *v.triangle, tile);
       out[3 * j] = q.dx, out[3 * j + 1] = q.dy, out[3 * j + 2] = q.c;
     }
   }
 }
 
-// Shading pass: per draw (triangles are in submission order, so a draw's are
-// consecutive) a run of its whole lane groups, shaded in place, and of its
-// other visible pixels, packed into lanes; the triangles' planes rebased to
-// the tile once.
-void shadingPass(const std::vector<Draw>& draws, const TileKernels& kernels, TileScratch& s) {
+// Each visible triangle's run: its draw's place among the tile's draws
+// (triangles are in submission order, so a draw's are consecutive). Returns
+// the number of runs.
+std::uint32_t assignRuns(TileScratch& s) {
   const std::size_t triangles = s.visibleTriangles.size();
-  if (triangles == 0) return;
-  rebaseShadePlanes(draws, s);
-  // One draw: the kernel finds its groups itself, at two compares per group.
-  if (s.visibleTriangles.front().draw == s.visibleTriangles.back().draw &&
-      triangles < kMaxScannedTriangles) {
-    ShadeRun run;
-    run.scanTile = true;
-    run.endTriangle = std::uint32_t(triangles);
-    run.planes = s.shadePlanes.data();
-    kernels.shade(draws[s.visibleTriangles.front().draw].shade, run, s.tile);
-    return;
-  }
   s.runOf.resize(triangles);
   std::uint32_t runs = 0;
   for (std::size_t i = 0; i < triangles; ++i) {
     if (i > 0 && s.visibleTriangles[i].draw != s.visibleTriangles[i - 1].draw) ++runs;
     s.runOf[i] = runs;
   }
-  ++runs;
+  return runs + 1;
+}
+
+// Shading pass over one plane whose ids are `visible` (the plane's own, or
+// fewer): per draw a run of its whole lane groups, shaded in place, and of
+// its other visible pixels, packed into lanes. The planes are rebased already.
+void shadePlane(const std::vector<Draw>& draws, const TileKernels& kernels,
+                const std::uint32_t* visible, TileBuffers& tile, TileScratch& s) {
+  const std::size_t triangles = s.visibleTriangles.size();
+  // One draw: the kernel finds its groups itself, at two compares per group.
+  if (visible == tile.visible &&
+      s.visibleTriangles.front().draw == s.visibleTriangles.back().draw &&
+      triangles < kMaxScannedTriangles) {
+    ShadeRun run;
+    run.scanTile = true;
+    run.endTriangle = std::uint32_t(triangles);
+    run.planes = s.shadePlanes.data();
+    kernels.shade(draws[s.visibleTriangles.front().draw].shade, run, tile);
+    return;
+  }
+  const std::uint32_t runs = assignRuns(s);
 
   // Each lane group: the run all its pixels belong to, or kMixed.
   constexpr std::uint32_t kMixed = 0xFFFFFFFFu;
   const int lanes = kernels.lanes;
   const int groups = TileBuffers::kPixels / lanes;
-  const std::uint32_t* visible = s.tile.visible;
   s.groupRun.resize(std::size_t(groups));
   s.runGroups.assign(runs + 1, 0);
   s.runPixels.assign(runs + 1, 0);
@@ -199,32 +240,155 @@ void shadingPass(const std::vector<Draw>& draws, const TileKernels& kernels, Til
     run.pixelCount = int(s.runPixels[r + 1] - s.runPixels[r]);
     run.planes = s.shadePlanes.data();
     if (run.groupCount + run.pixelCount == 0) continue;
-    kernels.shade(draws[s.visibleTriangles[firstTriangle].draw].shade, run, s.tile);
+    kernels.shade(draws[s.visibleTriangles[firstTriangle].draw].shade, run, tile);
   }
 }
 
-void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& draws,
-                const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                const glm::vec4& clearColor, float clearDepth, TileScratch& s, Frame& frame,
+// Multisampled shading, once per pixel and visible triangle. Pixels whose
+// samples one triangle holds (or none) are shaded in plane 0 at their centre
+// like a one-sample tile and copied to the other planes; every other pixel's
+// triangles are jobs, each shaded at the mean of its samples' positions
+// (inside the triangle) and written to its samples.
+void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
+  const int samples = frame.samples.count;
+  TileBuffers* const planes = s.planes.get();
+  rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
+  s.uniformVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
+  s.jobs.clear();
+  std::uint32_t ids[kMaxSamples];
+  for (int p = 0; p < TileBuffers::kPixels; ++p) {
+    bool uniform = true;
+    for (int k = 0; k < samples; ++k) {
+      ids[k] = planes[k].visible[p];
+      uniform = uniform && ids[k] == ids[0];
+    }
+    if (uniform) continue;
+    s.uniformVisible[std::size_t(p)] = kNoTriangle;
+    std::uint32_t done = 0;  // samples already in a job
+    for (int k = 0; k < samples; ++k) {
+      if (done >> k & 1u || ids[k] == kNoTriangle) continue;
+      int sumX = 0, sumY = 0, held = 0;
+      std::uint32_t mask = 0;
+      for (int j = k; j < samples; ++j) {
+        if (ids[j] != ids[k]) continue;
+        mask |= 1u << j;
+        sumX += frame.samples.offsets[j].x, sumY += frame.samples.offsets[j].y, ++held;
+      }
+      done |= mask;
+      const float scale = 1.0f / float(held * kSampleUnitsPerPixel);
+      s.jobs.push_back({float(TileBuffers::xAt(p)) + float(sumX) * scale,
+                        float(TileBuffers::yAt(p)) + float(sumY) * scale, ids[k], std::uint16_t(p),
+                        std::uint16_t(mask)});
+    }
+  }
+  shadePlane(frame.draws, kernels, s.uniformVisible.data(), planes[0], s);
+  for (int p = 0; p < TileBuffers::kPixels; ++p) {
+    if (s.uniformVisible[std::size_t(p)] == kNoTriangle) continue;
+    for (int k = 1; k < samples; ++k)
+      for (int c = 0; c < 4; ++c) planes[k].color[c][p] = planes[0].color[c][p];
+  }
+  if (s.jobs.empty()) return;
+
+  // Jobs by run (draw), in pixel order within each: the kernel shades one draw at a time.
+  const std::uint32_t runs = assignRuns(s);
+  s.runJobs.assign(runs + 1, 0);
+  for (const ShadeJob& job : s.jobs) ++s.runJobs[s.runOf[job.triangle] + 1];
+  for (std::uint32_t r = 0; r < runs; ++r) s.runJobs[r + 1] += s.runJobs[r];
+  s.sortedJobs.resize(s.jobs.size());
+  s.groupCursor.assign(s.runJobs.begin(), s.runJobs.end() - 1);
+  for (const ShadeJob& job : s.jobs) s.sortedJobs[s.groupCursor[s.runOf[job.triangle]]++] = job;
+  s.jobColor.resize(3 * s.jobs.size());
+  for (std::uint32_t r = 0; r < runs; ++r) {
+    const std::uint32_t first = s.runJobs[r], count = s.runJobs[r + 1] - first;
+    if (count == 0) continue;
+    ShadeRun run;
+    run.planes = s.shadePlanes.data();
+    run.jobs = s.sortedJobs.data() + first;
+    run.jobCount = int(count);
+    run.jobColor = s.jobColor.data() + 3 * first;
+    kernels.shade(frame.draws[s.visibleTriangles[s.sortedJobs[first].triangle].draw].shade, run,
+                  planes[0]);
+  }
+  for (std::size_t j = 0; j < s.sortedJobs.size(); ++j) {
+    const ShadeJob& job = s.sortedJobs[j];
+    for (std::uint32_t mask = job.samples; mask; mask &= mask - 1) {
+      TileBuffers& plane = planes[__builtin_ctz(mask)];
+      for (int c = 0; c < 3; ++c) plane.color[c][job.pixel] = s.jobColor[3 * j + std::size_t(c)];
+      plane.color[3][job.pixel] = 1.0f;  // opaque and masked draws
+    }
+  }
+}
+
+// Shading pass: each pixel's visible triangles once, or with several samples
+// shaded one by one, each plane as a one-sample tile shaded at its sample.
+void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
+  if (s.visibleTriangles.empty()) return;
+  if (frame.samples.count > 1 && !frame.shadeSamples) return shadePixels(frame, kernels, s);
+  for (int k = 0; k < frame.samples.count; ++k) {
+    TileBuffers& plane = s.planes[k];
+    rebaseShadePlanes(frame.draws, plane, frame.samples.offsets[k], s);
+    shadePlane(frame.draws, kernels, plane.visible, plane, s);
+  }
+}
+
+// The planes' pixel box filter into plane 0: colour the mean of the samples
+// (summed in sample order, so every path rounds alike), depth the nearest.
+void averageSamples(const TileFrame& frame, TileScratch& s) {
+  const int samples = frame.samples.count;
+  TileBuffers& out = s.planes[0];
+  const float weight = 1.0f / float(samples);  // a power of two: exact
+  for (int c = 0; c < 4; ++c) {
+    float* sum = out.color[c];
+    for (int k = 1; k < samples; ++k) {
+      const float* add = s.planes[k].color[c];
+      for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] += add[p];
+    }
+    for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] *= weight;
+  }
+  for (int k = 1; k < samples; ++k) {
+    const float* depth = s.planes[k].depth;
+    for (int p = 0; p < TileBuffers::kPixels; ++p)
+      out.depth[p] =
+          frame.depthGreater ? std::max(out.depth[p], depth[p]) : std::min(out.depth[p], depth[p]);
+  }
+}
+
+void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out,
                 TileTimes& times) {
   const double start = stageClockMs();
-  TileBuffers& tile = s.tile;
-  tile.originX = (tileIndex % grid.tilesX) * kTileSize;
-  tile.originY = (tileIndex / grid.tilesX) * kTileSize;
-  tile.width = std::min(kTileSize, grid.width - tile.originX);
-  tile.height = std::min(kTileSize, grid.height - tile.originY);
-  clearTile(tile, clearColor, clearDepth);
+  const int samples = frame.samples.count;
+  for (int k = 0; k < samples; ++k) {
+    TileBuffers& tile = s.planes[k];
+    tile.originX = (tileIndex % frame.grid.tilesX) * kTileSize;
+    tile.originY = (tileIndex / frame.grid.tilesX) * kTileSize;
+    tile.width = std::min(kTileSize, frame.grid.width - tile.originX);
+    tile.height = std::min(kTileSize, frame.grid.height - tile.originY);
+    clearTile(tile, frame.clearColor, frame.clearDepth);
+  }
   s.visibleTriangles.clear();
   s.forward.clear();
-  visibilityPass(tileIndex, draws, chunks, kernels, s);
+  visibilityPass(tileIndex, frame, s);
   const double visible = stageClockMs();
-  shadingPass(draws, *kernels.wide, s);
+  shadingPass(frame, *frame.kernels.wide, s);
   const double shaded = stageClockMs();
-  for (const TileTriangle& t : s.forward)
-    kernels.forWidth(t.triangle->maxX - t.triangle->minX + 1)
-        .rasterize(*t.triangle, t.planes, draws[t.draw].shade, tile);
+  for (const TileTriangle& t : s.forward) {
+    const TileKernels& kernel = frame.kernels.forWidth(t.triangle->maxX - t.triangle->minX + 1);
+    const ShadeState& shade = frame.draws[t.draw].shade;
+    if (samples == 1) {
+      kernel.rasterize(*t.triangle, t.planes, shade, s.planes[0]);
+      continue;
+    }
+    Plane moved[2 + kMaxShadedAttributes];
+    const int planeCount = 2 + shade.attributes.count;
+    for (int k = 0; k < samples; ++k) {
+      const SampleOffset o = frame.samples.offsets[k];
+      for (int j = 0; j < planeCount; ++j) moved[j] = t.planes[j].atSample(o);
+      kernel.rasterize(atSample(*t.triangle, o), moved, shade, s.planes[k]);
+    }
+  }
   const double rastered = stageClockMs();
-  resolveTile(tile, frame);
+  if (samples > 1) averageSamples(frame, s);
+  resolveTile(s.planes[0], out);
   times.raster = (visible - start) + (rastered - shaded);
   times.shade = shaded - visible;
   times.resolve = stageClockMs() - rastered;
@@ -232,11 +396,9 @@ void renderTile(int tileIndex, const TileGrid& grid, const std::vector<Draw>& dr
 
 }  // namespace
 
-void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
-                 const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                 const glm::vec4& clearColor, float clearDepth, const Executor& executor,
-                 Frame& frame, std::vector<TileTimes>& times) {
-  const std::size_t tiles = std::size_t(grid.tileCount());
+void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
+                 std::vector<TileTimes>& times) {
+  const std::size_t tiles = std::size_t(frame.grid.tileCount());
   times.assign(tiles, TileTimes{});
   // Heavy tiles first, so the last tasks to finish are short ones: a tile's
   // cost estimated as its binned triangles plus a constant for its pixels
@@ -247,19 +409,17 @@ void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
   std::vector<std::pair<std::uint32_t, std::uint32_t>> order(tiles);  // (cost, tile)
   for (std::size_t t = 0; t < tiles; ++t) {
     std::uint32_t cost = kPixelsCost;
-    for (const FrontEndChunk& chunk : chunks)
+    for (const FrontEndChunk& chunk : frame.chunks)
       cost += chunk.bins.tileStart[t + 1] - chunk.bins.tileStart[t];
     order[t] = {cost, std::uint32_t(t)};
   }
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   executor.parallelFor(tiles, 1, [&](std::size_t begin, std::size_t end) {
-    // Not value-initialized: every tile clears what it reads.
-    const std::unique_ptr<TileScratch> scratch(new TileScratch);
+    const auto scratch = std::make_unique<TileScratch>(frame.samples.count);
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t t = order[i].second;
-      renderTile(int(t), grid, draws, chunks, kernels, clearColor, clearDepth, *scratch, frame,
-                 times[t]);
+      renderTile(int(t), frame, *scratch, out, times[t]);
     }
   });
 }

@@ -12,6 +12,7 @@
 #include "setup/triangle_setup.h"
 #include "tile/tile_kernel.h"
 #include "vertex/draw.h"
+#include "window/sample_pattern.h"
 
 namespace quadra {
 
@@ -30,10 +31,23 @@ struct TileTimes {
   double raster = 0.0, shade = 0.0, resolve = 0.0;
 };
 
+// What every tile of a frame shares.
+struct TileFrame {
+  const TileGrid& grid;
+  const std::vector<Draw>& draws;
+  const std::vector<FrontEndChunk>& chunks;
+  const TileKernelSelection& kernels;
+  glm::vec4 clearColor;
+  float clearDepth;
+  bool depthGreater;  // reversed depth: the nearest sample holds the greatest depth
+  // Coverage and depth per sample at these positions; with shadeSamples every
+  // sample is shaded, else each pixel's visible triangles once.
+  const SamplePattern& samples;
+  bool shadeSamples;
+};
+
 // times: resized to the tile count, one entry per tile.
-void renderTiles(const TileGrid& grid, const std::vector<Draw>& draws,
-                 const std::vector<FrontEndChunk>& chunks, const TileKernelSelection& kernels,
-                 const glm::vec4& clearColor, float clearDepth, const Executor& executor,
-                 Frame& frame, std::vector<TileTimes>& times);
+void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
+                 std::vector<TileTimes>& times);
 
 }  // namespace quadra

@@ -56,6 +56,9 @@ struct ShadeState {
   // which the tile kernels compile as separate specializations.
   ShadeOutput output = ShadeOutput::Color;
   DerivativeMode derivatives = DerivativeMode::Analytic;
+  // Texture footprints are scaled by this: 1/sqrt(samples) when every
+  // sample is shaded (api/renderer.h ShadingRate::Sample), else 1.
+  float footprintScale = 1.0f;
   // Visibility and shading passes (tile/tile_kernel.h) instead of the forward
   // path: opaque and masked draws with analytic derivatives. The renderer puts
   // every such draw before the forward ones.

@@ -1,0 +1,65 @@
+// The multisample patterns (values: sample_pattern.h).
+#include "window/sample_pattern.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "core/error.h"
+#include "window/window_space.h"
+
+namespace quadra {
+
+namespace {
+
+constexpr SamplePattern kOne{1, {{0, 0}}};
+constexpr SamplePattern kTwo{2, {{4, 4}, {-4, -4}}};
+constexpr SamplePattern kFour{4, {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}}};
+constexpr SamplePattern kEight{
+    8, {{1, -3}, {-1, 3}, {5, 1}, {-3, -5}, {-5, 5}, {-7, -1}, {3, 7}, {7, -7}}};
+constexpr SamplePattern kSixteen{16,
+                                 {{1, 1},
+                                  {-1, -3},
+                                  {-3, 2},
+                                  {4, -1},
+                                  {-5, -2},
+                                  {2, 5},
+                                  {5, 3},
+                                  {3, -5},
+                                  {-2, 6},
+                                  {0, -7},
+                                  {-4, -6},
+                                  {-6, 4},
+                                  {-8, 0},
+                                  {7, -4},
+                                  {6, 7},
+                                  {-7, -8}}};
+
+}  // namespace
+
+int SamplePattern::reachSubpixels() const {
+  int reach = 0;
+  for (int s = 0; s < count; ++s)
+    reach = std::max({reach, std::abs(int(offsets[s].x)), std::abs(int(offsets[s].y))});
+  return reach * (kSubpixelScale / kSampleUnitsPerPixel);
+}
+
+const SamplePattern& samplePattern(int count) {
+  switch (count) {
+    case 1:
+      return kOne;
+    case 2:
+      return kTwo;
+    case 4:
+      return kFour;
+    case 8:
+      return kEight;
+    case 16:
+      return kSixteen;
+    default:
+      break;
+  }
+  QUADRA_CHECK(isSampleCount(count));
+  return kOne;
+}
+
+}  // namespace quadra

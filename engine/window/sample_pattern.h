@@ -1,0 +1,46 @@
+// Where a pixel's samples lie: the multisample patterns, written down once for
+// setup (which pixels a triangle can reach), the tile stage (coverage and depth
+// per sample) and the lab's references. The positions are Direct3D's standard
+// patterns (D3D11_STANDARD_MULTISAMPLE_PATTERN; Mesa's SWR rasterizer lists
+// the same), in 1/16 pixel from the pixel centre, y down. On the 1/256-pixel
+// grid of window/window_space.h each is a whole 16 units, so coverage and the
+// top-left rule stay exact at every sample.
+#pragma once
+
+#include <cstdint>
+
+namespace quadra {
+
+constexpr int kSampleUnitsPerPixel = 16;
+constexpr int kMaxSamples = 16;
+
+struct SampleOffset {
+  std::int8_t x = 0, y = 0;  // 1/16 pixel from the pixel centre
+};
+
+struct SamplePattern {
+  int count = 1;
+  SampleOffset offsets[kMaxSamples] = {};
+  // The largest |x| or |y| of any offset, in 1/256 pixel: how far beyond a
+  // pixel centre a sample reaches.
+  int reachSubpixels() const;
+};
+
+// How often a multisampled frame shades (api/renderer.h RenderSettings).
+// Pixel: once per pixel and visible triangle (multisampling): at the pixel
+// centre where one triangle holds every sample, else at the mean position of
+// the samples the triangle holds there (inside the triangle, so nothing is
+// extrapolated); the colour goes to those samples. Sample: every sample is
+// shaded at its own position (supersampling), textures filtered for the
+// sample spacing (footprints scaled by 1/sqrt(samples)).
+enum class ShadingRate : std::uint8_t { Pixel, Sample };
+
+// Whether N is a sample count the engine renders: 1, 2, 4, 8 or 16.
+constexpr bool isSampleCount(int n) {
+  return n == 1 || n == 2 || n == 4 || n == 8 || n == 16;
+}
+
+// The pattern of N samples (isSampleCount(N)); 1 is the pixel centre.
+const SamplePattern& samplePattern(int count);
+
+}  // namespace quadra
