@@ -59,7 +59,7 @@ TEST(Bins, EveryTileWithACoveredPixelListsTheTriangle) {
     }
   }
   TileBins bins;
-  binTriangles(triangles, grid, bins);
+  binTriangles(triangles, grid, 0, bins);
   const std::vector<std::set<int>> listed = listedTiles(bins, triangles.size());
   for (std::size_t i = 0; i < triangles.size(); ++i)
     for (const int tile : coveredTiles(triangles[i], grid))
@@ -76,7 +76,7 @@ TEST(Bins, AThinDiagonalTriangleSkipsTheEmptyTilesOfItsBox) {
   t.edges[1] = {1, -1, 4};    // x - y + 4 > 0
   t.edges[2] = {-1, 0, 640};  // 640 - x > 0
   TileBins bins;
-  binTriangles({t}, grid, bins);
+  binTriangles({t}, grid, 0, bins);
   const std::set<int> listed = listedTiles(bins, 1)[0];
   const std::set<int> covered = coveredTiles(t, grid);
   for (const int tile : covered) EXPECT_EQ(listed.count(tile), 1u) << tile;

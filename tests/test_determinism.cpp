@@ -174,6 +174,34 @@ TEST(Determinism, EveryIsaMatchesScalar) {
   if (compared == 0) GTEST_SKIP() << "this CPU has no SIMD path to compare";
 }
 
+// Samples per pixel keep the contract: at every count and shading rate the
+// frame is the same bits for any thread count and kernel path (samples are
+// planes the kernels render one by one, and the resolve sums them in order).
+TEST(Determinism, EverySampleCountIsIdenticalAcrossThreadsAndIsas) {
+  for (const std::string name : {"showcase", "alpha-quads"}) {
+    const Scene scene = makeBuiltinScene(name);
+    for (const int samples : {2, 4, 8, 16}) {
+      for (const ShadingRate rate : {ShadingRate::Pixel, ShadingRate::Sample}) {
+        SCOPED_TRACE(name + " samples " + std::to_string(samples) +
+                     (rate == ShadingRate::Sample ? " per sample" : " per pixel"));
+        RenderSettings settings;
+        settings.width = kWidth;
+        settings.height = kHeight;
+        settings.samples = samples;
+        settings.shadingRate = rate;
+        const Camera camera = firstCameraOrDefault(scene);
+        const Frame reference = renderOnce(scene, camera, settings, 1, std::nullopt);
+        ASSERT_TRUE(hasVisiblePixels(reference));
+        expectSameFrame(renderOnce(scene, camera, settings, 3, std::nullopt), reference);
+        for (Isa isa : supportedIsas()) {
+          SCOPED_TRACE(isaName(isa));
+          expectSameFrame(renderOnce(scene, camera, settings, 2, isa), reference);
+        }
+      }
+    }
+  }
+}
+
 // Depth is resolved only when asked; the colour does not depend on it, and
 // an EXR (whose Z channel needs it) refuses a depthless frame by name.
 TEST(Determinism, FrameWithoutDepthHasTheSameColour) {

@@ -10,6 +10,7 @@
 #include <array>
 #include <random>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "api/renderer.h"
@@ -62,15 +63,20 @@ Scene sceneFromWindow(const std::vector<WindowTriangle>& triangles, bool doubleS
 
 // Renders the coverage count and compares it, pixel by pixel, with the
 // reference fed the same scene through the double-precision projection.
-// Returns the reference image for further checks.
-ref::CoverageImage expectCoverageMatches(const Scene& scene, const std::vector<Isa>& isas) {
+// With several samples the engine's pixel is the mean of its samples'
+// counts, so times the sample count it is the reference's covered samples,
+// exactly. Returns the reference image for further checks.
+ref::CoverageImage expectCoverageMatches(const Scene& scene, const std::vector<Isa>& isas,
+                                         int samples = 1) {
+  SCOPED_TRACE(std::to_string(samples) + " samples");
   const Camera camera = pixelExactCamera();
   const auto projected = ref::projectScene(scene, camera, kSize, kSize);
   const ref::CoverageImage expected =
-      ref::rasterizeCoverage(ref::gridTriangles(projected), kSize, kSize);
+      ref::rasterizeCoverage(ref::gridTriangles(projected), kSize, kSize, samples);
   RenderSettings settings;
   settings.width = settings.height = kSize;
   settings.debugView = DebugView::CoverageCount;
+  settings.samples = samples;
   for (Isa isa : isas) {
     SCOPED_TRACE(isaName(isa));
     Renderer renderer({.threads = 2, .isa = isa});
@@ -83,7 +89,7 @@ ref::CoverageImage expectCoverageMatches(const Scene& scene, const std::vector<I
     std::ostringstream first;
     for (int y = 0; y < kSize; ++y)
       for (int x = 0; x < kSize; ++x) {
-        const float got = frame.rgba[(std::size_t(y) * kSize + x) * 4];
+        const float got = frame.rgba[(std::size_t(y) * kSize + x) * 4] * float(samples);
         if (got == float(expected.at(x, y))) continue;
         if (++mismatches <= 8)
           first << " (" << x << "," << y << "): engine " << got << " ref " << expected.at(x, y);
@@ -301,6 +307,53 @@ TEST(RasterFillRule, CullingFollowsWindingAndMirroring) {
       kept += expected.count[i], total += all.count[i];
     EXPECT_GT(kept, total / 4);
     EXPECT_LT(kept, total * 3 / 4);
+  }
+}
+
+// Coverage per sample at every sample count, on every ISA: random triangles
+// with vertices on the 1/16-pixel lattice the sample positions lie on (so
+// edges run through samples and the top-left rule decides), anywhere on the
+// grid, and tiny ones that fall between pixel centres but not between
+// samples (setup must keep them), plus the one-block wedges and slivers.
+TEST(RasterFillRule, EverySampleCountMatchesReference) {
+  std::mt19937 rng(1613);
+  std::uniform_int_distribution<int> sixteenth(-20 * 16, (kSize + 20) * 16);
+  std::uniform_int_distribution<int> subpixel(-20 * 256, (kSize + 20) * 256);
+  std::uniform_int_distribution<int> tiny(-180, 180);
+  std::vector<WindowTriangle> triangles;
+  for (int n = 0; n < 450; ++n) {
+    WindowTriangle t;
+    if (n % 3 == 0) {
+      for (glm::dvec2& p : t) p = {sixteenth(rng) / 16.0, sixteenth(rng) / 16.0};
+    } else if (n % 3 == 1) {
+      for (glm::dvec2& p : t) p = {subpixel(rng) / 256.0, subpixel(rng) / 256.0};
+    } else {
+      const glm::dvec2 at(subpixel(rng) / 256.0, subpixel(rng) / 256.0);
+      for (glm::dvec2& p : t) p = at + glm::dvec2(tiny(rng), tiny(rng)) / 256.0;
+    }
+    triangles.push_back(t);
+  }
+  const double unit = 1.0 / 256;
+  for (double apex : {0.6, 4.2, 7.5}) {
+    triangles.push_back({{{apex, apex + 0.4}, {-900.0, -600.0}, {-600.0, -900.0}}});
+    triangles.push_back({{{apex + 0.2, 12.1}, {apex + 3.3, 13.9}, {apex + 0.9, 15.7}}});
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double row = 10.5 + 40 * k + 0.125;
+    triangles.push_back({{{0.5, row}, {255.5, row + k * unit}, {255.5, row + (k + 1) * unit}}});
+  }
+  const Scene scene = sceneFromWindow(triangles, true);
+  for (int samples : {2, 4, 8, 16}) {
+    const ref::CoverageImage expected = expectCoverageMatches(scene, supportedIsas(), samples);
+    // The scene puts edges through samples: the per-sample counts differ
+    // from whole-pixel ones somewhere, or the test would prove nothing.
+    const ref::CoverageImage centres = ref::rasterizeCoverage(
+        ref::gridTriangles(ref::projectScene(scene, pixelExactCamera(), kSize, kSize)), kSize,
+        kSize);
+    int partial = 0;
+    for (std::size_t i = 0; i < expected.count.size(); ++i)
+      partial += expected.count[i] != centres.count[i] * samples;
+    EXPECT_GT(partial, 1000);
   }
 }
 

@@ -263,7 +263,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                        samples, impl_->cull, chunk.setup);
       }
       const double setUp = stageClockMs();
-      binTriangles(chunk.setup.triangles, grid, chunk.bins);
+      binTriangles(chunk.setup.triangles, grid, samples.reachSubpixels(), chunk.bins);
       chunk.setupMs = setUp - started;
       chunk.binMs = stageClockMs() - setUp;
     }

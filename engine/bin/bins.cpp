@@ -3,6 +3,7 @@
 #include "bin/bins.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include "window/window_space.h"
 
@@ -19,15 +20,19 @@ TileGrid TileGrid::forViewport(int width, int height) {
 
 namespace {
 
-// Whether some pixel centre of the rectangle [x0, x1] x [y0, y1] (inclusive
-// pixel indices) may lie inside all three edges: each edge's largest value
-// over the rectangle, at the corner its steps point to, must be positive.
-// Exact (64-bit edge functions), and conservative: a rectangle that passes
-// may still hold no covered centre, one that fails holds none.
-bool mayCover(const TriangleRecord& t, int x0, int y0, int x1, int y1) {
+// Whether some sample of the rectangle [x0, x1] x [y0, y1] (inclusive pixel
+// indices; samples within `reach` 1/256 pixel of their centres) may lie
+// inside all three edges: each edge's largest value over the rectangle, at
+// the corner its steps point to, widened by what a sample's offset can add,
+// must be positive. Exact (64-bit edge functions; a and b are multiples of
+// 256), and conservative: a rectangle that passes may still hold no covered
+// sample, one that fails holds none.
+bool mayCover(const TriangleRecord& t, int x0, int y0, int x1, int y1, int reach) {
   for (const EdgeFunction& e : t.edges) {
     const int x = e.a > 0 ? x1 : x0, y = e.b > 0 ? y1 : y0;
-    if (e.at(x, y) <= 0) return false;
+    const std::int64_t widen =
+        (std::abs(std::int64_t(e.a)) + std::abs(std::int64_t(e.b))) / kSubpixelScale * reach;
+    if (e.at(x, y) + widen <= 0) return false;
   }
   return true;
 }
@@ -39,7 +44,7 @@ bool mayCover(const TriangleRecord& t, int x0, int y0, int x1, int y1) {
 // diagonal triangle is listed along its length, not in every tile of its box.
 // Most triangles of a dense mesh lie in one tile: the count pass notes it
 // (out.singleTile), and the fill pass lists them without another walk.
-void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid,
+void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid, int reach,
                   TileBins& out) {
   out.tileStart.assign(std::size_t(grid.tileCount()) + 1, 0);
   out.singleTile.resize(triangles.size());
@@ -55,7 +60,7 @@ void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& 
       for (int tx = tx0; tx <= tx1; ++tx) {
         const int x0 = std::max<int>(tx * kTileSize, t.minX);
         const int x1 = std::min<int>(tx * kTileSize + kTileSize - 1, t.maxX);
-        if (edgeTested && !mayCover(t, x0, y0, x1, y1)) continue;
+        if (edgeTested && !mayCover(t, x0, y0, x1, y1, reach)) continue;
         visit(ty * grid.tilesX + tx);
       }
     }

@@ -27,7 +27,9 @@ struct TileBins {
   std::vector<std::int32_t> singleTile;
 };
 
-void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid,
+// reach: how far (1/256 pixel) a pixel's samples lie from its centre
+// (SamplePattern::reachSubpixels).
+void binTriangles(const std::vector<TriangleRecord>& triangles, const TileGrid& grid, int reach,
                   TileBins& out);
 
 }  // namespace quadra

@@ -648,6 +648,17 @@ class RunShader {
     F(1.0f).store_aligned(tile_.color[3] + first);  // opaque and masked draws: alpha 1
   }
 
+  // R, G, B of the lanes' positions, each with its own triangle's planes.
+  void shadeLanes(const float* xs, const float* ys, const std::uint32_t* ids,
+                  float (*out)[L::kWidth]) const {
+    LanePlane p[1 + kMaxShadedAttributes];
+    lanePlanes(run_.planes, ids, planeCount_, p);
+    const Rgba<L> c = Feat::color(shade_, F::load_aligned(xs), F::load_aligned(ys), p[0], p + 1);
+    c.r.store_aligned(out[0]);
+    c.g.store_aligned(out[1]);
+    c.b.store_aligned(out[2]);
+  }
+
   // `count` pixels (1..kWidth); lanes past them repeat the last and are not written.
   void packed(const std::uint16_t* pixels, int count) const {
     alignas(64) float xs[L::kWidth], ys[L::kWidth];
@@ -660,12 +671,7 @@ class RunShader {
       ys[k] = float(TileBuffers::yAt(pixel[k]));
       ids[k] = tile_.visible[pixel[k]];
     }
-    LanePlane p[1 + kMaxShadedAttributes];
-    lanePlanes(run_.planes, ids, planeCount_, p);
-    const Rgba<L> c = Feat::color(shade_, F::load_aligned(xs), F::load_aligned(ys), p[0], p + 1);
-    c.r.store_aligned(out[0]);
-    c.g.store_aligned(out[1]);
-    c.b.store_aligned(out[2]);
+    shadeLanes(xs, ys, ids, out);
     for (int k = 0; k < count; ++k) {
       for (int ch = 0; ch < 3; ++ch) tile_.color[ch][pixel[k]] = out[ch][k];
       tile_.color[3][pixel[k]] = 1.0f;
@@ -682,12 +688,7 @@ class RunShader {
       const ShadeJob& job = run_.jobs[first + std::min(k, count - 1)];
       xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
     }
-    LanePlane p[1 + kMaxShadedAttributes];
-    lanePlanes(run_.planes, ids, planeCount_, p);
-    const Rgba<L> c = Feat::color(shade_, F::load_aligned(xs), F::load_aligned(ys), p[0], p + 1);
-    c.r.store_aligned(out[0]);
-    c.g.store_aligned(out[1]);
-    c.b.store_aligned(out[2]);
+    shadeLanes(xs, ys, ids, out);
     for (int k = 0; k < count; ++k)
       for (int ch = 0; ch < 3; ++ch) run_.jobColor[3 * (first + k) + ch] = out[ch][k];
   }

@@ -42,6 +42,11 @@ struct TileScratch {
   // Multisampled shading: plane 0's ids with the pixels whose samples several
   // triangles share taken out, and those pixels' jobs and their colours.
   std::vector<std::uint32_t> uniformVisible;
+  // The pixels whose samples differ (in colour, once shaded), in tile order;
+  // with allMixed, every pixel may.
+  std::vector<std::uint32_t> sampleDiffers;
+  std::vector<std::uint16_t> mixedPixels;
+  bool allMixed = false;
   std::vector<ShadeJob> jobs, sortedJobs;
   std::vector<float> jobColor;
   std::vector<std::uint32_t> runJobs;
@@ -56,11 +61,14 @@ void prefetch(const void* begin, std::size_t bytes) {
   __builtin_prefetch(static_cast<const char*>(begin) + bytes - 1);
 }
 
-void clearTile(TileBuffers& tile, const glm::vec4& clearColor, float clearDepth) {
+// color: also the colour planes (a multisampled tile shaded per pixel fills
+// its other planes' colours itself, when anything reads them).
+void clearTile(TileBuffers& tile, const glm::vec4& clearColor, float clearDepth, bool color) {
   std::fill(std::begin(tile.depth), std::end(tile.depth), clearDepth);
   std::fill(std::begin(tile.visible), std::end(tile.visible), kNoTriangle);
   std::fill(std::begin(tile.blockDepthMin), std::end(tile.blockDepthMin), clearDepth);
   std::fill(std::begin(tile.blockDepthMax), std::end(tile.blockDepthMax), clearDepth);
+  if (!color) return;
   for (int c = 0; c < 4; ++c)
     std::fill(std::begin(tile.color[c]), std::end(tile.color[c]), clearColor[c]);
 }
@@ -246,27 +254,40 @@ void shadePlane(const std::vector<Draw>& draws, const TileKernels& kernels,
 
 // Multisampled shading, once per pixel and visible triangle. Pixels whose
 // samples one triangle holds (or none) are shaded in plane 0 at their centre
-// like a one-sample tile and copied to the other planes; every other pixel's
-// triangles are jobs, each shaded at the mean of its samples' positions
-// (inside the triangle) and written to its samples.
+// like a one-sample tile; only plane 0 holds their colour (fillSamplePlanes
+// copies it where something else will draw). Every other pixel's triangles
+// are jobs, each shaded at the mean of its samples' positions (inside the
+// triangle) and written to its samples; its uncovered samples get the clear
+// colour.
 void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
   const int samples = frame.samples.count;
   TileBuffers* const planes = s.planes.get();
+  // Where the planes' ids differ, a plane at a time (vectorizes).
+  s.sampleDiffers.assign(TileBuffers::kPixels, 0);
+  std::uint32_t* const differs = s.sampleDiffers.data();
+  for (int k = 1; k < samples; ++k)
+    for (int p = 0; p < TileBuffers::kPixels; ++p)
+      differs[p] |= planes[k].visible[p] ^ planes[0].visible[p];
+  s.mixedPixels.clear();
+  s.allMixed = false;
+  for (int p = 0; p < TileBuffers::kPixels; ++p)
+    if (differs[p] != 0) s.mixedPixels.push_back(std::uint16_t(p));
+  if (s.visibleTriangles.empty()) return;
+
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
   s.uniformVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
   s.jobs.clear();
   std::uint32_t ids[kMaxSamples];
-  for (int p = 0; p < TileBuffers::kPixels; ++p) {
-    bool uniform = true;
-    for (int k = 0; k < samples; ++k) {
-      ids[k] = planes[k].visible[p];
-      uniform = uniform && ids[k] == ids[0];
-    }
-    if (uniform) continue;
-    s.uniformVisible[std::size_t(p)] = kNoTriangle;
+  for (const std::uint16_t p : s.mixedPixels) {
+    s.uniformVisible[p] = kNoTriangle;
+    for (int k = 0; k < samples; ++k) ids[k] = planes[k].visible[p];
     std::uint32_t done = 0;  // samples already in a job
     for (int k = 0; k < samples; ++k) {
-      if (done >> k & 1u || ids[k] == kNoTriangle) continue;
+      if (done >> k & 1u) continue;
+      if (ids[k] == kNoTriangle) {
+        for (int c = 0; c < 4; ++c) planes[k].color[c][p] = frame.clearColor[c];
+        continue;
+      }
       int sumX = 0, sumY = 0, held = 0;
       std::uint32_t mask = 0;
       for (int j = k; j < samples; ++j) {
@@ -277,16 +298,11 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
       done |= mask;
       const float scale = 1.0f / float(held * kSampleUnitsPerPixel);
       s.jobs.push_back({float(TileBuffers::xAt(p)) + float(sumX) * scale,
-                        float(TileBuffers::yAt(p)) + float(sumY) * scale, ids[k], std::uint16_t(p),
+                        float(TileBuffers::yAt(p)) + float(sumY) * scale, ids[k], p,
                         std::uint16_t(mask)});
     }
   }
   shadePlane(frame.draws, kernels, s.uniformVisible.data(), planes[0], s);
-  for (int p = 0; p < TileBuffers::kPixels; ++p) {
-    if (s.uniformVisible[std::size_t(p)] == kNoTriangle) continue;
-    for (int k = 1; k < samples; ++k)
-      for (int c = 0; c < 4; ++c) planes[k].color[c][p] = planes[0].color[c][p];
-  }
   if (s.jobs.empty()) return;
 
   // Jobs by run (draw), in pixel order within each: the kernel shades one draw at a time.
@@ -319,11 +335,27 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   }
 }
 
+// Before forward draws write into a tile shaded per pixel: plane 0's colour
+// of the pixels whose samples agree copied to the other planes, and every
+// pixel resolved from all its samples.
+void fillSamplePlanes(const TileFrame& frame, TileScratch& s) {
+  const std::uint32_t* const differs = s.sampleDiffers.data();
+  for (int k = 1; k < frame.samples.count; ++k)
+    for (int c = 0; c < 4; ++c) {
+      const float* from = s.planes[0].color[c];
+      float* to = s.planes[k].color[c];
+      for (int p = 0; p < TileBuffers::kPixels; ++p)
+        if (differs[p] == 0) to[p] = from[p];
+    }
+  s.allMixed = true;
+}
+
 // Shading pass: each pixel's visible triangles once, or with several samples
 // shaded one by one, each plane as a one-sample tile shaded at its sample.
 void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
-  if (s.visibleTriangles.empty()) return;
   if (frame.samples.count > 1 && !frame.shadeSamples) return shadePixels(frame, kernels, s);
+  s.allMixed = true;
+  if (s.visibleTriangles.empty()) return;
   for (int k = 0; k < frame.samples.count; ++k) {
     TileBuffers& plane = s.planes[k];
     rebaseShadePlanes(frame.draws, plane, frame.samples.offsets[k], s);
@@ -331,25 +363,40 @@ void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch
   }
 }
 
-// The planes' pixel box filter into plane 0: colour the mean of the samples
-// (summed in sample order, so every path rounds alike), depth the nearest.
+// The samples' pixel box filter into plane 0: colour the mean of the
+// samples, summed pairwise (so samples of one colour average to exactly that
+// colour, and a pixel only plane 0 holds needs no sum), depth the nearest.
 void averageSamples(const TileFrame& frame, TileScratch& s) {
   const int samples = frame.samples.count;
-  TileBuffers& out = s.planes[0];
+  TileBuffers* const planes = s.planes.get();
   const float weight = 1.0f / float(samples);  // a power of two: exact
-  for (int c = 0; c < 4; ++c) {
-    float* sum = out.color[c];
-    for (int k = 1; k < samples; ++k) {
-      const float* add = s.planes[k].color[c];
-      for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] += add[p];
-    }
-    for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] *= weight;
+  if (s.allMixed) {
+    for (int width = 1; width < samples; width *= 2)
+      for (int k = 0; k + width < samples; k += 2 * width)
+        for (int c = 0; c < 4; ++c) {
+          float* sum = planes[k].color[c];
+          const float* add = planes[k + width].color[c];
+          for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] += add[p];
+        }
+    for (int c = 0; c < 4; ++c)
+      for (int p = 0; p < TileBuffers::kPixels; ++p) planes[0].color[c][p] *= weight;
+  } else {
+    for (const std::uint16_t p : s.mixedPixels)
+      for (int c = 0; c < 4; ++c) {
+        float value[kMaxSamples];
+        for (int k = 0; k < samples; ++k) value[k] = planes[k].color[c][p];
+        for (int width = 1; width < samples; width *= 2)
+          for (int k = 0; k + width < samples; k += 2 * width) value[k] += value[k + width];
+        planes[0].color[c][p] = value[0] * weight;
+      }
   }
+  float* const nearest = planes[0].depth;
   for (int k = 1; k < samples; ++k) {
-    const float* depth = s.planes[k].depth;
-    for (int p = 0; p < TileBuffers::kPixels; ++p)
-      out.depth[p] =
-          frame.depthGreater ? std::max(out.depth[p], depth[p]) : std::min(out.depth[p], depth[p]);
+    const float* depth = planes[k].depth;
+    if (frame.depthGreater)
+      for (int p = 0; p < TileBuffers::kPixels; ++p) nearest[p] = std::max(nearest[p], depth[p]);
+    else
+      for (int p = 0; p < TileBuffers::kPixels; ++p) nearest[p] = std::min(nearest[p], depth[p]);
   }
 }
 
@@ -363,7 +410,8 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
     tile.originY = (tileIndex / frame.grid.tilesX) * kTileSize;
     tile.width = std::min(kTileSize, frame.grid.width - tile.originX);
     tile.height = std::min(kTileSize, frame.grid.height - tile.originY);
-    clearTile(tile, frame.clearColor, frame.clearDepth);
+    clearTile(tile, frame.clearColor, frame.clearDepth,
+              k == 0 || frame.shadeSamples);  // shadePixels fills the others
   }
   s.visibleTriangles.clear();
   s.forward.clear();
@@ -371,6 +419,7 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
   const double visible = stageClockMs();
   shadingPass(frame, *frame.kernels.wide, s);
   const double shaded = stageClockMs();
+  if (samples > 1 && !s.allMixed && !s.forward.empty()) fillSamplePlanes(frame, s);
   for (const TileTriangle& t : s.forward) {
     const TileKernels& kernel = frame.kernels.forWidth(t.triangle->maxX - t.triangle->minX + 1);
     const ShadeState& shade = frame.draws[t.draw].shade;

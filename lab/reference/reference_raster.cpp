@@ -59,9 +59,32 @@ __int128 doubleSignedArea(const GridTriangle& t) {
 }
 
 bool coversPixelCentre(const GridTriangle& t, std::int64_t px, std::int64_t py) {
+  return coversPoint(t, samplePoint(px, py, 0, 1));
+}
+
+GridPoint samplePoint(std::int64_t px, std::int64_t py, int sample, int samplesPerPixel) {
+  // Positions from the pixel's top-left corner in 1/16 pixel, x then y per
+  // sample (Direct3D 11's D3D11_STANDARD_MULTISAMPLE_PATTERN, as Mesa's SWR
+  // rasterizer tabulates it).
+  static constexpr int kOne[] = {8, 8};
+  static constexpr int kTwo[] = {12, 12, 4, 4};
+  static constexpr int kFour[] = {6, 2, 14, 6, 2, 10, 10, 14};
+  static constexpr int kEight[] = {9, 5, 7, 11, 13, 9, 5, 3, 3, 13, 1, 7, 11, 15, 15, 1};
+  static constexpr int kSixteen[] = {9, 9,  7, 5, 5, 10, 12, 7,  3, 6, 10, 13, 13, 11, 11, 3,
+                                     6, 14, 8, 1, 4, 2,  2,  12, 0, 8, 15, 4,  14, 15, 1,  0};
+  const int* table = samplesPerPixel == 16  ? kSixteen
+                     : samplesPerPixel == 8 ? kEight
+                     : samplesPerPixel == 4 ? kFour
+                     : samplesPerPixel == 2 ? kTwo
+                                            : kOne;
+  constexpr std::int64_t kUnit = kSubpixelUnits / 16;
+  return {px * kSubpixelUnits + table[2 * sample] * kUnit,
+          py * kSubpixelUnits + table[2 * sample + 1] * kUnit};
+}
+
+bool coversPoint(const GridTriangle& t, const GridPoint& centre) {
   const int interiorSign = sign(doubleSignedArea(t));
   if (interiorSign == 0) return false;
-  const GridPoint centre{(2 * px + 1) * (kSubpixelUnits / 2), (2 * py + 1) * (kSubpixelUnits / 2)};
   for (int i = 0; i < 3; ++i) {
     const GridPoint& a = t.v[i];
     const GridPoint& b = t.v[(i + 1) % 3];
@@ -86,7 +109,8 @@ bool survivesCulling(const GridTriangle& t) {
   return true;
 }
 
-CoverageImage rasterizeCoverage(const std::vector<GridTriangle>& triangles, int width, int height) {
+CoverageImage rasterizeCoverage(const std::vector<GridTriangle>& triangles, int width, int height,
+                                int samplesPerPixel) {
   CoverageImage image{width, height, std::vector<int>(std::size_t(width) * height, 0),
                       std::vector<int>(std::size_t(width) * height, -1)};
   for (std::size_t index = 0; index < triangles.size(); ++index) {
@@ -106,9 +130,12 @@ CoverageImage rasterizeCoverage(const std::vector<GridTriangle>& triangles, int 
     const std::int64_t y1 = std::min<std::int64_t>(height - 1, lastPixel(hi[1]));
     for (std::int64_t y = y0; y <= y1; ++y) {
       for (std::int64_t x = x0; x <= x1; ++x) {
-        if (!coversPixelCentre(t, x, y)) continue;
+        int covered = 0;
+        for (int sample = 0; sample < samplesPerPixel; ++sample)
+          covered += coversPoint(t, samplePoint(x, y, sample, samplesPerPixel));
+        if (covered == 0) continue;
         const std::size_t at = std::size_t(y) * width + std::size_t(x);
-        ++image.count[at];
+        image.count[at] += covered;
         image.lastTriangle[at] = int(index);
       }
     }

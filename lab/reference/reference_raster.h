@@ -50,23 +50,34 @@ __int128 cross(const GridPoint& origin, const GridPoint& towards, const GridPoin
 // coordinates: positive when the vertices run clockwise as seen (a back face).
 __int128 doubleSignedArea(const GridTriangle& t);
 
-// Whether the triangle covers the centre of pixel (px, py) under the top-left
-// rule, ignoring culling. Zero-area triangles cover nothing.
+// Whether the triangle covers grid point p under the top-left rule, ignoring
+// culling. Zero-area triangles cover nothing.
+bool coversPoint(const GridTriangle& t, const GridPoint& p);
+// The same at the centre of pixel (px, py).
 bool coversPixelCentre(const GridTriangle& t, std::int64_t px, std::int64_t py);
+
+// Sample `sample` of pixel (px, py) among `samplesPerPixel` (1, 2, 4, 8, 16),
+// at Direct3D's standard multisample positions as this file states them
+// (from the pixel's top-left corner, in 1/16 pixel; one sample: the centre).
+GridPoint samplePoint(std::int64_t px, std::int64_t py, int sample, int samplesPerPixel);
 // Whether the culling mode of t keeps it.
 bool survivesCulling(const GridTriangle& t);
 
 struct CoverageImage {
   int width = 0;
   int height = 0;
-  std::vector<int> count;         // triangles covering each pixel centre
+  // Triangles covering each pixel centre; with several samples per pixel,
+  // the covered samples summed over the triangles.
+  std::vector<int> count;
   std::vector<int> lastTriangle;  // index of the last covering triangle, -1 for none
 
   int at(int x, int y) const { return count[std::size_t(y) * std::size_t(width) + x]; }
 };
 
-// Coverage of a width x height viewport by the triangles, in order.
-CoverageImage rasterizeCoverage(const std::vector<GridTriangle>& triangles, int width, int height);
+// Coverage of a width x height viewport by the triangles, in order, at
+// samplePoint's positions (lastTriangle: the last to cover any sample).
+CoverageImage rasterizeCoverage(const std::vector<GridTriangle>& triangles, int width, int height,
+                                int samplesPerPixel = 1);
 
 // ---------------------------------------------------------------------------
 // Projection of a scene, in double, per the camera conventions.
