@@ -71,7 +71,7 @@ struct Context {
   Frame render(const Scene& scene, int width, int height, DebugView view,
                FrameStats* stats = nullptr, std::optional<int> threadCount = std::nullopt,
                std::optional<Isa> path = std::nullopt, DepthMode depth = DepthMode::Standard,
-               DerivativeMode derivatives = DerivativeMode::Analytic) const {
+               DerivativeMode derivatives = DerivativeMode::Analytic, int samples = 1) const {
     RendererConfig config;
     config.threads = threadCount.value_or(threads);
     config.isa = path ? path : isa;
@@ -82,6 +82,7 @@ struct Context {
     settings.debugView = view;
     settings.depth = depth;
     settings.derivatives = derivatives;
+    settings.samples = samples;
     Frame frame;
     const FrameStats s = renderer.render(scene, scene.cameras.at(0), settings, frame);
     if (stats) *stats = s;
@@ -100,29 +101,40 @@ const float* pixelOf(const Frame& frame, int x, int y) {
 }
 
 // The exact reference rasterizer's view of a scene through its camera.
+// (With several samples per pixel, each pixel's count is its covered samples.)
 struct ReferenceCoverage {
   std::vector<ref::ProjectedTriangle> projected;
   ref::CoverageImage image;
+  int samples;
 
-  ReferenceCoverage(const Scene& scene, int width, int height)
+  ReferenceCoverage(const Scene& scene, int width, int height, int samplesPerPixel = 1)
       : projected(ref::projectScene(scene, scene.cameras[0], width, height)),
-        image(ref::rasterizeCoverage(ref::gridTriangles(projected), width, height)) {}
+        image(
+            ref::rasterizeCoverage(ref::gridTriangles(projected), width, height, samplesPerPixel)),
+        samples(samplesPerPixel) {}
 };
 
 // Pixels whose coverage count differs from the exact reference rasterizer's,
 // not counting those within `margin` px of a reference edge (0: count all).
 // A perspective vertex's window position comes from the engine's float clip
 // coordinates, so it may snap one 1/256 grid unit away from the double
-// reference's: that moves an edge by at most sqrt(2)/256 px < 1/128 px.
+// reference's: that moves an edge by at most sqrt(2)/256 px < 1/128 px. With
+// several samples the engine's pixel is the mean of its samples' counts, and
+// the margin grows by how far a sample lies from the centre (at most
+// sqrt(2)/2 px).
 int coverageMismatches(const Context& ctx, const Scene& scene, const ReferenceCoverage& expected,
                        double margin, std::optional<int> threads = std::nullopt) {
   const int width = expected.image.width, height = expected.image.height;
-  const Frame frame = ctx.render(scene, width, height, DebugView::CoverageCount, nullptr, threads);
+  const Frame frame =
+      ctx.render(scene, width, height, DebugView::CoverageCount, nullptr, threads, std::nullopt,
+                 DepthMode::Standard, DerivativeMode::Analytic, expected.samples);
+  const double reach = margin == 0.0 || expected.samples == 1 ? 0.0 : 0.7072;
   int mismatches = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
-      if (pixelOf(frame, x, y)[0] != float(expected.image.at(x, y)) &&
-          (margin == 0.0 || ref::distanceToEdges(expected.projected, {x + 0.5, y + 0.5}) > margin))
+      if (pixelOf(frame, x, y)[0] * float(expected.samples) != float(expected.image.at(x, y)) &&
+          (margin == 0.0 ||
+           ref::distanceToEdges(expected.projected, {x + 0.5, y + 0.5}) > margin + reach))
         ++mismatches;
   return mismatches;
 }
@@ -196,6 +208,28 @@ void pixelExactCoverage(Context& ctx, const std::string& name) {
           coverageMismatches(ctx, scene, ReferenceCoverage(scene, kPixelExactSize, kPixelExactSize),
                              0.0),
           Bound::Equal, 0);
+}
+
+// Coverage per sample (4 per pixel) on the same scenes as the one-sample
+// checks: the perspective hard cases away from their edges, the pixel-exact
+// ones at every pixel.
+void sampleCoverageCases(Context& ctx) {
+  constexpr int kSamples = 4;
+  for (const char* name : {"near-plane", "huge-1e6", "huge-1e30", "grazing"}) {
+    const Scene scene = hardCase(name);
+    ctx.add(name, "4 samples: pixels != reference sample coverage, > 1/128 px from an edge",
+            coverageMismatches(ctx, scene, ReferenceCoverage(scene, kWidth, kHeight, kSamples),
+                               1.0 / 128),
+            Bound::Equal, 0);
+  }
+  for (const char* name : {"slivers", "random-triangles"}) {
+    const Scene scene = hardCase(name);
+    ctx.add(
+        name, "4 samples: pixels != reference sample coverage (all pixels)",
+        coverageMismatches(
+            ctx, scene, ReferenceCoverage(scene, kPixelExactSize, kPixelExactSize, kSamples), 0.0),
+        Bound::Equal, 0);
+  }
 }
 
 // The grid covers window x < 128 exactly once; each fan covers its rim
@@ -492,6 +526,7 @@ int runStabilityReport(const std::vector<std::string>& args) {
   watertightCase(ctx);
   closedMeshCase(ctx);
   randomTrianglesCase(ctx);
+  sampleCoverageCases(ctx);
   invalidInputCase(ctx);
   zFightingCases(ctx);
   lodCases(ctx);
