@@ -114,10 +114,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                  {{"two-pass", OpaqueShading::TwoPass}, {"forward", OpaqueShading::Forward}},
                  cmd.settings.opaqueShading);
   options.value("--samples", [&cmd](const std::string& option, const std::string& value) {
-    const double n = parseNumber(option, value);
-    if (!(n >= 1 && n <= kMaxSamples) || double(int(n)) != n || !isSampleCount(int(n)))
-      throw Error(option + ": '" + value + "' must be 1, 2, 4, 8 or 16");
-    cmd.settings.samples = int(n);
+    cmd.settings.samples = parseSampleCount(option, value);
   });
   options.choice("--shading-rate", "shading rate",
                  {{"pixel", ShadingRate::Pixel}, {"sample", ShadingRate::Sample}},

@@ -29,4 +29,17 @@ std::string format(const char* spec, double value) {
   return buffer;
 }
 
+std::string figures(double value) {
+  return format(value < 10.0 ? "%.2f" : value < 100.0 ? "%.1f" : "%.0f", value);
+}
+
+std::string joined(const std::vector<double>& values, const char* spec) {
+  std::string text;
+  for (const double v : values) {
+    if (!text.empty()) text += ';';
+    text += format(spec, v);
+  }
+  return text;
+}
+
 }  // namespace quadra
