@@ -31,6 +31,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra report sat-precision --help
        quadra report stability --help
        quadra report frames --help
+       quadra report samples --help
        quadra --version
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)

@@ -232,14 +232,15 @@ int runReport(const std::vector<std::string>& args) {
   if (subject == "sat-precision") return runSatPrecisionReport(rest);
   if (subject == "stability") return runStabilityReport(rest);
   if (subject == "frames") return runFramesReport(rest);
+  if (subject == "samples") return runSamplesReport(rest);
   if (subject == "--help" || subject == "-h") {
     std::cout << kReportUsage;
     return 0;
   }
   if (subject != "textures")
     throw Error(
-        "report: expected a subject, 'textures', 'sat-precision', 'stability' or 'frames' (see "
-        "quadra report textures --help)");
+        "report: expected a subject, 'textures', 'sat-precision', 'stability', 'frames' or "
+        "'samples' (see quadra report textures --help)");
   const std::optional<ReportOptions> parsed = parseReport(rest);
   if (!parsed) return 0;
   const ReportOptions& options = *parsed;
