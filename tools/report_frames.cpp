@@ -231,13 +231,6 @@ std::string fileStem(const std::string& label) {
   return stem;
 }
 
-// Overwrites one status line on a terminal; silent otherwise, so that stderr
-// stays a one-line error when something fails.
-void progress(const std::string& text) {
-  static const bool terminal = ::isatty(STDERR_FILENO) == 1;
-  if (terminal) std::cerr << "\r\033[K" << text << std::flush;
-}
-
 }  // namespace
 
 int runFramesReport(const std::vector<std::string>& args) {

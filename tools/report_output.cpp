@@ -1,7 +1,10 @@
 // Whole-file text output and number formatting for the reports.
 #include "report_output.h"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <iostream>
 
 #include "core/error.h"
 
@@ -21,6 +24,11 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
     std::remove(temporary.c_str());
     throw Error(target + ": cannot rename the finished file into place");
   }
+}
+
+void progress(const std::string& text) {
+  static const bool terminal = ::isatty(STDERR_FILENO) == 1;
+  if (terminal) std::cerr << "\r\033[K" << text << std::flush;
 }
 
 std::string format(const char* spec, double value) {
