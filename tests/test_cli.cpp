@@ -178,9 +178,11 @@ std::vector<CommandLineCase> everyCommand() {
   writeFrame(texture, tex.string());
   std::ofstream(in) << "u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,0,0,0,0\n";
   const fs::path png = tempPath("parse.png"), csv = tempPath("parse_values.csv"),
-                 reportDir = testDir() / "parse_report", framesDir = testDir() / "parse_frames";
+                 reportDir = testDir() / "parse_report", framesDir = testDir() / "parse_frames",
+                 samplesDir = testDir() / "parse_samples";
   fs::remove_all(reportDir);
   fs::remove_all(framesDir);
+  fs::remove_all(samplesDir);
   return {
       {"render", "builtin:checker-plane --width 32", "--height 32 --out " + png.string(), png},
       {"sample", "--texture " + tex.string() + " --filter bilinear",
@@ -190,6 +192,10 @@ std::vector<CommandLineCase> everyCommand() {
       {"report stability", "--threads 2", "--isa auto", {}},
       {"report frames", "--scenes builtin:checker-plane --width 32",
        "--height 32 --rounds 1 --frames 1 --out-dir " + framesDir.string(), framesDir},
+      {"report samples", "--scenes builtin:checker-plane --width 32",
+       "--height 32 --samples 1 --reference-spp 1 --rounds 1 --frames 1 --out-dir " +
+           samplesDir.string(),
+       samplesDir},
   };
 }
 

@@ -122,8 +122,8 @@ TEST(LlvmpipePeer, DrawsTheSampleModelsQuadraDraws) {
 // scores the filters against. Measured at 256x144 (Mesa 22.3.6), RMSE over
 // R, G, B: checker-plane 0.0723 against llvmpipe's 0.0788 (GL's level,
 // `--lod gl`: 0.0797), alpha-quads 0.0131 against 0.0149 (0.0156); and
-// once, too slow for the suite (the tracer tests every triangle, 15 minutes),
-// dense-mesh:20000 0.0280 against 0.0314 (0.0318).
+// once, when the tracer still tested every triangle (15 minutes; its screen
+// grid has made that seconds), dense-mesh:20000 0.0280 against 0.0314 (0.0318).
 TEST(LlvmpipePeer, TrilinearFramesAreNearerTheIdealThanLlvmpipes) {
   SKIP_WITHOUT_PEER();
   for (const char* name : {"checker-plane", "alpha-quads"}) {

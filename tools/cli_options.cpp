@@ -11,6 +11,7 @@
 #include <new>
 
 #include "core/error.h"
+#include "window/sample_pattern.h"
 
 namespace quadra {
 
@@ -43,6 +44,26 @@ int parseInteger(const std::string& option, const std::string& text, int lo, int
     throw Error(option + ": '" + text + "' must be a whole number in " + std::to_string(lo) + ".." +
                 std::to_string(hi));
   return int(value);
+}
+
+std::vector<std::string> splitList(const std::string& option, const std::string& text) {
+  std::vector<std::string> entries;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string entry = text.substr(start, comma - start);
+    if (entry.empty()) throw Error(option + ": empty entry in '" + text + "'");
+    entries.push_back(entry);
+    if (comma == std::string::npos) return entries;
+    start = comma + 1;
+  }
+}
+
+int parseSampleCount(const std::string& option, const std::string& text) {
+  const double n = parseNumber(option, text);
+  if (!(n >= 1 && n <= kMaxSamples) || double(int(n)) != n || !isSampleCount(int(n)))
+    throw Error(option + ": '" + text + "' must be 1, 2, 4, 8 or 16");
+  return int(n);
 }
 
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix) {

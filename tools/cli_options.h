@@ -21,6 +21,11 @@ namespace quadra {
 double parseNumber(const std::string& option, const std::string& text);
 int parseInteger(const std::string& option, const std::string& text, int lo, int hi);
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix);
+// The entries of a comma-separated list, in order; an Error naming the
+// option for an empty entry.
+std::vector<std::string> splitList(const std::string& option, const std::string& text);
+// A sample count the engine renders: 1, 2, 4, 8 or 16.
+int parseSampleCount(const std::string& option, const std::string& text);
 
 // main()'s body for a quadra program: returns run(args)'s status, and turns
 // any failure into one line on stderr, "program: message", and status 1.

@@ -17,5 +17,7 @@ int runSatPrecisionReport(const std::vector<std::string>& args);
 int runFramesReport(const std::vector<std::string>& args);
 // `quadra report stability` (report_stability.cpp).
 int runStabilityReport(const std::vector<std::string>& args);
+// `quadra report samples` (report_samples.cpp).
+int runSamplesReport(const std::vector<std::string>& args);
 
 }  // namespace quadra

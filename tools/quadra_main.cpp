@@ -31,6 +31,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra report sat-precision --help
        quadra report stability --help
        quadra report frames --help
+       quadra report samples --help
        quadra --version
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
@@ -114,10 +115,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                  {{"two-pass", OpaqueShading::TwoPass}, {"forward", OpaqueShading::Forward}},
                  cmd.settings.opaqueShading);
   options.value("--samples", [&cmd](const std::string& option, const std::string& value) {
-    const double n = parseNumber(option, value);
-    if (!(n >= 1 && n <= kMaxSamples) || double(int(n)) != n || !isSampleCount(int(n)))
-      throw Error(option + ": '" + value + "' must be 1, 2, 4, 8 or 16");
-    cmd.settings.samples = int(n);
+    cmd.settings.samples = parseSampleCount(option, value);
   });
   options.choice("--shading-rate", "shading rate",
                  {{"pixel", ShadingRate::Pixel}, {"sample", ShadingRate::Sample}},

@@ -27,6 +27,7 @@
 #include "lab/texture/texture_error.h"
 #include "oiio_reference.h"
 #include "report_output.h"
+#include "svg_plot.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {
@@ -152,7 +153,6 @@ std::string csvText(const std::vector<TestTexture>& textures, const std::vector<
 // marker per filter; the Pareto front (no other filter is both faster and
 // more accurate) is drawn as a dashed staircase through filled markers.
 std::string svgText(const std::vector<FilterRow>& rows, const std::string& subtitle) {
-  const double width = 760, height = 520, left = 80, right = 30, top = 50, bottom = 60;
   double xMin = 1e300, xMax = 0, yMin = 1e300, yMax = 0;
   for (const FilterRow& row : rows) {
     xMin = std::min(xMin, row.ns);
@@ -160,54 +160,14 @@ std::string svgText(const std::vector<FilterRow>& rows, const std::string& subti
     yMin = std::min(yMin, row.pooled.rmse());
     yMax = std::max(yMax, row.pooled.rmse());
   }
-  // Whole decades around the data, so the grid lines land on round numbers.
-  const double lx0 = std::floor(std::log10(std::max(xMin, 1e-3))),
-               lx1 = std::ceil(std::log10(std::max(xMax, 1e-3) * 1.0001));
-  const double ly0 = std::floor(std::log10(std::max(yMin, 1e-6))),
-               ly1 = std::ceil(std::log10(std::max(yMax, 1e-6) * 1.0001));
-  const double spanX = std::max(1.0, lx1 - lx0), spanY = std::max(1.0, ly1 - ly0);
-  const auto px = [&](double ns) {
-    return left + (std::log10(std::max(ns, 1e-3)) - lx0) / spanX * (width - left - right);
-  };
-  const auto py = [&](double rmse) {
-    return height - bottom -
-           (std::log10(std::max(rmse, 1e-6)) - ly0) / spanY * (height - top - bottom);
-  };
+  const SvgPlot plot{
+      .x = PlotAxis::logarithmicAround(xMin, xMax, 1e-3, "ns per lookup (one thread, log)"),
+      .y = PlotAxis::logarithmicAround(yMin, yMax, 1e-6, "RMSE against the box ideal (log)")};
+  const double width = plot.width, right = plot.right, top = plot.top;
+  const auto px = [&](double ns) { return plot.toX(ns); };
+  const auto py = [&](double rmse) { return plot.toY(rmse); };
   std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
-      << "\" font-family=\"sans-serif\" font-size=\"13\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << width / 2
-      << "\" y=\"22\" text-anchor=\"middle\" font-size=\"16\">quadra texture filters: speed "
-         "against error</text>\n"
-      << "<text x=\"" << width / 2 << "\" y=\"40\" text-anchor=\"middle\" fill=\"#555\">"
-      << subtitle << "</text>\n";
-  for (double d = lx0; d <= lx1 + 1e-9; d += 1)
-    for (const int m : {1, 2, 5}) {
-      const double ns = m * std::pow(10.0, d);
-      if (std::log10(ns) > lx1 + 1e-9) break;
-      const double x = px(ns);
-      svg << "<line x1=\"" << x << "\" y1=\"" << top << "\" x2=\"" << x << "\" y2=\""
-          << height - bottom << "\" stroke=\"" << (m == 1 ? "#bbb" : "#eee") << "\"/>\n"
-          << "<text x=\"" << x << "\" y=\"" << height - bottom + 18 << "\" text-anchor=\"middle\">"
-          << format("%g", ns) << "</text>\n";
-    }
-  for (double d = ly0; d <= ly1 + 1e-9; d += 1)
-    for (const int m : {1, 2, 5}) {
-      const double rmse = m * std::pow(10.0, d);
-      if (std::log10(rmse) > ly1 + 1e-9) break;
-      const double y = py(rmse);
-      svg << "<line x1=\"" << left << "\" y1=\"" << y << "\" x2=\"" << width - right << "\" y2=\""
-          << y << "\" stroke=\"" << (m == 1 ? "#bbb" : "#eee") << "\"/>\n"
-          << "<text x=\"" << left - 6 << "\" y=\"" << y + 4 << "\" text-anchor=\"end\">"
-          << format("%g", rmse) << "</text>\n";
-    }
-  svg << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << width - left - right
-      << "\" height=\"" << height - top - bottom << "\" fill=\"none\" stroke=\"black\"/>\n"
-      << "<text x=\"" << (left + width - right) / 2 << "\" y=\"" << height - 18
-      << "\" text-anchor=\"middle\">ns per lookup (one thread, log)</text>\n"
-      << "<text transform=\"translate(20," << (top + height - bottom) / 2
-      << ") rotate(-90)\" text-anchor=\"middle\">RMSE against the box ideal (log)</text>\n";
+  svg << plot.begin("quadra texture filters: speed against error", subtitle);
 
   std::vector<std::size_t> order(rows.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -259,7 +219,8 @@ std::string svgText(const std::vector<FilterRow>& rows, const std::string& subti
         << "<text x=\"" << labelX << "\" y=\"" << labelY << "\">" << label << "</text>\n";
   }
   svg << "<text x=\"" << width - right - 6 << "\" y=\"" << top + 16
-      << "\" text-anchor=\"end\" fill=\"#c33\">filled + dashed: Pareto front</text>\n</svg>\n";
+      << "\" text-anchor=\"end\" fill=\"#c33\">filled + dashed: Pareto front</text>\n"
+      << SvgPlot::end();
   return svg.str();
 }
 
@@ -271,14 +232,15 @@ int runReport(const std::vector<std::string>& args) {
   if (subject == "sat-precision") return runSatPrecisionReport(rest);
   if (subject == "stability") return runStabilityReport(rest);
   if (subject == "frames") return runFramesReport(rest);
+  if (subject == "samples") return runSamplesReport(rest);
   if (subject == "--help" || subject == "-h") {
     std::cout << kReportUsage;
     return 0;
   }
   if (subject != "textures")
     throw Error(
-        "report: expected a subject, 'textures', 'sat-precision', 'stability' or 'frames' (see "
-        "quadra report textures --help)");
+        "report: expected a subject, 'textures', 'sat-precision', 'stability', 'frames' or "
+        "'samples' (see quadra report textures --help)");
   const std::optional<ReportOptions> parsed = parseReport(rest);
   if (!parsed) return 0;
   const ReportOptions& options = *parsed;

@@ -127,9 +127,7 @@ std::vector<SceneEntry> chooseScenes(const FramesOptions& options) {
     for (const SceneEntry& model : sampleModels(options.assets)) scenes.push_back(model);
     return scenes;
   }
-  std::stringstream list(options.scenes + ",");
-  for (std::string entry; std::getline(list, entry, ',');) {
-    if (entry.empty()) throw Error("--scenes: empty entry in '" + options.scenes + "'");
+  for (const std::string& entry : splitList("--scenes", options.scenes)) {
     const std::string prefix = kBuiltinScenePrefix;
     std::error_code ec;
     if (entry.rfind(prefix, 0) == 0) {
@@ -211,11 +209,6 @@ double medianOf(const std::vector<double>& values) {
   return summarizeFrameTimes(values).median;
 }
 
-// Below 10 two decimals, below 100 one, then none: three figures or more.
-std::string figures(double value) {
-  return format(value < 10.0 ? "%.2f" : value < 100.0 ? "%.1f" : "%.0f", value);
-}
-
 std::string withThousands(std::size_t value) {
   std::string digits = std::to_string(value), grouped;
   for (std::size_t i = 0; i < digits.size(); ++i) {
@@ -223,15 +216,6 @@ std::string withThousands(std::size_t value) {
     grouped += digits[i];
   }
   return grouped;
-}
-
-std::string joined(const std::vector<double>& values, const char* spec) {
-  std::string text;
-  for (const double v : values) {
-    if (!text.empty()) text += ';';
-    text += format(spec, v);
-  }
-  return text;
 }
 
 double geometricMean(const std::vector<double>& values) {
@@ -245,13 +229,6 @@ std::string fileStem(const std::string& label) {
   for (char& c : stem)
     if (c == ':' || c == '/' || c == ' ') c = '-';
   return stem;
-}
-
-// Overwrites one status line on a terminal; silent otherwise, so that stderr
-// stays a one-line error when something fails.
-void progress(const std::string& text) {
-  static const bool terminal = ::isatty(STDERR_FILENO) == 1;
-  if (terminal) std::cerr << "\r\033[K" << text << std::flush;
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 // Whole-file text output and number formatting for the reports.
 #include "report_output.h"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <iostream>
 
 #include "core/error.h"
 
@@ -23,10 +26,28 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
   }
 }
 
+void progress(const std::string& text) {
+  static const bool terminal = ::isatty(STDERR_FILENO) == 1;
+  if (terminal) std::cerr << "\r\033[K" << text << std::flush;
+}
+
 std::string format(const char* spec, double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, spec, value);
   return buffer;
+}
+
+std::string figures(double value) {
+  return format(value < 10.0 ? "%.2f" : value < 100.0 ? "%.1f" : "%.0f", value);
+}
+
+std::string joined(const std::vector<double>& values, const char* spec) {
+  std::string text;
+  for (const double v : values) {
+    if (!text.empty()) text += ';';
+    text += format(spec, v);
+  }
+  return text;
 }
 
 }  // namespace quadra

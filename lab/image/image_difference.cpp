@@ -24,6 +24,8 @@ ImageDifference imageDifference(const Image& a, const Image& b) {
     }
   const double values = 3.0 * double(a.width) * double(a.height);
   const double mse = values > 0.0 ? sumSquared / values : 0.0;
+  // A NaN on either side is no match (std::max above would pass over it).
+  if (std::isnan(sumSquared)) return {NAN, NAN};
   return {mse > 0.0 ? -10.0 * std::log10(mse) : std::numeric_limits<double>::infinity(), maxAbs};
 }
 

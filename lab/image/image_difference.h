@@ -13,6 +13,7 @@ struct ImageDifference {
 };
 
 // Both images must have the same size (an Error otherwise); alpha is left out.
+// Both figures are NaN when either image has a NaN in R, G or B.
 ImageDifference imageDifference(const Image& a, const Image& b);
 
 }  // namespace quadra

@@ -59,12 +59,14 @@ glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const
   return (1 - fy) * top + fy * bottom;
 }
 
-ReferenceTracer::ReferenceTracer(const Scene& scene, const Camera& camera, int width, int height)
+ReferenceTracer::ReferenceTracer(const Scene& scene, const Camera& camera, int width, int height,
+                                 TracerSearch search)
     : scene_(scene),
       camera_(camera),
       width_(width),
       height_(height),
-      aspect_(double(width) / double(height)) {
+      aspect_(double(width) / double(height)),
+      search_(search) {
   const glm::dmat4 view = referenceViewMatrix(camera);
   for (const Instance& instance : scene.instances) {
     PreparedInstance prepared;
@@ -82,8 +84,108 @@ ReferenceTracer::ReferenceTracer(const Scene& scene, const Camera& camera, int w
       prepared.boundsLo = glm::min(prepared.boundsLo, v);
       prepared.boundsHi = glm::max(prepared.boundsHi, v);
     }
+    const std::vector<glm::vec3>& p = prepared.mesh->positions;
+    const std::vector<std::uint32_t>& corners = prepared.mesh->indices;
+    prepared.degenerate.resize(corners.size() / 3);
+    for (std::size_t t = 0; t < prepared.degenerate.size(); ++t) {
+      // Differences of floats of like magnitude are exact in double, and the
+      // two products of a component round alike when they are equal, so
+      // collinear corners give exactly zero.
+      const glm::dvec3 a(p[corners[t * 3]]), b(p[corners[t * 3 + 1]]), c(p[corners[t * 3 + 2]]);
+      prepared.degenerate[t] = glm::cross(b - a, c - a) == glm::dvec3(0.0);
+    }
     instances_.push_back(std::move(prepared));
   }
+  znear_ = camera_.znear;
+  zfar_ = camera_.type == Camera::Type::Orthographic
+              ? (camera_.zfar > camera_.znear ? camera_.zfar : HUGE_VAL)
+              : (camera_.zfar != 0.0f ? camera_.zfar : HUGE_VAL);
+  if (search_ == TracerSearch::ScreenGrid) buildScreenGrid();
+}
+
+void ReferenceTracer::buildScreenGrid() {
+  // Window-space bounds of a triangle, padded far beyond the rounding of the
+  // projection (~1e-16 relative) so that every ray the exact inside test
+  // accepts lands in a cell that lists the triangle; false when it has none.
+  // A primary ray's line meets a triangle wholly in front of a perspective
+  // eye (z < 0) exactly where the window point lies in the projected
+  // triangle; an orthographic ray's, where (x, y) lies in the triangle's.
+  const bool orthographic = camera_.type == Camera::Type::Orthographic;
+  const double f = 1.0 / std::tan(double(camera_.yfov) / 2.0);
+  const auto windowBounds = [&](const PreparedInstance& instance, std::size_t triangle,
+                                glm::dvec2& lo, glm::dvec2& hi) {
+    lo = glm::dvec2(HUGE_VAL);
+    hi = -lo;
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec3 v = instance.viewPositions[instance.mesh->indices[triangle * 3 + k]];
+      if (!orthographic && !(v.z < 0.0)) return false;
+      const double xNdc =
+          orthographic ? v.x / (double(camera_.ymag) * aspect_) : v.x / -v.z * f / aspect_;
+      const double yNdc = orthographic ? v.y / double(camera_.ymag) : v.y / -v.z * f;
+      const glm::dvec2 w((xNdc + 1.0) * 0.5 * width_, (1.0 - yNdc) * 0.5 * height_);
+      if (!std::isfinite(w.x) || !std::isfinite(w.y)) return false;
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
+    const double pad = 1.0 / 1024 + 1e-9 * std::max({std::fabs(lo.x), std::fabs(lo.y),
+                                                     std::fabs(hi.x), std::fabs(hi.y)});
+    lo -= pad;
+    hi += pad;
+    return true;
+  };
+  // Calls visit(ref, first cell, last cell) for every triangle with bounds
+  // that reach the screen (no on-screen ray meets the others), and collects
+  // those without bounds.
+  ScreenGrid& grid = grid_;
+  const auto forEachBinned = [&](const auto& visit) {
+    grid.everywhere.clear();
+    for (std::size_t index = 0; index < instances_.size(); ++index) {
+      const PreparedInstance& instance = instances_[index];
+      for (std::size_t tri = 0; tri * 3 < instance.mesh->indices.size(); ++tri) {
+        const TriangleRef ref{std::uint32_t(index), std::uint32_t(tri)};
+        glm::dvec2 lo, hi;
+        if (!windowBounds(instance, tri, lo, hi)) {
+          grid.everywhere.push_back(ref);
+          continue;
+        }
+        if (hi.x < 0.0 || hi.y < 0.0 || lo.x > width_ || lo.y > height_) continue;
+        // Clamped before the conversion: a vertex 1e30 away projects far beyond int.
+        const auto cell = [&](double at, int count) {
+          return int(std::clamp(std::floor(at / grid.cellSize), 0.0, double(count - 1)));
+        };
+        visit(ref, glm::ivec2(cell(lo.x, grid.columns), cell(lo.y, grid.rows)),
+              glm::ivec2(cell(hi.x, grid.columns), cell(hi.y, grid.rows)));
+      }
+    }
+  };
+  // One-pixel cells unless the lists would pass ~16M entries (128 MiB), as
+  // many large triangles on a large frame would make them; then coarser.
+  constexpr std::size_t kEntryBudget = std::size_t(1) << 24;
+  for (grid.cellSize = 1;; grid.cellSize *= 2) {
+    grid.columns = (width_ + grid.cellSize - 1) / grid.cellSize;
+    grid.rows = (height_ + grid.cellSize - 1) / grid.cellSize;
+    std::size_t entries = 0;
+    forEachBinned([&](const TriangleRef&, glm::ivec2 first, glm::ivec2 last) {
+      entries += std::size_t(last.x - first.x + 1) * std::size_t(last.y - first.y + 1);
+    });
+    if (entries <= kEntryBudget || grid.cellSize >= std::max(width_, height_)) break;
+  }
+  const std::size_t cells = std::size_t(grid.columns) * std::size_t(grid.rows);
+  grid.cellStart.assign(cells + 1, 0);
+  forEachBinned([&](const TriangleRef&, glm::ivec2 first, glm::ivec2 last) {
+    for (int y = first.y; y <= last.y; ++y)
+      for (int x = first.x; x <= last.x; ++x)
+        ++grid.cellStart[std::size_t(y * grid.columns + x) + 1];
+  });
+  for (std::size_t c = 0; c < cells; ++c) grid.cellStart[c + 1] += grid.cellStart[c];
+  grid.entries.resize(grid.cellStart[cells]);
+  std::vector<std::uint32_t> next(grid.cellStart.begin(), grid.cellStart.end() - 1);
+  // Scene order within each cell, so hits come out as the exhaustive loop finds them.
+  forEachBinned([&](const TriangleRef& ref, glm::ivec2 first, glm::ivec2 last) {
+    for (int y = first.y; y <= last.y; ++y)
+      for (int x = first.x; x <= last.x; ++x)
+        grid.entries[next[std::size_t(y * grid.columns + x)]++] = ref;
+  });
 }
 
 Ray ReferenceTracer::primaryRay(const glm::dvec2& window) const {
@@ -137,45 +239,88 @@ glm::dvec2 ReferenceTracer::planeTexCoord(const TracerHit& hit, const Ray& ray, 
   return texCoord(onPlane, set);
 }
 
-void ReferenceTracer::allHits(const Ray& ray, std::vector<TracerHit>& out) const {
-  out.clear();
-  const double znear = camera_.znear;
-  const double zfar = camera_.type == Camera::Type::Orthographic
-                          ? (camera_.zfar > camera_.znear ? camera_.zfar : HUGE_VAL)
-                          : (camera_.zfar != 0.0f ? camera_.zfar : HUGE_VAL);
-  for (std::size_t index = 0; index < instances_.size(); ++index) {
-    const PreparedInstance& instance = instances_[index];
-    if (!rayMayHit(instance, ray)) continue;
-    const std::vector<std::uint32_t>& indices = instance.mesh->indices;
-    for (std::size_t tri = 0; tri * 3 < indices.size(); ++tri) {
-      const glm::dvec3 w = planeWeights(instance, tri, ray);
-      // Edges are inclusive: a ray through a shared edge hits both
-      // neighbours, never neither.
-      const bool inside =
-          (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0) || (w.x <= 0.0 && w.y <= 0.0 && w.z <= 0.0);
-      const double sum = w.x + w.y + w.z;   // dot(direction, e1 x e2)
-      if (!inside || sum == 0.0) continue;  // missed, or edge-on: zero projected area
-      // sum < 0: the ray sees the counter-clockwise (front) side; a mirroring
-      // instance matrix swaps which side that is.
-      const bool front = (sum < 0.0) != instance.mirrored;
-      if (instance.cullBack && !front) continue;
-      const glm::dvec3 bary = w / sum;
-      double distance = 0.0;
-      for (int k = 0; k < 3; ++k)
-        distance -= bary[k] * instance.viewPositions[indices[tri * 3 + k]].z;
-      if (distance < znear || distance > zfar) continue;
-      out.push_back({int(index), int(tri), distance, bary});
-    }
-  }
-  // Equal distances keep submission order, as the engine's LESS depth test does.
-  std::stable_sort(out.begin(), out.end(), [](const TracerHit& a, const TracerHit& b) {
+void ReferenceTracer::testTriangle(std::size_t index, std::size_t triangle, const Ray& ray,
+                                   std::vector<TracerHit>& out) const {
+  const PreparedInstance& instance = instances_[index];
+  if (instance.degenerate[triangle]) return;
+  const std::vector<std::uint32_t>& indices = instance.mesh->indices;
+  const glm::dvec3 w = planeWeights(instance, triangle, ray);
+  // Edges are inclusive: a ray through a shared edge hits both
+  // neighbours, never neither.
+  const bool inside =
+      (w.x >= 0.0 && w.y >= 0.0 && w.z >= 0.0) || (w.x <= 0.0 && w.y <= 0.0 && w.z <= 0.0);
+  const double sum = w.x + w.y + w.z;  // dot(direction, e1 x e2)
+  if (!inside || sum == 0.0) return;   // missed, or edge-on: zero projected area
+  // sum < 0: the ray sees the counter-clockwise (front) side; a mirroring
+  // instance matrix swaps which side that is.
+  const bool front = (sum < 0.0) != instance.mirrored;
+  if (instance.cullBack && !front) return;
+  const glm::dvec3 bary = w / sum;
+  double distance = 0.0;
+  for (int k = 0; k < 3; ++k)
+    distance -= bary[k] * instance.viewPositions[indices[triangle * 3 + k]].z;
+  if (distance < znear_ || distance > zfar_) return;
+  out.push_back({int(index), int(triangle), distance, bary});
+}
+
+namespace {
+
+// Equal distances keep scene order, as the engine's LESS depth test does.
+void sortByDistance(std::vector<TracerHit>& hits) {
+  std::stable_sort(hits.begin(), hits.end(), [](const TracerHit& a, const TracerHit& b) {
     return a.viewDistance < b.viewDistance;
   });
 }
 
+}  // namespace
+
+void ReferenceTracer::allHits(const Ray& ray, std::vector<TracerHit>& out) const {
+  out.clear();
+  for (std::size_t index = 0; index < instances_.size(); ++index) {
+    if (!rayMayHit(instances_[index], ray)) continue;
+    for (std::size_t tri = 0; tri * 3 < instances_[index].mesh->indices.size(); ++tri)
+      testTriangle(index, tri, ray, out);
+  }
+  sortByDistance(out);
+}
+
+void ReferenceTracer::hitsAt(const glm::dvec2& window, std::vector<TracerHit>& out) const {
+  const Ray ray = primaryRay(window);
+  const bool onScreen =
+      window.x >= 0.0 && window.y >= 0.0 && window.x <= width_ && window.y <= height_;
+  if (search_ == TracerSearch::Exhaustive || !onScreen) return allHits(ray, out);
+  out.clear();
+  const ScreenGrid& grid = grid_;
+  const int column = std::min(int(window.x / grid.cellSize), grid.columns - 1);
+  const int row = std::min(int(window.y / grid.cellSize), grid.rows - 1);
+  const std::size_t cell = std::size_t(row * grid.columns + column);
+  const TriangleRef* binned = grid.entries.data() + grid.cellStart[cell];
+  const TriangleRef* binnedEnd = grid.entries.data() + grid.cellStart[cell + 1];
+  const TriangleRef* everywhere = grid.everywhere.data();
+  const TriangleRef* everywhereEnd = everywhere + grid.everywhere.size();
+  const auto before = [](const TriangleRef& a, const TriangleRef& b) {
+    return a.instance < b.instance || (a.instance == b.instance && a.triangle < b.triangle);
+  };
+  // Both lists are in scene order; merged, they are visited as allHits
+  // visits them, with the same per-instance bounds test.
+  std::uint32_t boundsInstance = ~0u;
+  bool mayHit = false;
+  while (binned != binnedEnd || everywhere != everywhereEnd) {
+    const bool takeBinned =
+        everywhere == everywhereEnd || (binned != binnedEnd && before(*binned, *everywhere));
+    const TriangleRef ref = takeBinned ? *binned++ : *everywhere++;
+    if (ref.instance != boundsInstance) {
+      boundsInstance = ref.instance;
+      mayHit = rayMayHit(instances_[ref.instance], ray);
+    }
+    if (mayHit) testTriangle(ref.instance, ref.triangle, ray, out);
+  }
+  sortByDistance(out);
+}
+
 std::optional<TracerHit> ReferenceTracer::nearestHit(const glm::dvec2& window) const {
   std::vector<TracerHit> hits;
-  allHits(primaryRay(window), hits);
+  hitsAt(window, hits);
   if (hits.empty()) return std::nullopt;
   return hits.front();
 }
@@ -213,7 +358,7 @@ glm::dvec4 ReferenceTracer::surfaceColour(const TracerHit& hit) const {
 }
 
 glm::dvec4 ReferenceTracer::shade(const glm::dvec2& window, std::vector<TracerHit>& scratch) const {
-  allHits(primaryRay(window), scratch);
+  hitsAt(window, scratch);
   // Front to back "under" compositing, which equals back-to-front "over".
   glm::dvec4 result(0.0);
   const TracerHit* lastBlended = nullptr;

@@ -1,0 +1,422 @@
+// `quadra report samples`: what each sample count and shading rate costs and
+// buys. For every scene it renders the ideal image once with the
+// double-precision reference tracer (lab/reference), then renders the scene
+// in-process at each sample count and both shading rates (one run at 1
+// sample, where the rate changes nothing), timing the configurations in
+// alternating rounds. It prints a markdown table of ms/frame against PSNR and
+// max difference from the ideal, and writes DIR/samples.csv and
+// DIR/samples.svg (ms/frame, log, against PSNR: one line per scene and rate).
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "api/renderer.h"
+#include "cli_options.h"
+#include "commands.h"
+#include "core/error.h"
+#include "lab/image/image_difference.h"
+#include "lab/reference/reference_tracer.h"
+#include "lab/scene/builtin_scenes.h"
+#include "render_options.h"
+#include "report_output.h"
+#include "svg_plot.h"
+
+namespace quadra {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kSamplesUsage =
+    R"(usage: quadra report samples [--width W] [--height H] [--threads N] [--isa ISA]
+                             [--frames K] [--rounds R] [--scenes LIST] [--samples LIST]
+                             [--reference-spp N] [--out-dir DIR]
+  --width W --height H  frame size (default 480x270: the reference frames of the
+                        default scenes then take 1-8 s each on two threads, ~50 s in
+                        all with their checks)
+  --threads N           threads of the renderer and of the reference tracer
+                        (default: all cores)
+  --isa ISA             auto|scalar|sse2|avx2|avx512 (default auto)
+  --frames K            timed frames per run, after one warm-up (default 5)
+  --rounds R            rounds of runs, each running every configuration of the scene
+                        once, starting at a different one each round; ms/frame is the
+                        median over the rounds of each run's median (default 3)
+  --scenes LIST         comma-separated builtin:NAME or .gltf/.glb files (default: every
+                        built-in scene and hard case but z-fighting, whose two
+                        view-filling quads put no edge on screen (it measures depth
+                        precision, which samples do not change), random-triangles,
+                        whose reference takes ~40 minutes at 480x270 (about a
+                        thousand of its triangles overlap each pixel), and
+                        invalid-input, whose NaN attributes the tracer shades)
+  --samples LIST        comma-separated sample counts, each 1, 2, 4, 8 or 16
+                        (default 1,4,8,16)
+  --reference-spp N     the reference's subsamples per pixel axis, N x N per pixel
+                        (default 16)
+  --out-dir DIR         where samples.csv and samples.svg go (default out)
+Shading rates: pixel shades once per pixel and visible triangle (multisampling),
+sample shades every sample (supersampling); at 1 sample they are the same frame,
+rendered once. Each scene is seen through its own first camera, unlit, with its
+samplers' own filters, as `quadra render SCENE --samples N --shading-rate RATE`
+draws it. PSNR (peak 1) and max difference over R, G, B against the reference
+tracer's box-filtered frame (N x N exact ray hits per pixel, level-0 bilinear
+textures).
+)";
+
+// 16 x 16 rays per pixel. Measured against 48 x 48 at 240x135 (PSNR, dB):
+// 48.6 showcase, 50.6 slivers, 55.9-64.2 near-plane, huge-1e6, grazing,
+// watertight, shared-edge, subpixel-plane, alpha-quads, 71.0-71.3
+// closed-mesh and dense-mesh, identical on huge-1e30; edges converge fast
+// enough. Not checker-plane, 37.6: point samples of its level-0 checker
+// converge only as 1/N where it is minified toward the horizon, so 24 x 24
+// (2.25x the time) would gain ~3.5 dB there and 48 x 48 is itself not
+// converged. The report prints each scene's half-rate check so that a reader
+// sees where the reference limits a row.
+constexpr int kDefaultReferenceSpp = 16;
+
+// Scenes the default list leaves out, and why (kSamplesUsage says the same).
+// z-fighting's frame is one quad filling the view in front of another: no
+// edge is on screen, and what it measures is depth precision.
+// random-triangles: two thirds of its 20000 triangles have their corners
+// anywhere in the view (a random triangle covers 11/144 of its square on
+// average), so about a thousand overlap each pixel and every reference ray
+// tests them all: 92 s at 96x54 with 16 x 16 rays per pixel on 2 threads,
+// ~40 minutes at the default size, against 2-12 s for each other scene.
+// invalid-input: its second mesh's NaN texture coordinates, which the engine
+// drops with their triangles as the contract says, are shaded by the tracer
+// into NaN pixels: the ideal frame is undefined there.
+const char* const kLeftOutByDefault[] = {"z-fighting", "random-triangles", "invalid-input"};
+
+struct SamplesOptions {
+  int width = 480;
+  int height = 270;
+  int threads = 0;
+  std::optional<Isa> isa;
+  int frames = 5;
+  int rounds = 3;
+  std::string scenes;
+  std::vector<int> sampleCounts = {1, 4, 8, 16};
+  int referenceSpp = kDefaultReferenceSpp;
+  std::string outDir = "out";
+};
+
+std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args) {
+  SamplesOptions options;
+  CommandOptions parser("report samples", kSamplesUsage);
+  addSizeOptions(parser, options.width, options.height);
+  addThreadsOption(parser, options.threads);
+  addIsaOption(parser, options.isa);
+  parser.integer("--frames", options.frames, 1, 1000);
+  parser.integer("--rounds", options.rounds, 1, 100);
+  parser.text("--scenes", options.scenes);
+  parser.value("--samples", [&options](const std::string& option, const std::string& text) {
+    options.sampleCounts.clear();
+    for (const std::string& entry : splitList(option, text))
+      options.sampleCounts.push_back(parseSampleCount(option, entry));
+    std::sort(options.sampleCounts.begin(), options.sampleCounts.end());
+    options.sampleCounts.erase(
+        std::unique(options.sampleCounts.begin(), options.sampleCounts.end()),
+        options.sampleCounts.end());
+  });
+  parser.integer("--reference-spp", options.referenceSpp, 1, 256);
+  parser.text("--out-dir", options.outDir);
+  if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
+  if (options.threads == 0)
+    options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
+  return options;
+}
+
+// The SCENE arguments to measure, each checked to load before any work starts.
+std::vector<std::string> chooseScenes(const SamplesOptions& options) {
+  std::vector<std::string> scenes;
+  if (options.scenes.empty()) {
+    for (const std::string& name : builtinSceneNames())
+      if (std::find(std::begin(kLeftOutByDefault), std::end(kLeftOutByDefault), name) ==
+          std::end(kLeftOutByDefault))
+        scenes.push_back(kBuiltinScenePrefix + name);
+    return scenes;
+  }
+  for (const std::string& entry : splitList("--scenes", options.scenes)) {
+    const bool builtin = entry.rfind(kBuiltinScenePrefix, 0) == 0;
+    if (!builtin && !endsWithIgnoringCase(entry, ".gltf") && !endsWithIgnoringCase(entry, ".glb"))
+      throw Error("--scenes: '" + entry + "' is neither builtin:NAME nor a .gltf/.glb file");
+    scenes.push_back(entry);
+  }
+  return scenes;
+}
+
+// One way of rendering a scene; shading is irrelevant at one sample.
+struct Configuration {
+  int samples = 1;
+  ShadingRate rate = ShadingRate::Pixel;
+  const char* rateName() const {
+    return samples == 1 ? "any" : rate == ShadingRate::Pixel ? "pixel" : "sample";
+  }
+};
+
+std::vector<Configuration> configurations(const std::vector<int>& sampleCounts) {
+  std::vector<Configuration> list;
+  for (const int samples : sampleCounts) {
+    list.push_back({samples, ShadingRate::Pixel});
+    if (samples > 1) list.push_back({samples, ShadingRate::Sample});
+  }
+  return list;
+}
+
+struct Measured {
+  Configuration configuration;
+  std::vector<double> runMs;  // each round's median frame time
+  ImageDifference difference;
+  double ms() const { return summarizeFrameTimes(runMs).median; }
+};
+
+struct SceneResult {
+  std::string label;
+  std::size_t triangles = 0;
+  double referenceSeconds = 0.0;
+  double referenceCheckPsnr = NAN;  // the half-rate reference against the reference
+  std::vector<Measured> rows;
+};
+
+Image imageOf(Frame frame) {
+  Image image;
+  image.width = frame.width;
+  image.height = frame.height;
+  image.rgba = std::move(frame.rgba);
+  return image;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+SceneResult measureScene(const std::string& argument, const Scene& scene,
+                         const SamplesOptions& options, Renderer& renderer,
+                         tbb::task_arena& arena) {
+  SceneResult result;
+  result.label = argument;
+  result.triangles = scene.triangleCount();
+  const Camera camera = firstCameraOrDefault(scene);
+  const auto referenceStart = std::chrono::steady_clock::now();
+  const ref::ReferenceTracer tracer(scene, camera, options.width, options.height);
+  const Image ideal = arena.execute([&] { return tracer.render(options.referenceSpp); });
+  result.referenceSeconds = secondsSince(referenceStart);
+  // How near the truth the reference is: the PSNR of the same frame at half
+  // the rays per axis against it. A regular grid's errors (at edges, and
+  // texture aliasing) halve per doubling with the same sign, so the
+  // difference then equals the reference's own error; errors less alike
+  // make it larger. The reference's own PSNR is about this or higher, and
+  // rows near it measure the reference as much as the engine.
+  if (options.referenceSpp >= 2) {
+    const Image coarse = arena.execute([&] { return tracer.render(options.referenceSpp / 2); });
+    result.referenceCheckPsnr = imageDifference(coarse, ideal).psnr;
+  }
+
+  RenderSettings settings;
+  settings.width = options.width;
+  settings.height = options.height;
+  settings.frameDepth = false;  // nothing here reads depth
+  for (const Configuration& c : configurations(options.sampleCounts)) {
+    settings.samples = c.samples;
+    settings.shadingRate = c.rate;
+    Frame frame;
+    renderer.render(scene, camera, settings, frame);  // warm-up, and the frame scored
+    result.rows.push_back({c, {}, imageDifference(imageOf(std::move(frame)), ideal)});
+  }
+  // Round r starts at configuration r, so no configuration always runs first
+  // (after the reference) or always follows the same neighbour's caches.
+  Frame frame;
+  for (int round = 0; round < options.rounds; ++round)
+    for (std::size_t k = 0; k < result.rows.size(); ++k) {
+      Measured& row = result.rows[(k + std::size_t(round)) % result.rows.size()];
+      settings.samples = row.configuration.samples;
+      settings.shadingRate = row.configuration.rate;
+      std::vector<double> times;
+      for (int i = 0; i < options.frames; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        renderer.render(scene, camera, settings, frame);
+        times.push_back(1000.0 * secondsSince(start));
+      }
+      row.runMs.push_back(summarizeFrameTimes(times).median);
+    }
+  return result;
+}
+
+// "-" for a check not made, "nan" for a frame with NaN pixels.
+std::string psnrText(double psnr, const char* nanText = "nan") {
+  return std::isnan(psnr) ? nanText : std::isinf(psnr) ? "inf" : format("%.2f", psnr);
+}
+
+std::string tableText(const std::vector<SceneResult>& results) {
+  std::ostringstream out;
+  out << "| scene | samples | shading | ms/frame | PSNR dB | max diff |\n"
+         "|---|---:|---|---:|---:|---:|\n";
+  for (const SceneResult& scene : results)
+    for (const Measured& row : scene.rows)
+      out << "| " << scene.label << " | " << row.configuration.samples << " | "
+          << row.configuration.rateName() << " | " << figures(row.ms()) << " | "
+          << psnrText(row.difference.psnr) << " | " << format("%.3f", row.difference.maxAbs)
+          << " |\n";
+  return out.str();
+}
+
+std::string csvText(const std::vector<SceneResult>& results) {
+  std::ostringstream csv;
+  csv << "scene,triangles,samples,shading,ms_per_frame,psnr_db,max_abs_diff,reference_s,"
+         "reference_check_db,ms_rounds\n";
+  for (const SceneResult& scene : results)
+    for (const Measured& row : scene.rows) {
+      csv << scene.label << ',' << scene.triangles << ',' << row.configuration.samples << ','
+          << row.configuration.rateName() << ',' << format("%.4g", row.ms()) << ','
+          << psnrText(row.difference.psnr) << ',' << format("%.4g", row.difference.maxAbs) << ','
+          << format("%.3g", scene.referenceSeconds) << ','
+          << psnrText(scene.referenceCheckPsnr, "-") << ',' << joined(row.runMs, "%.4g") << '\n';
+    }
+  return csv.str();
+}
+
+// Distinct hues for up to 16 scenes (the default list has 13), repeated
+// beyond (the legend and the dash pattern of the rate still tell lines apart).
+const char* sceneColour(std::size_t index) {
+  static const char* const kColours[] = {
+      "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf",
+      "#7f7f7f", "#bcbd22", "#393b79", "#637939", "#000000", "#ad494a", "#3182bd", "#e6550d"};
+  return kColours[index % (sizeof kColours / sizeof kColours[0])];
+}
+
+// ms/frame (log) against PSNR: per scene one solid line (pixel rate) and one
+// dashed line (sample rate), both from the 1-sample point, each point labelled
+// with its sample count. An infinite PSNR (a frame equal to the reference) is
+// drawn on the top edge; a NaN one (NaN pixels) is left out.
+std::string svgText(const std::vector<SceneResult>& results, const std::string& subtitle) {
+  double msMin = 1e300, msMax = 0, psnrMin = 1e300, psnrMax = -1e300;
+  for (const SceneResult& scene : results)
+    for (const Measured& row : scene.rows) {
+      msMin = std::min(msMin, row.ms());
+      msMax = std::max(msMax, row.ms());
+      if (!std::isfinite(row.difference.psnr)) continue;
+      psnrMin = std::min(psnrMin, row.difference.psnr);
+      psnrMax = std::max(psnrMax, row.difference.psnr);
+    }
+  if (psnrMin > psnrMax) psnrMin = psnrMax = 100.0;  // every frame exact
+  SvgPlot plot{.x = PlotAxis::logarithmicAround(msMin, msMax, 1e-3, "ms per frame (log)"),
+               .y = PlotAxis::linearAround(psnrMin, psnrMax, "PSNR against the reference (dB)")};
+  plot.width = 980;
+  plot.height = 640;
+  plot.right = 250;  // the legend
+  std::ostringstream svg;
+  svg << plot.begin("quadra samples per pixel: time against error", subtitle);
+  const auto pointY = [&](double psnr) {
+    return std::isinf(psnr) ? plot.toY(plot.y.hi) : plot.toY(psnr);
+  };
+  for (std::size_t s = 0; s < results.size(); ++s) {
+    const SceneResult& scene = results[s];
+    for (const ShadingRate rate : {ShadingRate::Pixel, ShadingRate::Sample}) {
+      std::ostringstream points;
+      for (const Measured& row : scene.rows)
+        if (!std::isnan(row.difference.psnr) &&
+            (row.configuration.samples == 1 || row.configuration.rate == rate))
+          points << plot.toX(row.ms()) << ',' << pointY(row.difference.psnr) << ' ';
+      svg << "<polyline points=\"" << points.str() << "\" fill=\"none\" stroke=\"" << sceneColour(s)
+          << "\" stroke-width=\"1.5\""
+          << (rate == ShadingRate::Sample ? " stroke-dasharray=\"5,3\"" : "") << "><title>"
+          << svgEscaped(scene.label) << ", " << (rate == ShadingRate::Pixel ? "pixel" : "sample")
+          << " rate</title></polyline>\n";
+    }
+    for (const Measured& row : scene.rows) {
+      if (std::isnan(row.difference.psnr)) continue;  // NaN pixels: no place on the axis
+      const double x = plot.toX(row.ms()), y = pointY(row.difference.psnr);
+      svg << "<circle cx=\"" << x << "\" cy=\"" << y << "\" r=\"3\" fill=\"" << sceneColour(s)
+          << "\"/>\n<text x=\"" << x + 4 << "\" y=\"" << y - 4 << "\" font-size=\"10\" fill=\""
+          << sceneColour(s) << "\">" << row.configuration.samples << "</text>\n";
+    }
+  }
+  const double legendX = plot.width - plot.right + 16;
+  double legendY = plot.top + 8;
+  for (std::size_t s = 0; s < results.size(); ++s, legendY += 18)
+    svg << "<line x1=\"" << legendX << "\" y1=\"" << legendY << "\" x2=\"" << legendX + 24
+        << "\" y2=\"" << legendY << "\" stroke=\"" << sceneColour(s)
+        << "\" stroke-width=\"2\"/>\n<text x=\"" << legendX + 30 << "\" y=\"" << legendY + 4
+        << "\">" << svgEscaped(results[s].label) << "</text>\n";
+  legendY += 10;
+  for (const bool dashed : {false, true}) {
+    svg << "<line x1=\"" << legendX << "\" y1=\"" << legendY << "\" x2=\"" << legendX + 24
+        << "\" y2=\"" << legendY << "\" stroke=\"black\" stroke-width=\"1.5\""
+        << (dashed ? " stroke-dasharray=\"5,3\"" : "") << "/>\n<text x=\"" << legendX + 30
+        << "\" y=\"" << legendY + 4 << "\">"
+        << (dashed ? "sample rate (supersampling)" : "pixel rate (multisampling)") << "</text>\n";
+    legendY += 18;
+  }
+  svg << "<text x=\"" << legendX << "\" y=\"" << legendY + 4
+      << "\" fill=\"#555\">labels: samples per pixel</text>\n";
+  svg << SvgPlot::end();
+  return svg.str();
+}
+
+}  // namespace
+
+int runSamplesReport(const std::vector<std::string>& args) {
+  const std::optional<SamplesOptions> parsed = parseSamples(args);
+  if (!parsed) return 0;
+  const SamplesOptions& options = *parsed;
+  const std::vector<std::string> scenes = chooseScenes(options);
+  // Every scene is loaded before the first slow reference: a typo in the
+  // last one should not cost the first ones' minutes.
+  std::vector<Scene> loaded;
+  for (const std::string& scene : scenes)
+    loaded.push_back(loadSceneArgument(scene, LoadOptions{}, "quadra"));
+  Renderer renderer({.threads = options.threads, .isa = options.isa});  // checks --isa
+  const fs::path outDir(options.outDir);
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec || !fs::is_directory(outDir))
+    throw Error(options.outDir + ": cannot create the output directory");
+
+  tbb::task_arena arena(options.threads);
+  std::vector<SceneResult> results;
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    progress("report samples: scene " + std::to_string(s + 1) + "/" +
+             std::to_string(scenes.size()) + " " + scenes[s]);
+    results.push_back(measureScene(scenes[s], loaded[s], options, renderer, arena));
+  }
+  progress("");
+
+  const std::string settings =
+      std::to_string(options.width) + "x" + std::to_string(options.height) + ", " +
+      std::to_string(renderer.threadCount()) + " threads, isa " + isaName(renderer.isa()) +
+      ", reference " + std::to_string(options.referenceSpp) + "x" +
+      std::to_string(options.referenceSpp) + " per pixel";
+  std::ostringstream out;
+  out << "Samples per pixel at " << settings << ". ms/frame: the median over " << options.rounds
+      << " rounds of each run's median of " << options.frames
+      << " frames (configurations take turns); PSNR (peak 1) and max diff over R, G, B against "
+         "the reference tracer's frame. Shading: pixel = once per pixel and visible triangle, "
+         "sample = every sample; at 1 sample the two are one frame.\n\n"
+      << tableText(results) << "\nReference frames: " << options.referenceSpp << "x"
+      << options.referenceSpp << " rays per pixel, " << options.threads
+      << " threads. Check: the PSNR of the same frame traced at half the rays per axis "
+         "against it; the reference's own PSNR is about that or higher, and rows near it "
+         "measure the reference as much as quadra.\n\n"
+         "| scene | triangles | reference s | check dB |\n|---|---:|---:|---:|\n";
+  for (const SceneResult& scene : results)
+    out << "| " << scene.label << " | " << scene.triangles << " | "
+        << format("%.1f", scene.referenceSeconds) << " | "
+        << psnrText(scene.referenceCheckPsnr, "-") << " |\n";
+
+  const fs::path csvPath = outDir / "samples.csv", svgPath = outDir / "samples.svg";
+  const std::string csv = csvText(results), svg = svgText(results, settings);
+  writeText(csvPath, csv);
+  writeText(svgPath, svg);
+  std::cout << out.str() << "\nquadra wrote " << csvPath.string() << "\nquadra wrote "
+            << svgPath.string() << "\n";
+  return 0;
+}
+
+}  // namespace quadra
