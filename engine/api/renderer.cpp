@@ -115,12 +115,17 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   }
 
   s.derivatives = settings.derivatives;
-  if (settings.shadingRate == ShadingRate::Sample)
-    s.footprintScale = float(1.0 / std::sqrt(double(settings.samples)));
   s.twoPass = s.alphaMode != AlphaMode::Blend && s.blend == BlendMode::Replace && s.depthTest &&
               s.depthWrite && s.output == ShadeOutput::Color &&
               s.derivatives == DerivativeMode::Analytic &&
               settings.opaqueShading == OpaqueShading::TwoPass;
+  // Every sample is shaded in a supersampled frame, and a multisampled
+  // frame's forward draws (blended ones) are shaded per sample too: each
+  // such lookup filters for the sample spacing (with the pixel's footprint,
+  // alpha-quads at 16 samples shaded per pixel took 1.8x the time of
+  // shading every sample, for 5-7 dB less).
+  if (settings.samples > 1 && (settings.shadingRate == ShadingRate::Sample || !s.twoPass))
+    s.footprintScale = float(1.0 / std::sqrt(double(settings.samples)));
 
   // Interpolate only what the shading reads.
   AttributeLayout& a = g.attributes;

@@ -344,8 +344,10 @@ void fillSamplePlanes(const TileFrame& frame, TileScratch& s) {
     for (int c = 0; c < 4; ++c) {
       const float* from = s.planes[0].color[c];
       float* to = s.planes[k].color[c];
-      for (int p = 0; p < TileBuffers::kPixels; ++p)
-        if (differs[p] == 0) to[p] = from[p];
+      // A select, not a conditional store, so it vectorizes (a branch per
+      // pixel made alpha-quads' 16-sample frame 1.8x slower than shading
+      // every sample).
+      for (int p = 0; p < TileBuffers::kPixels; ++p) to[p] = differs[p] == 0 ? from[p] : to[p];
     }
   s.allMixed = true;
 }

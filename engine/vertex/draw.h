@@ -56,8 +56,9 @@ struct ShadeState {
   // which the tile kernels compile as separate specializations.
   ShadeOutput output = ShadeOutput::Color;
   DerivativeMode derivatives = DerivativeMode::Analytic;
-  // Texture footprints are scaled by this: 1/sqrt(samples) when every
-  // sample is shaded (api/renderer.h ShadingRate::Sample), else 1.
+  // Texture footprints are scaled by this: 1/sqrt(samples) where each
+  // sample is shaded (ShadingRate::Sample, and the forward draws of a
+  // multisampled frame), else 1.
   float footprintScale = 1.0f;
   // Visibility and shading passes (tile/tile_kernel.h) instead of the forward
   // path: opaque and masked draws with analytic derivatives. The renderer puts

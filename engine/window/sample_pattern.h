@@ -30,9 +30,10 @@ struct SamplePattern {
 // Pixel: once per pixel and visible triangle (multisampling): at the pixel
 // centre where one triangle holds every sample, else at the mean position of
 // the samples the triangle holds there (inside the triangle, so nothing is
-// extrapolated); the colour goes to those samples. Sample: every sample is
-// shaded at its own position (supersampling), textures filtered for the
-// sample spacing (footprints scaled by 1/sqrt(samples)).
+// extrapolated); the colour goes to those samples. Blended draws are shaded
+// per sample either way (until they have a pass of their own). Sample: every
+// sample is shaded at its own position (supersampling). A lookup shaded per
+// sample filters for the sample spacing (footprints scaled by 1/sqrt(samples)).
 enum class ShadingRate : std::uint8_t { Pixel, Sample };
 
 // Whether N is a sample count the engine renders: 1, 2, 4, 8 or 16.
