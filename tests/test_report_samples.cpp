@@ -46,6 +46,7 @@ TEST(ReportSamples, WritesTheTableTheCsvAndThePlot) {
           "--samples 16,1 --reference-spp 8 --rounds 2 --frames 1 --threads 2 --out-dir " +
           dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("filter the samplers'"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| scene | samples | shading | ms/frame | PSNR dB | max diff |"),
             std::string::npos)
       << r.out;
@@ -94,6 +95,29 @@ TEST(ReportSamples, WritesTheTableTheCsvAndThePlot) {
   EXPECT_EQ(occurrences(svg, "<polyline"), occurrences(svg, "</polyline>"));
   EXPECT_EQ(occurrences(svg, "<circle"), 6u) << "one per row";
   EXPECT_NE(svg.find(">builtin:slivers</text>"), std::string::npos) << "legend";
+}
+
+// --filter and --aniso reach the frames and are named in the table's header.
+TEST(ReportSamples, FilterOptionIsApplied) {
+  const fs::path dir = testDir() / "report_samples_filter";
+  fs::remove_all(dir);
+  const auto header = [&](const std::string& filter) {
+    const RunResult r =
+        run("report samples --scenes builtin:checker-plane --width 32 --height 18 "
+            "--samples 1 --reference-spp 2 --rounds 1 --frames 1 --threads 2 " +
+            filter + " --out-dir " + dir.string());
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::istringstream csv(fileText(dir / "samples.csv"));
+    std::string line;
+    std::getline(csv, line);
+    std::getline(csv, line);
+    return std::make_pair(r.out, csvFields(line).at(5));  // and the PSNR
+  };
+  const auto [aniso, anisoPsnr] = header("--filter aniso --aniso 4");
+  EXPECT_NE(aniso.find("filter aniso (max aniso 4)"), std::string::npos) << aniso;
+  const auto [nearest, nearestPsnr] = header("--filter nearest");
+  EXPECT_NE(nearest.find("filter nearest"), std::string::npos) << nearest;
+  EXPECT_NE(anisoPsnr, nearestPsnr) << "the filter reaches the frames";
 }
 
 TEST(ReportSamples, BadOptionsAreOneLineErrorsAndWriteNothing) {

@@ -38,7 +38,7 @@ namespace fs = std::filesystem;
 constexpr const char* kSamplesUsage =
     R"(usage: quadra report samples [--width W] [--height H] [--threads N] [--isa ISA]
                              [--frames K] [--rounds R] [--scenes LIST] [--samples LIST]
-                             [--reference-spp N] [--out-dir DIR]
+                             [--filter F] [--aniso N] [--reference-spp N] [--out-dir DIR]
   --width W --height H  frame size (default 480x270: the reference frames of the
                         default scenes then take 1-8 s each on two threads, ~50 s in
                         all with their checks)
@@ -58,6 +58,9 @@ constexpr const char* kSamplesUsage =
                         invalid-input, whose NaN attributes the tracer shades)
   --samples LIST        comma-separated sample counts, each 1, 2, 4, 8 or 16
                         (default 1,4,8,16)
+  --filter F --aniso N  one texture filter for every texture (nearest|bilinear|
+                        nearest-mip|trilinear|aniso|ewa|area|sat|ripmap; default: each
+                        glTF sampler's) and the anisotropic maximum (default 16)
   --reference-spp N     the reference's subsamples per pixel axis, N x N per pixel
                         (default 16)
   --out-dir DIR         where samples.csv and samples.svg go (default out)
@@ -105,6 +108,9 @@ struct SamplesOptions {
   std::vector<int> sampleCounts = {1, 4, 8, 16};
   int referenceSpp = kDefaultReferenceSpp;
   std::string outDir = "out";
+  std::optional<Filter> filter;  // unset: the scenes' samplers decide
+  int maxAniso = 16;
+  float lodBias = 0.0f;
 };
 
 std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args) {
@@ -125,6 +131,7 @@ std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args)
         std::unique(options.sampleCounts.begin(), options.sampleCounts.end()),
         options.sampleCounts.end());
   });
+  addFilterOptions(parser, options.filter, options.maxAniso, options.lodBias);
   parser.integer("--reference-spp", options.referenceSpp, 1, 256);
   parser.text("--out-dir", options.outDir);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
@@ -223,6 +230,9 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
   settings.width = options.width;
   settings.height = options.height;
   settings.frameDepth = false;  // nothing here reads depth
+  settings.filter = options.filter;
+  settings.maxAniso = options.maxAniso;
+  settings.lodBias = options.lodBias;
   for (const Configuration& c : configurations(options.sampleCounts)) {
     settings.samples = c.samples;
     settings.shadingRate = c.rate;
@@ -392,7 +402,10 @@ int runSamplesReport(const std::vector<std::string>& args) {
       std::to_string(options.width) + "x" + std::to_string(options.height) + ", " +
       std::to_string(renderer.threadCount()) + " threads, isa " + isaName(renderer.isa()) +
       ", reference " + std::to_string(options.referenceSpp) + "x" +
-      std::to_string(options.referenceSpp) + " per pixel";
+      std::to_string(options.referenceSpp) + " per pixel, filter " +
+      (options.filter ? filterName(*options.filter) + std::string(" (max aniso ") +
+                            std::to_string(options.maxAniso) + ")"
+                      : std::string("the samplers'"));
   std::ostringstream out;
   out << "Samples per pixel at " << settings << ". ms/frame: the median over " << options.rounds
       << " rounds of each run's median of " << options.frames
