@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <random>
 #include <sstream>
 #include <string>
@@ -354,6 +355,100 @@ TEST(RasterFillRule, EverySampleCountMatchesReference) {
     for (std::size_t i = 0; i < expected.count.size(); ++i)
       partial += expected.count[i] != centres.count[i] * samples;
     EXPECT_GT(partial, 1000);
+  }
+}
+
+// Each sample takes the colour of the triangle that holds it, and the pixel
+// is their mean: overlapping coloured triangles at one depth (the first
+// drawn keeps a sample: LESS), many sharing pixels, shaded once per pixel
+// and visible triangle or per sample. Colours are quarters and the
+// orthographic view keeps them constant over each triangle, so the
+// expected pixel is exact: the mean of its samples' colours from the
+// reference's per-sample coverage.
+TEST(RasterFillRule, EachSampleTakesItsTrianglesColour) {
+  std::mt19937 rng(4242);
+  std::uniform_int_distribution<int> where(16 * 256, 112 * 256);
+  std::uniform_int_distribution<int> size(-4 * 256, 4 * 256);
+  std::uniform_int_distribution<int> quarter(0, 4);
+  std::vector<WindowTriangle> triangles;
+  Scene scene;
+  Mesh mesh;
+  for (int n = 0; n < 300; ++n) {
+    const glm::dvec2 at(where(rng) / 256.0, where(rng) / 256.0);
+    WindowTriangle t;
+    for (glm::dvec2& p : t) p = at + glm::dvec2(size(rng), size(rng)) / 256.0;
+    triangles.push_back(t);
+    const glm::vec4 colour(quarter(rng) / 4.0f, quarter(rng) / 4.0f, quarter(rng) / 4.0f, 1.0f);
+    for (const glm::dvec2& p : t) {
+      mesh.indices.push_back(std::uint32_t(mesh.positions.size()));
+      mesh.positions.push_back(worldFromWindow(p));
+      mesh.colors.push_back(colour);
+    }
+  }
+  Material material;
+  material.doubleSided = true;
+  scene.materials.push_back(material);
+  mesh.material = 0;
+  scene.meshes.push_back(mesh);
+  scene.instances.push_back(Instance{});
+  const Camera camera = pixelExactCamera();
+  const auto grid = ref::gridTriangles(ref::projectScene(scene, camera, kSize, kSize));
+  ASSERT_EQ(grid.size(), triangles.size());
+
+  for (const int samples : {4, 16}) {
+    // The first triangle to hold each sample, per pixel and sample.
+    std::vector<int> owner(std::size_t(kSize) * kSize * samples, -1);
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        for (int k = 0; k < samples; ++k)
+          for (std::size_t i = 0; i < grid.size(); ++i)
+            if (std::abs(triangles[i][0].x - x) < 10 && std::abs(triangles[i][0].y - y) < 10 &&
+                ref::coversPoint(grid[i], ref::samplePoint(x, y, k, samples))) {
+              owner[(std::size_t(y) * kSize + x) * samples + k] = int(i);
+              break;
+            }
+    int shared = 0;  // pixels whose samples several triangles (or none) hold
+    for (std::size_t p = 0; p < std::size_t(kSize) * kSize; ++p)
+      for (int k = 1; k < samples; ++k)
+        if (owner[p * samples + k] != owner[p * samples]) {
+          ++shared;
+          break;
+        }
+    EXPECT_GT(shared, 1000) << "the scene must share pixels between triangles";
+    for (const ShadingRate rate : {ShadingRate::Pixel, ShadingRate::Sample}) {
+      for (const Isa isa : supportedIsas()) {
+        SCOPED_TRACE(std::to_string(samples) + " samples, " +
+                     (rate == ShadingRate::Pixel ? "per pixel, " : "per sample, ") + isaName(isa));
+        RenderSettings settings;
+        settings.width = settings.height = kSize;
+        settings.samples = samples;
+        settings.shadingRate = rate;
+        Renderer renderer({.threads = 2, .isa = isa});
+        Frame frame;
+        renderer.render(scene, camera, settings, frame);
+        int mismatches = 0;
+        std::ostringstream first;
+        for (int y = 0; y < kSize; ++y)
+          for (int x = 0; x < kSize; ++x) {
+            const std::size_t p = std::size_t(y) * kSize + x;
+            glm::vec4 sum(0.0f);
+            for (int k = 0; k < samples; ++k) {
+              const int i = owner[p * samples + k];
+              if (i >= 0) sum += mesh.colors[3 * std::size_t(i)];
+            }
+            const glm::vec4 expected = sum / float(samples);
+            const float* got = &frame.rgba[p * 4];
+            if (got[0] == expected.r && got[1] == expected.g && got[2] == expected.b &&
+                got[3] == expected.a)
+              continue;
+            if (++mismatches <= 4)
+              first << " (" << x << "," << y << "): engine " << got[0] << "," << got[1] << ","
+                    << got[2] << "," << got[3] << " expected " << expected.r << "," << expected.g
+                    << "," << expected.b << "," << expected.a;
+          }
+        EXPECT_EQ(mismatches, 0) << "first mismatches:" << first.str();
+      }
+    }
   }
 }
 
