@@ -371,26 +371,18 @@ TEST(RasterFillRule, EachSampleTakesItsTrianglesColour) {
   std::uniform_int_distribution<int> size(-4 * 256, 4 * 256);
   std::uniform_int_distribution<int> quarter(0, 4);
   std::vector<WindowTriangle> triangles;
-  Scene scene;
-  Mesh mesh;
+  std::vector<glm::vec4> colours;  // per vertex
   for (int n = 0; n < 300; ++n) {
     const glm::dvec2 at(where(rng) / 256.0, where(rng) / 256.0);
     WindowTriangle t;
     for (glm::dvec2& p : t) p = at + glm::dvec2(size(rng), size(rng)) / 256.0;
     triangles.push_back(t);
     const glm::vec4 colour(quarter(rng) / 4.0f, quarter(rng) / 4.0f, quarter(rng) / 4.0f, 1.0f);
-    for (const glm::dvec2& p : t) {
-      mesh.indices.push_back(std::uint32_t(mesh.positions.size()));
-      mesh.positions.push_back(worldFromWindow(p));
-      mesh.colors.push_back(colour);
-    }
+    colours.insert(colours.end(), 3, colour);
   }
-  Material material;
-  material.doubleSided = true;
-  scene.materials.push_back(material);
-  mesh.material = 0;
-  scene.meshes.push_back(mesh);
-  scene.instances.push_back(Instance{});
+  Scene scene = sceneFromWindow(triangles, true);
+  Mesh& mesh = scene.meshes[0];
+  mesh.colors = colours;
   const Camera camera = pixelExactCamera();
   const auto grid = ref::gridTriangles(ref::projectScene(scene, camera, kSize, kSize));
   ASSERT_EQ(grid.size(), triangles.size());
