@@ -77,13 +77,6 @@ EdgeFunction makeEdge(const SnappedTriangle& s, int p, int q) {
 bool coversASample(const TriangleRecord& t, const SamplePattern& samples) {
   const int span = samples.count == 1 ? 1 : 2;
   if (t.maxX - t.minX > span || t.maxY - t.minY > span) return true;
-  if (samples.count == 1) {  // the pixel centres, without moving the edges
-    for (std::int32_t py = t.minY; py <= t.maxY; ++py)
-      for (std::int32_t px = t.minX; px <= t.maxX; ++px)
-        if (t.edges[0].at(px, py) > 0 && t.edges[1].at(px, py) > 0 && t.edges[2].at(px, py) > 0)
-          return true;
-    return false;
-  }
   for (int s = 0; s < samples.count; ++s) {
     const EdgeFunction e0 = t.edges[0].atSample(samples.offsets[s]),
                        e1 = t.edges[1].atSample(samples.offsets[s]),
