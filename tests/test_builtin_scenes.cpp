@@ -107,10 +107,11 @@ glm::vec2 project(const glm::mat4& viewProj, const glm::vec3& world) {
   return glm::vec2(clip) / clip.w;
 }
 
-// The four picture scenes first, then the hard cases of lab/scene/hard_case_scenes.h
+// The picture scenes first, then the hard cases of lab/scene/hard_case_scenes.h
 // (deliberately extreme or invalid geometry, checked by the stability report).
-const std::vector<std::string> kPictureScenes = {"showcase", "checker-plane", "alpha-quads",
-                                                 "dense-mesh"};
+const std::vector<std::string> kPictureScenes = {"showcase",           "checker-plane",
+                                                 "alpha-quads",        "dense-mesh",
+                                                 "intersecting-glass", "overlapping-glass"};
 
 TEST(BuiltinScenes, NamesAndUnknownName) {
   std::vector<std::string> expected = kPictureScenes;
@@ -122,7 +123,7 @@ TEST(BuiltinScenes, NamesAndUnknownName) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()).rfind(
                   "builtin:no-such-scene: unknown built-in scene (known: showcase, checker-plane, "
-                  "alpha-quads, dense-mesh, near-plane,",
+                  "alpha-quads, dense-mesh, intersecting-glass, overlapping-glass, near-plane,",
                   0),
               0u)
         << e.what();

@@ -148,8 +148,11 @@ Camera firstCameraOrDefault(const Scene& scene);
 // scene.instances: first every instance whose material does not blend, in
 // scene order, then the blended ones (alphaMode BLEND) back to front by the
 // view-space depth of their mesh's bounding-box centre (ties keep scene
-// order). Instances of meshes without triangles are left out. Public so that
-// a peer renderer drawn for comparison composites in the same order.
+// order). Instances of meshes without triangles are left out. The tile stage
+// composites blended fragments in depth order per sample whatever the draw
+// order; back to front, most arrive in order and blend at once
+// (tile/blended_fragments.h). Public so that a peer renderer drawn for
+// comparison composites in the same order.
 std::vector<std::size_t> instanceDrawOrder(const Scene& scene, const glm::mat4& view);
 
 }  // namespace quadra

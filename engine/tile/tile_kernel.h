@@ -10,6 +10,7 @@
 
 #include "setup/triangle_record.h"
 #include "simd/isa.h"
+#include "tile/blended_fragments.h"
 #include "tile/tile_buffers.h"
 #include "vertex/draw.h"
 
@@ -76,8 +77,15 @@ struct TileKernels {
   int lanes;  // SIMD width in pixels (4 per quad)
   // Forward path: coverage, depth test, perspective-correct attributes, LOD,
   // texture sample, blend, for the part of the triangle inside the tile.
+  // With `deferred`, a blended ("over") draw's fragments at the samples
+  // orderBlended marked late go there, as sample plane `plane`'s, instead of
+  // blending now (tile/blended_fragments.h).
   void (*rasterize)(const TriangleRecord& triangle, const Plane* planes, const ShadeState& shade,
-                    TileBuffers& tile);
+                    TileBuffers& tile, BlendedFragments* deferred, int plane);
+  // The order pass over a blended draw's triangle, before any is shaded:
+  // marks the samples of plane `plane` where it arrives behind an earlier one.
+  void (*orderBlended)(const TriangleRecord& triangle, const Plane* planes, const ShadeState& shade,
+                       TileBuffers& tile, BlendedFragments& fragments, int plane);
   // Visibility pass: coverage and depth test (and a masked draw's alpha
   // test); the samples the triangle wins get its depth and `id`. Returns
   // whether it won any.

@@ -317,9 +317,12 @@ struct ForwardShader {
   const ShadeState& shade;
   TileBuffers& tile;
   const TrianglePlanes planes;
+  BlendedFragments* deferred;  // where a blended draw's fragments wait, or null
+  int plane;                   // the tile's sample plane, for `deferred`
 
-  ForwardShader(const ShadeState& s, const TriangleRecord& t, const Plane* p, TileBuffers& tb)
-      : shade(s), tile(tb), planes(s, t, p, tb) {}
+  ForwardShader(const ShadeState& s, const TriangleRecord& t, const Plane* p, TileBuffers& tb,
+                BlendedFragments* d = nullptr, int samplePlane = 0)
+      : shade(s), tile(tb), planes(s, t, p, tb), deferred(d), plane(samplePlane) {}
 
   bool depthWritten() const { return shade.depthWrite; }
 
@@ -335,10 +338,34 @@ struct ForwardShader {
     if (Feat::kAlpha != AlphaMode::Blend && Feat::kOutput != ShadeOutput::Derivatives)
       c.a = F(1.0f);  // A = dv/dy there
     if (!simd::any(cover)) return zOld;
+    if (deferred != nullptr) {
+      // The late samples' fragments wait for the depth-order composite.
+      const M late = F::load_unaligned(deferred->late(plane) + index) != F(0.0f);
+      if (simd::any(cover & late)) defer(cover & late, zValue, c, index);
+      cover = cover & ~late;
+      if (!simd::any(cover)) return zOld;
+    }
     float* const color[4] = {tile.color[0] + index, tile.color[1] + index, tile.color[2] + index,
                              tile.color[3] + index};
     write(cover, zValue, zOld, c, depth, color);
     return simd::select(cover, zValue, zOld);
+  }
+
+  // The covered lanes' fragments as "over" steps: premultiplied colour and
+  // alpha, and 1 - alpha of what lies behind (the same products write forms).
+  void defer(const M& cover, const F& zValue, const Rgba<L>& c, int index) const {
+    alignas(64) float z[L::kWidth], rgba[4][L::kWidth], keep[L::kWidth];
+    zValue.store_aligned(z);
+    (c.r * c.a).store_aligned(rgba[0]);
+    (c.g * c.a).store_aligned(rgba[1]);
+    (c.b * c.a).store_aligned(rgba[2]);
+    c.a.store_aligned(rgba[3]);
+    (F(1.0f) - c.a).store_aligned(keep);
+    for (std::uint32_t lanes = simd::bits(cover); lanes != 0; lanes &= lanes - 1) {
+      const int k = __builtin_ctz(lanes);
+      const float color[4] = {rgba[0][k], rgba[1][k], rgba[2][k], rgba[3][k]};
+      deferred->add(plane, index + k, z[k], color, keep[k]);
+    }
   }
 
   void write(const M& cover, const F& zValue, const F& zOld, const Rgba<L>& c, float* depth,
@@ -363,6 +390,37 @@ struct ForwardShader {
       }
     }
     if (shade.depthWrite) simd::select(cover, zValue, zOld).store_aligned(depth);
+  }
+};
+
+// Order pass for blended draws (tile/blended_fragments.h): one group of
+// quads, coverage in; where a fragment passes the depth test strictly behind
+// the sample's latest blended fragment, the sample is marked late.
+struct BlendOrderShader {
+  const ShadeState& shade;
+  TileBuffers& tile;
+  const TrianglePlanes planes;
+  BlendedFragments& fragments;
+  int plane;
+
+  BlendOrderShader(const ShadeState& s, const TriangleRecord& t, const Plane* p, TileBuffers& tb,
+                   BlendedFragments& f, int samplePlane)
+      : shade(s), tile(tb), planes(s, t, p, tb, true), fragments(f), plane(samplePlane) {}
+
+  bool depthWritten() const { return false; }
+
+  F shadeGroup(const F& x, const F& y, M cover, int index) const {
+    const F zValue = planes.z.at(x, y);
+    const F zOld = F::load_aligned(tile.depth + index);
+    if (shade.depthTest) cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
+    if (!simd::any(cover)) return zOld;
+    float* const latest = fragments.latest(plane) + index;
+    float* const late = fragments.late(plane) + index;
+    const F before = F::load_unaligned(latest);
+    const M behind = shade.depthGreater ? zValue < before : zValue > before;
+    simd::select(cover & behind, F(1.0f), F::load_unaligned(late)).store_unaligned(late);
+    simd::select(cover, zValue, before).store_unaligned(latest);
+    return zOld;
   }
 };
 
@@ -767,7 +825,8 @@ template <class Feat>
 using QuadFeatures = Features<Feat::kTextured, Feat::kVertexColor, Feat::kLit, Feat::kAlpha,
                               ShadeOutput::Color, true>;
 
-void rasterize(const TriangleRecord& t, const Plane* p, const ShadeState& s, TileBuffers& tile) {
+void rasterize(const TriangleRecord& t, const Plane* p, const ShadeState& s, TileBuffers& tile,
+               BlendedFragments* deferred, int plane) {
   // Test views are opaque, untextured and unlit (api/renderer.cpp makeDraw).
   constexpr AlphaMode kOpaque = AlphaMode::Opaque;
   const bool quad = s.derivatives == DerivativeMode::Quad;
@@ -784,9 +843,16 @@ void rasterize(const TriangleRecord& t, const Plane* p, const ShadeState& s, Til
     return rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile), tile);
   }
   withFeatures(s, [&]<class Feat>() {
-    if (quad) return rasterizeWith(t, ForwardShader<QuadFeatures<Feat>>(s, t, p, tile), tile);
-    rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile), tile);
+    if (quad)
+      return rasterizeWith(t, ForwardShader<QuadFeatures<Feat>>(s, t, p, tile, deferred, plane),
+                           tile);
+    rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile, deferred, plane), tile);
   });
+}
+
+void orderBlended(const TriangleRecord& t, const Plane* p, const ShadeState& s, TileBuffers& tile,
+                  BlendedFragments& fragments, int plane) {
+  rasterizeWith(t, BlendOrderShader(s, t, p, tile, fragments, plane), tile);
 }
 
 bool visibility(const TriangleRecord& t, const Plane* p, const ShadeState& s, std::uint32_t id,
@@ -819,8 +885,10 @@ void shade(const ShadeState& s, const ShadeRun& run, TileBuffers& tile) {
 }  // namespace QUADRA_KERNEL_NAMESPACE
 
 const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
-  static const TileKernels kernels{QUADRA_KERNEL_ISA_ENUM, QUADRA_KERNEL_NAMESPACE::L::kWidth,
+  static const TileKernels kernels{QUADRA_KERNEL_ISA_ENUM,
+                                   QUADRA_KERNEL_NAMESPACE::L::kWidth,
                                    &QUADRA_KERNEL_NAMESPACE::rasterize,
+                                   &QUADRA_KERNEL_NAMESPACE::orderBlended,
                                    &QUADRA_KERNEL_NAMESPACE::visibility,
                                    &QUADRA_KERNEL_NAMESPACE::shade};
   return kernels;

@@ -1,7 +1,8 @@
 // Tile stage scheduling and the per-tile loop: the visibility pass over the
 // two-pass draws' triangles, the shading pass over their visible pixels draw
-// by draw, then the forward draws, then the tile's resolve. The per-pixel work
-// is in the ISA kernels (tile_kernel_impl.h).
+// by draw, then the forward draws (their blended fragments kept per sample and
+// composited in depth order after them), then the tile's resolve. The
+// per-pixel work is in the ISA kernels (tile_kernel_impl.h).
 //
 // Samples: a multisampled tile is one TileBuffers plane per sample, plane s
 // holding every pixel's sample s. The kernels see each plane as a frame of
@@ -19,6 +20,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/stage_clock.h"
+#include "tile/blended_fragments.h"
 #include "tile/tile_resolve.h"
 
 namespace quadra {
@@ -50,6 +52,7 @@ struct TileScratch {
   std::vector<ShadeJob> jobs, sortedJobs;
   std::vector<float> jobColor;
   std::vector<std::uint32_t> runJobs;
+  BlendedFragments blended;  // the forward "over" draws' fragments, per sample
 };
 
 // How far ahead the visibility pass fetches triangle records and planes.
@@ -414,6 +417,62 @@ void averageSamples(const TileFrame& frame, TileScratch& s) {
   }
 }
 
+// Whether a forward draw's fragments are composited per sample in depth
+// order (tile/blended_fragments.h): blended surfaces that write no depth,
+// whose order is exact that way where surfaces interpenetrate or a draw
+// overlaps itself, which no order of draws is.
+bool composedInDepthOrder(const ShadeState& shade) {
+  return shade.blend == BlendMode::Over && !shade.depthWrite;
+}
+
+// Calls draw(triangle, planes, plane) for every sample plane, with the
+// triangle and its first planeCount planes moved to that plane's sample.
+template <class DrawAtSample>
+void forEachSample(const TileFrame& frame, const TileTriangle& t, int planeCount,
+                   DrawAtSample&& draw) {
+  if (frame.samples.count == 1) return draw(*t.triangle, t.planes, 0);
+  Plane moved[2 + kMaxShadedAttributes];
+  for (int k = 0; k < frame.samples.count; ++k) {
+    const SampleOffset o = frame.samples.offsets[k];
+    for (int j = 0; j < planeCount; ++j) moved[j] = t.planes[j].atSample(o);
+    draw(atSample(*t.triangle, o), moved, k);
+  }
+}
+
+// The forward triangles in order. At the first blended one composed in depth
+// order (the renderer puts blended draws after the opaque ones, so the depth
+// is final there), the order pass over it and the rest; their late samples'
+// fragments are composited after the last.
+void forwardDraws(const TileFrame& frame, TileScratch& s) {
+  bool ordered = false;
+  for (std::size_t i = 0; i < s.forward.size(); ++i) {
+    const TileTriangle& t = s.forward[i];
+    const TileKernels& kernel = frame.kernels.forWidth(t.triangle->maxX - t.triangle->minX + 1);
+    const ShadeState& shade = frame.draws[t.draw].shade;
+    const bool inDepthOrder = composedInDepthOrder(shade);
+    if (inDepthOrder && !ordered) {
+      ordered = true;
+      s.blended.begin(frame.samples.count, frame.depthGreater);
+      for (std::size_t j = i; j < s.forward.size(); ++j) {
+        const TileTriangle& later = s.forward[j];
+        const ShadeState& laterShade = frame.draws[later.draw].shade;
+        if (!composedInDepthOrder(laterShade)) continue;
+        const TileKernels& k =
+            frame.kernels.forWidth(later.triangle->maxX - later.triangle->minX + 1);
+        forEachSample(frame, later, 1, [&](const TriangleRecord& r, const Plane* p, int plane) {
+          k.orderBlended(r, p, laterShade, s.planes[plane], s.blended, plane);
+        });
+      }
+    }
+    BlendedFragments* const deferred = inDepthOrder ? &s.blended : nullptr;
+    forEachSample(frame, t, 2 + shade.attributes.count,
+                  [&](const TriangleRecord& r, const Plane* p, int plane) {
+                    kernel.rasterize(r, p, shade, s.planes[plane], deferred, plane);
+                  });
+  }
+  if (ordered && !s.blended.empty()) s.blended.composite(s.planes.get());
+}
+
 void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out,
                 TileTimes& times) {
   const double start = stageClockMs();
@@ -434,21 +493,7 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
   shadingPass(frame, *frame.kernels.wide, s);
   const double shaded = stageClockMs();
   if (samples > 1 && !s.allMixed && !s.forward.empty()) fillSamplePlanes(frame, s);
-  for (const TileTriangle& t : s.forward) {
-    const TileKernels& kernel = frame.kernels.forWidth(t.triangle->maxX - t.triangle->minX + 1);
-    const ShadeState& shade = frame.draws[t.draw].shade;
-    if (samples == 1) {
-      kernel.rasterize(*t.triangle, t.planes, shade, s.planes[0]);
-      continue;
-    }
-    Plane moved[2 + kMaxShadedAttributes];
-    const int planeCount = 2 + shade.attributes.count;
-    for (int k = 0; k < samples; ++k) {
-      const SampleOffset o = frame.samples.offsets[k];
-      for (int j = 0; j < planeCount; ++j) moved[j] = t.planes[j].atSample(o);
-      kernel.rasterize(atSample(*t.triangle, o), moved, shade, s.planes[k]);
-    }
-  }
+  forwardDraws(frame, s);
   const double rastered = stageClockMs();
   if (samples > 1) averageSamples(frame, s);
   resolveTile(s.planes[0], out);

@@ -314,10 +314,74 @@ Scene showcase() {
   return scene;
 }
 
+// An opaque backdrop for the glass scenes: a view-filling quad at distance 10
+// shaded by smooth vertex colours, so what differs between renders is the
+// order of the layers in front of it, not texture filtering.
+void addBackdrop(Scene& scene) {
+  Material backdrop;
+  Mesh quad = makeQuad(addMaterial(scene, backdrop));
+  quad.colors = {{0.9f, 0.9f, 0.8f, 1.0f},
+                 {0.2f, 0.3f, 0.35f, 1.0f},
+                 {0.1f, 0.1f, 0.1f, 1.0f},
+                 {0.6f, 0.55f, 0.2f, 1.0f}};
+  scene.instances.push_back({addMesh(scene, std::move(quad)),
+                             placement({0.0f, 0.0f, -10.0f}, 0.0f, {24.0f, 16.0f, 1.0f})});
+}
+
+// Three half-transparent panes through one centre, red and green turned
+// about the vertical by -35 and +35 degrees, blue tilted about the horizontal
+// by 50: each pair crosses along a line, so every pane is in front of each
+// other one on one side of it. Their centres coincide, so no order of draws
+// is right; compositing per sample in depth order is.
+Scene intersectingGlass() {
+  Scene scene;
+  scene.name = "builtin:intersecting-glass";
+  addBackdrop(scene);
+  const glm::vec4 tints[3] = {
+      {1.0f, 0.15f, 0.1f, 0.5f}, {0.1f, 0.9f, 0.2f, 0.45f}, {0.15f, 0.3f, 1.0f, 0.55f}};
+  const glm::vec3 centre(0.0f, 0.0f, -4.0f);
+  glm::mat4 panes[3];
+  panes[0] = placement(centre, -35.0f, {1.6f, 1.1f, 1.0f});
+  panes[1] = placement(centre, 35.0f, {1.6f, 1.1f, 1.0f});
+  panes[2] = glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), centre), radians(50.0f),
+                                    glm::vec3(1.0f, 0.0f, 0.0f)),
+                        {1.3f, 1.3f, 1.0f});
+  for (int i = 0; i < 3; ++i) {
+    Material glass;
+    glass.baseColorFactor = tints[i];
+    glass.alphaMode = AlphaMode::Blend;
+    glass.doubleSided = true;
+    scene.instances.push_back({addMesh(scene, makeQuad(addMaterial(scene, glass))), panes[i]});
+  }
+  scene.cameras.push_back(perspectiveCamera({0.4f, 0.6f, 0.0f}, centre, 50.0f, 0.1f));
+  return scene;
+}
+
+// One double-sided, half-transparent sphere coloured by its normal, seen from
+// above: its far side shows through its near side, and both are one draw
+// whose triangles run from pole to pole, so within the draw far triangles
+// come after near ones as often as before.
+Scene overlappingGlass() {
+  Scene scene;
+  scene.name = "builtin:overlapping-glass";
+  addBackdrop(scene);
+  Material glass;
+  glass.baseColorFactor = glm::vec4(1.0f, 1.0f, 1.0f, 0.45f);
+  glass.alphaMode = AlphaMode::Blend;
+  glass.doubleSided = true;
+  Mesh ball = makeSphere(24, 48, addMaterial(scene, glass));
+  paintByNormal(ball);
+  scene.instances.push_back(
+      {addMesh(scene, std::move(ball)), placement({0.0f, 0.0f, -4.0f}, 20.0f, glm::vec3(1.3f))});
+  scene.cameras.push_back(perspectiveCamera({0.0f, 1.8f, 0.0f}, {0.0f, 0.0f, -4.0f}, 50.0f, 0.1f));
+  return scene;
+}
+
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-  std::vector<std::string> names = {"showcase", "checker-plane", "alpha-quads", "dense-mesh"};
+  std::vector<std::string> names = {"showcase",   "checker-plane",      "alpha-quads",
+                                    "dense-mesh", "intersecting-glass", "overlapping-glass"};
   for (const std::string& name : hardCaseSceneNames()) names.push_back(name);
   return names;
 }
@@ -327,6 +391,8 @@ Scene makeBuiltinScene(const std::string& name) {
   if (name == "checker-plane") return checkerPlane();
   if (name == "alpha-quads") return alphaQuads();
   if (name == "dense-mesh") return denseMesh(500, "builtin:dense-mesh");
+  if (name == "intersecting-glass") return intersectingGlass();
+  if (name == "overlapping-glass") return overlappingGlass();
   if (name.rfind("dense-mesh:", 0) == 0) {
     const std::string count = name.substr(std::string("dense-mesh:").size());
     char* end = nullptr;

@@ -1,0 +1,219 @@
+// Blended surfaces composited per sample in depth order
+// (engine/tile/blended_fragments.h): the store against a double-precision
+// "over" of the sorted fragments, and whole frames of interpenetrating and
+// self-overlapping transparent surfaces against the reference tracer's exact
+// compositing and against themselves drawn in another order.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numeric>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "lab/reference/reference_tracer.h"
+#include "lab/scene/builtin_scenes.h"
+#include "render_helpers.h"
+#include "tile/blended_fragments.h"
+
+namespace quadra {
+namespace {
+
+struct Layer {
+  float depth;
+  glm::vec4 color;  // straight colour and alpha
+};
+
+// "Over" of the layers far to near onto `base`, in double; equal depths in
+// the order given.
+glm::dvec4 exactOver(std::vector<Layer> layers, glm::dvec4 base, bool depthGreater) {
+  std::stable_sort(layers.begin(), layers.end(), [&](const Layer& a, const Layer& b) {
+    return depthGreater ? a.depth < b.depth : a.depth > b.depth;
+  });
+  for (const Layer& l : layers) {
+    const double a = l.color.a;
+    base = glm::dvec4(glm::dvec3(l.color) * a, a) + base * (1.0 - a);
+  }
+  return base;
+}
+
+// The layers through the store at pixel 5 of plane 1 of a 2-plane tile, in
+// the order given, all kept (as the order pass marks them late).
+glm::dvec4 throughStore(const std::vector<Layer>& layers, glm::vec4 base, bool depthGreater) {
+  static TileBuffers planes[2];
+  constexpr int kPixel = 5;
+  BlendedFragments store;
+  store.begin(2, depthGreater);
+  for (int c = 0; c < 4; ++c) planes[1].color[c][kPixel] = base[c];
+  for (const Layer& l : layers) {
+    const float a = l.color.a;
+    const float premultiplied[4] = {l.color.r * a, l.color.g * a, l.color.b * a, a};
+    store.add(1, kPixel, l.depth, premultiplied, 1.0f - a);
+  }
+  store.composite(planes);
+  EXPECT_TRUE(store.empty());
+  glm::dvec4 out;
+  for (int c = 0; c < 4; ++c) out[c] = planes[1].color[c][kPixel];
+  return out;
+}
+
+std::vector<Layer> randomLayers(int count, std::mt19937& rng) {
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<Layer> layers;
+  for (int i = 0; i < count; ++i)
+    layers.push_back({unit(rng), {unit(rng), unit(rng), unit(rng), 0.2f + 0.6f * unit(rng)}});
+  return layers;
+}
+
+double largestDifference(const glm::dvec4& a, const glm::dvec4& b) {
+  const glm::dvec4 d = glm::abs(a - b);
+  return std::max({d.r, d.g, d.b, d.a});
+}
+
+TEST(BlendedFragments, CompositeAnyArrivalOrderFarToNear) {
+  std::mt19937 rng(11);
+  const glm::vec4 base(0.2f, 0.5f, 0.7f, 1.0f);
+  for (const bool depthGreater : {false, true})
+    for (int count = 1; count <= BlendedFragments::kMaxPerSample; ++count)
+      for (int trial = 0; trial < 20; ++trial) {
+        std::vector<Layer> layers = randomLayers(count, rng);
+        std::shuffle(layers.begin(), layers.end(), rng);
+        const double error = largestDifference(throughStore(layers, base, depthGreater),
+                                               exactOver(layers, base, depthGreater));
+        ASSERT_LT(error, 1e-6) << count << " layers, depthGreater " << depthGreater;
+      }
+}
+
+TEST(BlendedFragments, EqualDepthsKeepTheirArrivalOrder) {
+  const glm::vec4 base(0.0f, 0.0f, 0.0f, 1.0f);
+  const std::vector<Layer> redThenBlue = {{0.5f, {1, 0, 0, 0.5f}}, {0.5f, {0, 0, 1, 0.5f}}};
+  const glm::dvec4 out = throughStore(redThenBlue, base, false);
+  EXPECT_EQ(out.r, 0.25);  // red first, then half of it covered by blue
+  EXPECT_EQ(out.b, 0.5);
+}
+
+// Beyond the budget the two farthest fragments merge: exact while every
+// later fragment lies beyond both (front to back, the order a sorted draw
+// list reversed sends), which keeps the merged step's place right.
+TEST(BlendedFragments, BeyondTheBudgetFrontToBackStaysExact) {
+  std::mt19937 rng(5);
+  const glm::vec4 base(0.9f, 0.1f, 0.3f, 1.0f);
+  for (int count : {BlendedFragments::kMaxPerSample + 1, 20, 100}) {
+    std::vector<Layer> layers = randomLayers(count, rng);
+    std::sort(layers.begin(), layers.end(),
+              [](const Layer& a, const Layer& b) { return a.depth < b.depth; });
+    const double error =
+        largestDifference(throughStore(layers, base, false), exactOver(layers, base, false));
+    EXPECT_LT(error, 1e-5) << count << " layers";
+  }
+}
+
+// ---- frames --------------------------------------------------------------------
+
+constexpr int kWidth = 160, kHeight = 90;
+
+Frame renderAt(const Scene& scene, int samples, int threads = 2,
+               std::optional<Isa> isa = std::nullopt) {
+  RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  settings.samples = samples;
+  return renderOnce(scene, firstCameraOrDefault(scene), settings, threads, isa);
+}
+
+// The pixels inside surfaces: those whose 3x3 neighbourhood in the ideal
+// frame varies by less than 0.05 in every channel, so edges (silhouettes and
+// the lines where surfaces cross), which only samples resolve, are left out.
+std::vector<bool> interiorOf(const Image& ideal) {
+  std::vector<bool> inside(std::size_t(kWidth) * kHeight, false);
+  for (int y = 1; y + 1 < kHeight; ++y)
+    for (int x = 1; x + 1 < kWidth; ++x) {
+      float spread = 0.0f;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          for (int c = 0; c < 3; ++c)
+            spread =
+                std::max(spread, std::abs(ideal.texel(x + dx, y + dy)[c] - ideal.texel(x, y)[c]));
+      inside[std::size_t(y) * kWidth + x] = spread < 0.05f;
+    }
+  return inside;
+}
+
+// PSNR (peak 1) over R, G, B of the pixels `inside`.
+double interiorPsnr(const Frame& frame, const Image& ideal, const std::vector<bool>& inside) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t p = 0; p < inside.size(); ++p) {
+    if (!inside[p]) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double d = double(frame.rgba[p * 4 + c]) - double(ideal.rgba[p * 4 + c]);
+      sum += d * d;
+      ++count;
+    }
+  }
+  return 10.0 * std::log10(double(count) / sum);
+}
+
+TEST(BlendedOrder, TransparentSurfacesMatchTheExactComposite) {
+  for (const std::string name : {"intersecting-glass", "overlapping-glass"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = makeBuiltinScene(name);
+    const Image ideal =
+        ref::ReferenceTracer(scene, firstCameraOrDefault(scene), kWidth, kHeight).render(16);
+    const std::vector<bool> inside = interiorOf(ideal);
+    const auto insideCount = std::count(inside.begin(), inside.end(), true);
+    ASSERT_GT(insideCount, kWidth * kHeight / 2);
+    const double one = interiorPsnr(renderAt(scene, 1), ideal, inside);
+    const double sixteen = interiorPsnr(renderAt(scene, 16), ideal, inside);
+    std::printf("[ %s %dx%d, %ld interior pixels ] interior PSNR dB: 1 sample %.2f, 16 %.2f\n",
+                name.c_str(), kWidth, kHeight, long(insideCount), one, sixteen);
+    EXPECT_GE(sixteen, 45.0);
+    EXPECT_GE(one, 45.0);
+  }
+}
+
+// Reversing the order of the draws and of every mesh's triangles changes the
+// order fragments arrive in, not the frame.
+TEST(BlendedOrder, DrawAndTriangleOrderDoNotChangeTheFrame) {
+  for (const std::string name : {"intersecting-glass", "overlapping-glass"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = makeBuiltinScene(name);
+    Scene reversed = scene;
+    std::reverse(reversed.instances.begin() + 1, reversed.instances.end());  // the backdrop stays
+    for (Mesh& mesh : reversed.meshes) {
+      std::vector<std::uint32_t> triangles;
+      for (std::size_t i = mesh.indices.size(); i >= 3; i -= 3)
+        triangles.insert(triangles.end(), mesh.indices.begin() + std::ptrdiff_t(i - 3),
+                         mesh.indices.begin() + std::ptrdiff_t(i));
+      mesh.indices = triangles;
+    }
+    for (const int samples : {1, 4}) {
+      const Frame a = renderAt(scene, samples), b = renderAt(reversed, samples);
+      ASSERT_EQ(a.rgba.size(), b.rgba.size());
+      std::size_t differing = 0;
+      for (std::size_t i = 0; i < a.rgba.size(); ++i) differing += a.rgba[i] != b.rgba[i];
+      EXPECT_EQ(differing, 0u) << samples << " samples";
+    }
+  }
+}
+
+// The order pass and the kept fragments give every thread count and ISA the
+// same bits.
+TEST(BlendedOrder, IdenticalAcrossThreadsAndIsas) {
+  const Scene scene = makeBuiltinScene("intersecting-glass");
+  for (const int samples : {1, 4}) {
+    const Frame expected = renderAt(scene, samples, 1, Isa::Scalar);
+    for (const Isa isa : supportedIsas())
+      for (const int threads : {1, 2}) {
+        const Frame frame = renderAt(scene, samples, threads, isa);
+        EXPECT_EQ(std::memcmp(frame.rgba.data(), expected.rgba.data(), frame.rgba.size() * 4), 0)
+            << isaName(isa) << ", " << threads << " threads, " << samples << " samples";
+      }
+  }
+}
+
+}  // namespace
+}  // namespace quadra
