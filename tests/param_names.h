@@ -2,6 +2,8 @@
 // only letters, digits and underscores, and scene and file names have more.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cctype>
 #include <string>
 
@@ -11,6 +13,11 @@ inline std::string asTestName(std::string text) {
   for (char& c : text)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return text;
+}
+
+// For INSTANTIATE_TEST_SUITE_P over scene names.
+inline std::string sceneTestName(const ::testing::TestParamInfo<std::string>& info) {
+  return asTestName(info.param);
 }
 
 }  // namespace quadra

@@ -363,10 +363,6 @@ std::vector<std::string> exhaustivelySearchableScenes() {
   return names;
 }
 
-std::string sceneTestName(const ::testing::TestParamInfo<std::string>& info) {
-  return asTestName(info.param);
-}
-
 INSTANTIATE_TEST_SUITE_P(ReferenceTracer, ScreenGrid,
                          ::testing::ValuesIn(exhaustivelySearchableScenes()), sceneTestName);
 
