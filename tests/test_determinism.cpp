@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -192,6 +193,11 @@ struct SampleCase {
   std::string scene;
   int samples;
 };
+
+// What GoogleTest prints for a failing instance (its bytes otherwise).
+void PrintTo(const SampleCase& sampleCase, std::ostream* out) {
+  *out << sampleCase.scene << ", " << sampleCase.samples << " samples";
+}
 
 class EverySampleCount : public ::testing::TestWithParam<SampleCase> {};
 
