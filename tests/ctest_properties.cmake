@@ -8,13 +8,13 @@
 # a higher COST starts first. Costs are seconds under ASan on the 2-core
 # machine: the stability report's 141 s is CI's measurement (2026-11-25);
 # the screen-grid instances share the 60 s the one screen-grid test took
-# then as their Release CPU times do (random-triangles 55%, subpixel-plane
-# 45%, the rest a few percent).
+# then as their Release run times do (random-triangles ~half, subpixel-plane
+# ~40%, the other 16 instances the rest).
 set_tests_properties([=[Cli.StabilityReportPassesEveryCheck]=] PROPERTIES COST 141)
 set_tests_properties([=[ReferenceTracer/ScreenGrid.FindsTheHitsTheExhaustiveSearchFinds/random_triangles]=]
-                     PROPERTIES COST 33)
+                     PROPERTIES COST 30)
 set_tests_properties([=[ReferenceTracer/ScreenGrid.FindsTheHitsTheExhaustiveSearchFinds/subpixel_plane]=]
-                     PROPERTIES COST 27)
+                     PROPERTIES COST 24)
 
 # heavy_arithmetic: double-precision lab code only (no engine), whose code
 # paths, the tracer's parallel rows included, lighter instances of the same
