@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "api/renderer.h"
+#include "param_names.h"
 #include "scene/gltf_loader.h"
 
 namespace quadra {
@@ -54,10 +54,7 @@ TEST_P(AssetsRender, LoadsAndRendersSomething) {
 }
 
 std::string modelName(const ::testing::TestParamInfo<std::string>& info) {
-  std::string name = fs::path(info.param).stem().string();
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return name;
+  return asTestName(fs::path(info.param).stem().string());
 }
 
 INSTANTIATE_TEST_SUITE_P(SampleModels, AssetsRender, ::testing::ValuesIn(sampleModels()),

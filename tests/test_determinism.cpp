@@ -5,11 +5,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +20,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
+#include "param_names.h"
 #include "render_helpers.h"
 #include "scene/gltf_loader.h"
 
@@ -151,56 +154,86 @@ TEST(Determinism, OneRendererAcrossScenesMatchesFreshRenderers) {
 }
 
 // Every filter, on scenes with textures, blending and dense geometry, so each
-// kernel specialization meets its scalar twin.
-TEST(Determinism, EveryIsaMatchesScalar) {
+// kernel specialization meets its scalar twin. One test per scene, so ctest
+// spreads them over the cores.
+class EveryIsa : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(EveryIsa, MatchesScalar) {
   const std::vector<std::optional<Filter>> filters = {
       std::nullopt,      Filter::Nearest,     Filter::Bilinear, Filter::NearestMip,
       Filter::Trilinear, Filter::Anisotropic, Filter::Ewa,      Filter::SummedArea};
   int compared = 0;
-  for (const std::string name : {"showcase", "checker-plane", "alpha-quads"}) {
-    const Scene scene = makeBuiltinScene(name);
-    for (const std::optional<Filter>& filter : filters) {
-      SCOPED_TRACE(name + " filter " + (filter ? filterName(*filter) : "from sampler"));
-      const Frame scalar = renderWith(scene, 2, Isa::Scalar, filter);
-      ASSERT_TRUE(hasVisiblePixels(scalar));
-      for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
-        if (!isaSupported(isa)) continue;
-        SCOPED_TRACE(isaName(isa));
-        expectSameFrame(renderWith(scene, 2, isa, filter), scalar);
-        ++compared;
-      }
+  const Scene scene = makeBuiltinScene(GetParam());
+  for (const std::optional<Filter>& filter : filters) {
+    SCOPED_TRACE(std::string("filter ") + (filter ? filterName(*filter) : "from sampler"));
+    const Frame scalar = renderWith(scene, 2, Isa::Scalar, filter);
+    ASSERT_TRUE(hasVisiblePixels(scalar));
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+      if (!isaSupported(isa)) continue;
+      SCOPED_TRACE(isaName(isa));
+      expectSameFrame(renderWith(scene, 2, isa, filter), scalar);
+      ++compared;
     }
   }
   if (compared == 0) GTEST_SKIP() << "this CPU has no SIMD path to compare";
 }
 
+INSTANTIATE_TEST_SUITE_P(Determinism, EveryIsa,
+                         ::testing::Values("showcase", "checker-plane", "alpha-quads"),
+                         sceneTestName);
+
 // Samples per pixel keep the contract: at every count and shading rate the
 // frame is the same bits for any thread count and kernel path (samples are
 // planes the kernels render one by one, and the resolve sums them in order).
-TEST(Determinism, EverySampleCountIsIdenticalAcrossThreadsAndIsas) {
-  for (const std::string name : {"showcase", "alpha-quads"}) {
-    const Scene scene = makeBuiltinScene(name);
-    for (const int samples : {2, 4, 8, 16}) {
-      for (const ShadingRate rate : {ShadingRate::Pixel, ShadingRate::Sample}) {
-        SCOPED_TRACE(name + " samples " + std::to_string(samples) +
-                     (rate == ShadingRate::Sample ? " per sample" : " per pixel"));
-        RenderSettings settings;
-        settings.width = kWidth;
-        settings.height = kHeight;
-        settings.samples = samples;
-        settings.shadingRate = rate;
-        const Camera camera = firstCameraOrDefault(scene);
-        const Frame reference = renderOnce(scene, camera, settings, 1, std::nullopt);
-        ASSERT_TRUE(hasVisiblePixels(reference));
-        expectSameFrame(renderOnce(scene, camera, settings, 3, std::nullopt), reference);
-        for (Isa isa : supportedIsas()) {
-          SCOPED_TRACE(isaName(isa));
-          expectSameFrame(renderOnce(scene, camera, settings, 2, isa), reference);
-        }
-      }
+// One test per scene and sample count, so ctest spreads them over the cores;
+// half the other tests' size still leaves partial tiles on both edges and
+// more tiles than threads, which is all the contract depends on (96 s under
+// ASan at full size in one test, the whole cross product kept).
+struct SampleCase {
+  std::string scene;
+  int samples;
+};
+
+// What GoogleTest prints for a failing instance (its bytes otherwise).
+void PrintTo(const SampleCase& sampleCase, std::ostream* out) {
+  *out << sampleCase.scene << ", " << sampleCase.samples << " samples";
+}
+
+class EverySampleCount : public ::testing::TestWithParam<SampleCase> {};
+
+TEST_P(EverySampleCount, IsIdenticalAcrossThreadsAndIsas) {
+  const Scene scene = makeBuiltinScene(GetParam().scene);
+  for (const ShadingRate rate : {ShadingRate::Pixel, ShadingRate::Sample}) {
+    SCOPED_TRACE(rate == ShadingRate::Sample ? "per sample" : "per pixel");
+    RenderSettings settings;
+    settings.width = kWidth / 2;
+    settings.height = kHeight / 2;
+    settings.samples = GetParam().samples;
+    settings.shadingRate = rate;
+    const Camera camera = firstCameraOrDefault(scene);
+    const Frame reference = renderOnce(scene, camera, settings, 1, std::nullopt);
+    ASSERT_TRUE(hasVisiblePixels(reference));
+    expectSameFrame(renderOnce(scene, camera, settings, 3, std::nullopt), reference);
+    for (Isa isa : supportedIsas()) {
+      SCOPED_TRACE(isaName(isa));
+      expectSameFrame(renderOnce(scene, camera, settings, 2, isa), reference);
     }
   }
 }
+
+std::vector<SampleCase> everySceneAndSampleCount() {
+  std::vector<SampleCase> cases;
+  for (const std::string scene : {"showcase", "alpha-quads"})
+    for (const int samples : {2, 4, 8, 16}) cases.push_back({scene, samples});
+  return cases;
+}
+
+std::string sampleCaseName(const ::testing::TestParamInfo<SampleCase>& info) {
+  return asTestName(info.param.scene + "_" + std::to_string(info.param.samples) + "_samples");
+}
+
+INSTANTIATE_TEST_SUITE_P(Determinism, EverySampleCount,
+                         ::testing::ValuesIn(everySceneAndSampleCount()), sampleCaseName);
 
 // Depth is resolved only when asked; the colour does not depend on it, and
 // an EXR (whose Z channel needs it) refuses a depthless frame by name.
@@ -231,41 +264,51 @@ TEST(Determinism, FrameWithoutDepthHasTheSameColour) {
 // pixels packed into lanes) or forward; both run one colour function on the
 // same planes, so every pixel must come out the same bits, on every path,
 // however the pixels were packed.
-TEST(Determinism, TwoPassShadingWritesWhatForwardShadingWrites) {
-  std::vector<std::pair<std::string, Scene>> scenes;
-  for (const std::string name : {"showcase", "checker-plane", "alpha-quads", "random-triangles",
-                                 "near-plane", "subpixel-plane"})
-    scenes.emplace_back(name, makeBuiltinScene(name));
-  // Real models: many draws per tile, masked and blended materials.
-  for (const std::string model :
-       {"MetalRoughSpheresNoTextures", "GlassVaseFlowers", "AlphaBlendModeTest"}) {
+class TwoPassShading : public ::testing::TestWithParam<std::string> {};
+
+// Real models: many draws per tile, masked and blended materials.
+const std::vector<std::string> kTwoPassModels = {"MetalRoughSpheresNoTextures", "GlassVaseFlowers",
+                                                 "AlphaBlendModeTest"};
+
+TEST_P(TwoPassShading, WritesWhatForwardShadingWrites) {
+  const std::string& name = GetParam();
+  Scene scene;
+  if (std::find(kTwoPassModels.begin(), kTwoPassModels.end(), name) == kTwoPassModels.end()) {
+    scene = makeBuiltinScene(name);
+  } else {
     const std::filesystem::path path =
-        std::filesystem::path(QUADRA_ASSETS_DIR) / model / "glTF" / (model + ".gltf");
-    if (std::filesystem::exists(path)) scenes.emplace_back(model, loadGltf(path.string()));
+        std::filesystem::path(QUADRA_ASSETS_DIR) / name / "glTF" / (name + ".gltf");
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << "sample model absent: " << path;
+    scene = loadGltf(path.string());
   }
-  int compared = 0;
-  for (const auto& [name, scene] : scenes) {
-    for (const Shading shading : {Shading::Unlit, Shading::Lit}) {
-      for (const Isa isa : supportedIsas()) {
-        SCOPED_TRACE(name + (shading == Shading::Lit ? " lit " : " unlit ") + isaName(isa));
-        RenderSettings settings;
-        settings.width = kWidth;
-        settings.height = kHeight;
-        settings.shading = shading;
-        settings.filter = Filter::Anisotropic;
-        FrameStats twoPassStats;
-        const Frame twoPass =
-            renderOnce(scene, firstCameraOrDefault(scene), settings, 2, isa, &twoPassStats);
-        ASSERT_TRUE(hasVisiblePixels(twoPass));
-        EXPECT_GT(twoPassStats.stages.shade, 0.0);  // the shading pass ran
-        settings.opaqueShading = OpaqueShading::Forward;
-        expectSameFrame(renderOnce(scene, firstCameraOrDefault(scene), settings, 2, isa), twoPass);
-        ++compared;
-      }
+  for (const Shading shading : {Shading::Unlit, Shading::Lit}) {
+    for (const Isa isa : supportedIsas()) {
+      SCOPED_TRACE(std::string(shading == Shading::Lit ? "lit " : "unlit ") + isaName(isa));
+      RenderSettings settings;
+      settings.width = kWidth;
+      settings.height = kHeight;
+      settings.shading = shading;
+      settings.filter = Filter::Anisotropic;
+      FrameStats twoPassStats;
+      const Frame twoPass =
+          renderOnce(scene, firstCameraOrDefault(scene), settings, 2, isa, &twoPassStats);
+      ASSERT_TRUE(hasVisiblePixels(twoPass));
+      EXPECT_GT(twoPassStats.stages.shade, 0.0);  // the shading pass ran
+      settings.opaqueShading = OpaqueShading::Forward;
+      expectSameFrame(renderOnce(scene, firstCameraOrDefault(scene), settings, 2, isa), twoPass);
     }
   }
-  EXPECT_GT(compared, 0);
 }
+
+std::vector<std::string> twoPassScenes() {
+  std::vector<std::string> names = {"showcase",         "checker-plane", "alpha-quads",
+                                    "random-triangles", "near-plane",    "subpixel-plane"};
+  names.insert(names.end(), kTwoPassModels.begin(), kTwoPassModels.end());
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Determinism, TwoPassShading, ::testing::ValuesIn(twoPassScenes()),
+                         sceneTestName);
 
 }  // namespace
 }  // namespace quadra
