@@ -20,7 +20,6 @@
 #include "scene/scene.h"
 #include "simd/isa.h"
 #include "texture/sampler_state.h"
-#include "tile/pixel_filter.h"
 #include "window/sample_pattern.h"
 #include "window/window_space.h"
 

@@ -25,12 +25,6 @@
 
 namespace quadra {
 
-// How a frame's samples become its pixels (api/renderer.h RenderSettings).
-enum class PixelFilter : std::uint8_t {
-  Box,             // each pixel the mean of its own samples
-  BlackmanHarris,  // radius 2 px, across tile borders (this file's opening comment)
-};
-
 constexpr int kPixelFilterRadius = 2;                         // pixels
 constexpr int kPixelFilterTaps = 2 * kPixelFilterRadius + 1;  // source pixels a row
 
