@@ -8,9 +8,11 @@
 // tile's sum, then its neighbours' ring sums in tile order. Within a tile, the
 // pixels whose samples all agree are summed first, 25 taps in row order with
 // the pixel weight (one read instead of N), then each pixel whose samples
-// differ adds its samples' weighted sum, pixels in row order. Which pixels
-// agree is a property of the samples, not of the tile or the thread, so the
-// frame is bit-identical for every thread count and ISA path (this file is
+// differ adds its samples' weighted sum, pixels in the tile's storage order.
+// Which pixels differ is a property of each pixel's samples (their colours
+// and coverage, or with shading per pixel, whether several triangles hold
+// them), not of the thread, so the frame is bit-identical for every thread
+// count and ISA path (this file is
 // compiled once, without ISA flags); a pixel whose footprint straddles a tile
 // border differs from one that does not only by the grouping of its sum
 // (float rounding, ~1e-7 relative).
@@ -92,24 +94,28 @@ int ringIndex(int lx, int ly) {
 static_assert(2 * kRadius * kSumsStride + 2 * kTileSize * kRadius == kBorderRingPixels);
 
 // The tile's sources, row-major and zero-padded; the pixels whose samples
-// differ are left at zero in them and listed in scratch.mixed.
+// differ are left at zero in them and listed in scratch.mixed. Visited in
+// storage order, which reads each plane's cache lines once.
 void gatherSources(const TileRect& rect, const PixelFilterFrame& filter, const TileBuffers* planes,
-                   PixelFilterScratch& scratch) {
+                   const std::uint32_t* sampleDiffers, PixelFilterScratch& scratch) {
   const int channels = filter.channels(), samples = filter.weights.samples;
   scratch.source.assign(std::size_t(channels) * kSourcePlane, 0.0f);
   scratch.mixed.clear();
-  for (int y = 0; y < rect.height; ++y)
-    for (int x = 0; x < rect.width; ++x) {
-      const int pixel = TileBuffers::index(x, y);
-      if (samples > 1 && samplesDiffer(planes, samples, channels, pixel, filter.clearDepth)) {
-        scratch.mixed.push_back(std::uint16_t(pixel));
-        continue;
-      }
-      float* const at =
-          &scratch.source[std::size_t((y + kSourcePad) * kSourceStride + x + kSourcePad)];
-      for (int c = 0; c < channels; ++c)
-        at[std::size_t(c) * kSourcePlane] = sampleValue(planes[0], c, pixel, filter.clearDepth);
+  for (int pixel = 0; pixel < TileBuffers::kPixels; ++pixel) {
+    const int x = TileBuffers::xAt(pixel), y = TileBuffers::yAt(pixel);
+    if (x >= rect.width || y >= rect.height) continue;
+    const bool mixed = samples > 1 && (sampleDiffers ? sampleDiffers[pixel] != 0
+                                                     : samplesDiffer(planes, samples, channels,
+                                                                     pixel, filter.clearDepth));
+    if (mixed) {
+      scratch.mixed.push_back(std::uint16_t(pixel));
+      continue;
     }
+    float* const at =
+        &scratch.source[std::size_t((y + kSourcePad) * kSourceStride + x + kSourcePad)];
+    for (int c = 0; c < channels; ++c)
+      at[std::size_t(c) * kSourcePlane] = sampleValue(planes[0], c, pixel, filter.clearDepth);
+  }
 }
 
 // Four floats as one SSE2 register (the baseline every x86-64 has), with
@@ -229,10 +235,11 @@ float PixelFilterWeights::weightSum(int x, int y, int width, int height) const {
 }
 
 void filterTileSamples(int tileIndex, const PixelFilterFrame& filter, TileBuffers* planes,
-                       PixelFilterScratch& scratch, Frame& out) {
+                       const std::uint32_t* sampleDiffers, PixelFilterScratch& scratch,
+                       Frame& out) {
   const TileRect rect = tileRect(tileIndex, filter.tilesX, out);
   const int channels = filter.channels();
-  gatherSources(rect, filter, planes, scratch);
+  gatherSources(rect, filter, planes, sampleDiffers, scratch);
   sumAgreeingPixels(filter.weights, channels, scratch);
   addMixedPixels(filter, planes, scratch);
   // The sums out: finished, partial, or to the ring.

@@ -74,9 +74,12 @@ struct PixelFilterFrame {
 // pixels whose whole footprint lies in the tile (or off the image) get their
 // final colour in planes[0]; the others within 2 px of a shared tile border
 // get this tile's partial weighted sum there (and in Frame::coverage), and
-// the sums for the neighbours' pixels go to the tile's ring.
+// the sums for the neighbours' pixels go to the tile's ring. sampleDiffers:
+// per pixel, non-zero where its samples may differ, the others holding their
+// colour in planes[0] alone (shading per pixel); null: every plane holds
+// every sample, compared here.
 void filterTileSamples(int tileIndex, const PixelFilterFrame& filter, TileBuffers* planes,
-                       PixelFilterScratch& scratch, Frame& out);
+                       const std::uint32_t* sampleDiffers, PixelFilterScratch& scratch, Frame& out);
 
 // Second pass, one tile, after every tile's first pass: its pixels near a
 // shared border finished from its own partial sums and the neighbours' rings,

@@ -431,10 +431,9 @@ void nearestSampleDepth(const TileFrame& frame, TileScratch& s) {
 void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out) {
   const int samples = frame.samples.count;
   if (s.pixelFilter) {
-    // The filter reads every sample's colour, which shading per pixel left
-    // in plane 0 alone where a pixel's samples agree.
-    if (samples > 1 && !s.allMixed) fillSamplePlanes(frame, s);
-    filterTileSamples(tileIndex, *s.pixelFilter, s.planes.get(), s.filter, out);
+    const bool perPixel = samples > 1 && !s.allMixed;  // shadePixels' sampleDiffers holds
+    filterTileSamples(tileIndex, *s.pixelFilter, s.planes.get(),
+                      perPixel ? s.sampleDiffers.data() : nullptr, s.filter, out);
   } else {
     if (frame.coverage) boxCoverage(s.planes.get(), samples, frame.clearDepth, out);
     if (samples > 1) averageSamples(frame, s);
