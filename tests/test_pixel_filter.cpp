@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "api/renderer.h"
@@ -28,7 +29,6 @@ struct ColouredTriangle {
 
 // One unlit mesh with a colour per triangle, drawn in order at one depth.
 Scene flatScene(const std::vector<ColouredTriangle>& triangles) {
-  Scene scene;
   Mesh mesh;
   for (const ColouredTriangle& t : triangles)
     for (const glm::dvec2& p : t.at) {
@@ -36,13 +36,7 @@ Scene flatScene(const std::vector<ColouredTriangle>& triangles) {
       mesh.positions.push_back(worldFromWindow(p.x, p.y));
       mesh.colors.push_back(t.colour);
     }
-  mesh.material = 0;
-  Material material;
-  material.doubleSided = true;
-  scene.materials.push_back(material);
-  scene.meshes.push_back(mesh);
-  scene.instances.push_back(Instance{});
-  return scene;
+  return doubleSidedMeshScene(std::move(mesh));
 }
 
 // Per sample (pixel-major), the colour of the first triangle to hold it
