@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "api/renderer.h"
@@ -16,6 +17,19 @@ inline std::vector<Isa> supportedIsas() {
   for (Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512})
     if (isaSupported(isa)) isas.push_back(isa);
   return isas;
+}
+
+// A scene of one double-sided mesh (material 0) placed once, as the tests
+// that build their triangles by hand draw them.
+inline Scene doubleSidedMeshScene(Mesh mesh) {
+  Scene scene;
+  mesh.material = 0;
+  Material material;
+  material.doubleSided = true;
+  scene.materials.push_back(material);
+  scene.meshes.push_back(std::move(mesh));
+  scene.instances.push_back(Instance{});
+  return scene;
 }
 
 inline Frame renderOnce(const Scene& scene, const Camera& camera, const RenderSettings& settings,

@@ -80,6 +80,10 @@ TEST(Cli, BadOptionsAreOneLineErrorsAndWriteNothing) {
       "--texture-format");
   expectOneLineError(run("render builtin:checker-plane --depth inverted --out " + out.string()),
                      "--depth");
+  expectOneLineError(
+      run("render builtin:checker-plane --pixel-filter gaussian --out " + out.string()),
+      "--pixel-filter");
+  expectOneLineError(run("render builtin:checker-plane --aov mask,N --out " + out.string()), "'N'");
   EXPECT_FALSE(fs::exists(out));
 }
 

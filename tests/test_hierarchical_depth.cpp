@@ -11,6 +11,7 @@
 #include <cmath>
 #include <random>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "lab/reference/reference_raster.h"
@@ -30,7 +31,6 @@ struct Layer {
 };
 
 Scene sceneOf(const std::vector<Layer>& layers) {
-  Scene scene;
   Mesh mesh;
   for (const Layer& layer : layers)
     for (int k = 0; k < 3; ++k) {
@@ -39,13 +39,7 @@ Scene sceneOf(const std::vector<Layer>& layers) {
       world.z = layer.worldZ[k];
       mesh.positions.push_back(world);
     }
-  mesh.material = 0;
-  Material material;
-  material.doubleSided = true;
-  scene.materials.push_back(material);
-  scene.meshes.push_back(mesh);
-  scene.instances.push_back(Instance{});
-  return scene;
+  return doubleSidedMeshScene(std::move(mesh));
 }
 
 // 48 even depth levels hold constant-depth triangles (several per level, so

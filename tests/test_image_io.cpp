@@ -213,6 +213,31 @@ ExrPlanes readExrDirectly(const std::string& path) {
   return out;
 }
 
+// The coverage goes out as one more FLOAT channel, "mask", bit for bit.
+TEST_F(ImageFiles, ExrRoundTripKeepsTheCoverageAsMask) {
+  Frame frame = randomFrame(37, 23, 2);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  frame.coverage.resize(frame.depth.size());
+  for (float& v : frame.coverage) v = unit(rng);
+  frame.coverage[0] = 0.0f, frame.coverage[1] = 1.0f;
+  const std::string path = file("mask.exr");
+  writeExr(frame, path);
+  Imf::InputFile in(path.c_str());
+  std::vector<std::string> names;
+  for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+    names.push_back(it.name());
+  EXPECT_EQ(names, (std::vector<std::string>{"A", "B", "G", "R", "Z", "mask"}));
+  std::vector<float> mask(frame.coverage.size(), -1.0f);
+  Imf::FrameBuffer buffer;
+  buffer.insert("mask", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(mask.data()), sizeof(float),
+                                   sizeof(float) * std::size_t(frame.width)));
+  in.setFrameBuffer(buffer);
+  in.readPixels(0, frame.height - 1);
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    ASSERT_EQ(floatBits(mask[i]), floatBits(frame.coverage[i])) << i;
+}
+
 TEST_F(ImageFiles, ExrRoundTripIsBitExactIncludingDepth) {
   Frame frame = randomFrame(37, 23, 1);
   frame.rgba[5] = 1e-40f;  // a denormal must survive too

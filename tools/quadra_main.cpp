@@ -56,8 +56,15 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --opaque-shading two-pass|forward
                          opaque draws: visibility pass then shading of the visible pixels
                          (default), or shaded as rasterized; the same image either way
-  --samples N            coverage and depth samples per pixel: 1, 2, 4, 8 or 16 (default 1),
-                         resolved with the pixel box filter
+  --samples N            coverage and depth samples per pixel: 1, 2, 4, 8 or 16 (default 1)
+  --pixel-filter box|blackman-harris
+                         how the samples become pixels: each pixel's own samples averaged
+                         (default), or every sample within 2 px of the pixel's centre
+                         weighted by a Blackman-Harris window (4 px wide; at 1 sample a
+                         blur of the pixel centres)
+  --aov mask             also write the EXR channel "mask": the fraction of the pixel's
+                         samples an opaque or masked triangle covers, filtered as the colour
+                         (PNG outputs ignore it; mask is the only AOV so far)
   --shading-rate pixel|sample
                          with --samples: shade once per pixel and visible triangle
                          (default, multisampling) or every sample (supersampling)
@@ -120,6 +127,16 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--shading-rate", "shading rate",
                  {{"pixel", ShadingRate::Pixel}, {"sample", ShadingRate::Sample}},
                  cmd.settings.shadingRate);
+  options.choice("--pixel-filter", "pixel filter",
+                 {{"box", PixelFilter::Box}, {"blackman-harris", PixelFilter::BlackmanHarris}},
+                 cmd.settings.pixelFilter);
+  options.value("--aov", [&cmd](const std::string& option, const std::string& value) {
+    for (const std::string& name : splitList(option, value)) {
+      if (name != kCoverageChannel)
+        throw Error(option + ": '" + name + "' is not an output quadra writes (only: mask)");
+      cmd.settings.frameCoverage = true;
+    }
+  });
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "api/camera.h"
@@ -281,6 +282,10 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   const std::size_t pixels = std::size_t(out.width) * std::size_t(out.height);
   resizeLarge(out.rgba, pixels * 4, 0.0f, &executor);
   resizeLarge(out.depth, settings.frameDepth ? pixels : 0, 0.0f, &executor);
+  resizeLarge(out.coverage, settings.frameCoverage ? pixels : 0, 0.0f, &executor);
+  std::optional<PixelFilterWeights> pixelFilter;
+  if (settings.pixelFilter == PixelFilter::BlackmanHarris)
+    pixelFilter = PixelFilterWeights::blackmanHarris(samples);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
   const TileFrame tileFrame{grid,
                             draws,
@@ -290,7 +295,9 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                             clearDepth,
                             settings.depth == DepthMode::Reversed,
                             samples,
-                            settings.shadingRate == ShadingRate::Sample};
+                            settings.shadingRate == ShadingRate::Sample,
+                            pixelFilter ? &*pixelFilter : nullptr,
+                            settings.frameCoverage};
   renderTiles(tileFrame, executor, out, impl_->tileTimes);
   const double tilesDone = stageClockMs();
 

@@ -74,14 +74,18 @@ struct RenderSettings {
   DerivativeMode derivatives = DerivativeMode::Analytic;
   OpaqueShading opaqueShading = OpaqueShading::TwoPass;
   // Coverage and depth samples per pixel: 1, 2, 4, 8 or 16, at the
-  // positions of window/sample_pattern.h. The frame is their pixel box
-  // filter (equal weights, premultiplied linear); its depth the nearest
-  // sample's.
+  // positions of window/sample_pattern.h. The frame is their pixelFilter
+  // (premultiplied linear); its depth the nearest sample's.
   int samples = 1;
   ShadingRate shadingRate = ShadingRate::Pixel;  // window/sample_pattern.h
+  // Box: each pixel the mean of its own samples. BlackmanHarris: every sample
+  // within 2 px of the pixel's centre, weighted (tile/pixel_filter.h).
+  PixelFilter pixelFilter = PixelFilter::Box;
   // Fill Frame::depth (the EXR Z channel); off, the frame's depth stays empty
   // and resolve writes a fifth less memory.
   bool frameDepth = true;
+  // Fill Frame::coverage (the EXR mask channel), filtered by pixelFilter.
+  bool frameCoverage = false;
 };
 
 // Where a frame's time went, in ms of wall time. Setup and bin run in one

@@ -1,6 +1,6 @@
 // Frame: a rendered image in memory, what the tile stage resolves its tiles
-// into and the writers (io/image_io.h) read: premultiplied linear RGBA float
-// and window-space depth in [0,1].
+// into and the writers (io/image_io.h) read: premultiplied linear RGBA float,
+// window-space depth in [0,1] and, when asked for, coverage.
 #pragma once
 
 #include <vector>
@@ -14,6 +14,10 @@ struct Frame {
   // width * height, or empty when the render was asked for none
   // (RenderSettings::frameDepth); 1 = far plane / nothing drawn.
   std::vector<float> depth;
+  // width * height, or empty when the render was asked for none
+  // (RenderSettings::frameCoverage): the fraction of the pixel's samples that
+  // a depth-writing (opaque or masked) triangle holds, filtered as the colour is.
+  std::vector<float> coverage;
 };
 
 }  // namespace quadra

@@ -110,6 +110,9 @@ void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
   if (needsDepth && frame.depth.size() != pixels) {
     throw makeError(path, "frame depth buffer does not match its size");
   }
+  if (!frame.coverage.empty() && frame.coverage.size() != pixels) {
+    throw makeError(path, "frame coverage buffer does not match its size");
+  }
 }
 
 // ---- EXR --------------------------------------------------------------------
@@ -120,6 +123,7 @@ void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string
   for (const char* channel : {"R", "G", "B", "A", "Z"}) {
     header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
   }
+  if (!frame.coverage.empty()) header.channels().insert(kCoverageChannel, Imf::Channel(Imf::FLOAT));
   const Imath::V2i origin(0, 0);
   const std::size_t rgbaRow = std::size_t(frame.width) * 4 * sizeof(float);
   Imf::FrameBuffer buffer;
@@ -129,9 +133,13 @@ void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string
                   Imf::Slice::Make(Imf::FLOAT, frame.rgba.data() + c, origin, frame.width,
                                    frame.height, 4 * sizeof(float), rgbaRow));
   }
-  buffer.insert("Z",
-                Imf::Slice::Make(Imf::FLOAT, frame.depth.data(), origin, frame.width, frame.height,
-                                 sizeof(float), std::size_t(frame.width) * sizeof(float)));
+  const std::size_t planeRow = std::size_t(frame.width) * sizeof(float);
+  buffer.insert("Z", Imf::Slice::Make(Imf::FLOAT, frame.depth.data(), origin, frame.width,
+                                      frame.height, sizeof(float), planeRow));
+  if (!frame.coverage.empty())
+    buffer.insert(kCoverageChannel,
+                  Imf::Slice::Make(Imf::FLOAT, frame.coverage.data(), origin, frame.width,
+                                   frame.height, sizeof(float), planeRow));
   Imf::StdOFStream exrStream(stream, name.c_str());
   // The OutputFile's destructor writes the scanline offset table; it swallows
   // errors there, which the caller detects from the stream's state afterwards.

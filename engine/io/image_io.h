@@ -1,4 +1,5 @@
-// Image files in and out: EXR (linear float, with Z) and PNG (sRGB 8-bit).
+// Image files in and out: EXR (linear float, with Z and optionally coverage)
+// and PNG (sRGB 8-bit).
 // Writers never leave a partial file under the requested name: they write a
 // temporary beside it and rename on success.
 #pragma once
@@ -14,8 +15,12 @@ namespace quadra {
 
 class Executor;
 
-// EXR with half-free FLOAT channels R, G, B, A (premultiplied linear) and Z.
-// Throws Error("<path>: <problem>") on failure.
+// The EXR channel of Frame::coverage; the name the --aov list uses for it.
+constexpr const char* kCoverageChannel = "mask";
+
+// EXR with half-free FLOAT channels R, G, B, A (premultiplied linear) and Z,
+// and the coverage as kCoverageChannel when the frame has it (a PNG has no
+// place for it). Throws Error("<path>: <problem>") on failure.
 void writeExr(const Frame& frame, const std::string& path);
 // PNG, 8-bit sRGB RGBA (colour un-premultiplied before encoding), encoded
 // and compressed in bands of rows in parallel on `executor` when one is

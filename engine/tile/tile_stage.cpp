@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <utility>
 
 #include "core/error.h"
@@ -53,6 +54,10 @@ struct TileScratch {
   std::vector<float> jobColor;
   std::vector<std::uint32_t> runJobs;
   BlendedFragments blended;  // the forward "over" draws' fragments, per sample
+  // A wide pixel filter's frame (renderTiles) and working memory
+  // (tile/pixel_filter.h); null with the box filter.
+  const PixelFilterFrame* pixelFilter = nullptr;
+  PixelFilterScratch filter;
 };
 
 // How far ahead the visibility pass fetches triangle records and planes.
@@ -382,7 +387,7 @@ void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch
 
 // The samples' pixel box filter into plane 0: colour the mean of the
 // samples, summed pairwise (so samples of one colour average to exactly that
-// colour, and a pixel only plane 0 holds needs no sum), depth the nearest.
+// colour, and a pixel only plane 0 holds needs no sum).
 void averageSamples(const TileFrame& frame, TileScratch& s) {
   const int samples = frame.samples.count;
   TileBuffers* const planes = s.planes.get();
@@ -407,7 +412,13 @@ void averageSamples(const TileFrame& frame, TileScratch& s) {
         planes[0].color[c][p] = value[0] * weight;
       }
   }
-  float* const nearest = planes[0].depth;
+}
+
+// Every filter's depth: the pixel's nearest sample's, into plane 0.
+void nearestSampleDepth(const TileFrame& frame, TileScratch& s) {
+  const TileBuffers* const planes = s.planes.get();
+  const int samples = frame.samples.count;
+  float* const nearest = s.planes[0].depth;
   for (int k = 1; k < samples; ++k) {
     const float* depth = planes[k].depth;
     if (frame.depthGreater)
@@ -473,6 +484,22 @@ void forwardDraws(const TileFrame& frame, TileScratch& s) {
   if (ordered && !s.blended.empty()) s.blended.composite(s.planes.get());
 }
 
+// The samples into plane 0 (colour and depth) and Frame::coverage, by the
+// frame's pixel filter; a wide filter's pixels near a shared tile border are
+// finished after every tile (renderTiles).
+void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out) {
+  const int samples = frame.samples.count;
+  if (s.pixelFilter) {
+    const bool perPixel = samples > 1 && !s.allMixed;  // shadePixels' sampleDiffers holds
+    filterTileSamples(tileIndex, *s.pixelFilter, s.planes.get(),
+                      perPixel ? s.sampleDiffers.data() : nullptr, s.filter, out);
+  } else {
+    if (frame.coverage) boxCoverage(s.planes.get(), samples, frame.clearDepth, out);
+    if (samples > 1) averageSamples(frame, s);
+  }
+  if (samples > 1) nearestSampleDepth(frame, s);
+}
+
 void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out,
                 TileTimes& times) {
   const double start = stageClockMs();
@@ -495,7 +522,7 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
   if (samples > 1 && !s.allMixed && !s.forward.empty()) fillSamplePlanes(frame, s);
   forwardDraws(frame, s);
   const double rastered = stageClockMs();
-  if (samples > 1) averageSamples(frame, s);
+  resolveSamples(tileIndex, frame, s, out);
   resolveTile(s.planes[0], out);
   times.raster = (visible - start) + (rastered - shaded);
   times.shade = shaded - visible;
@@ -523,11 +550,30 @@ void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
   }
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
+  // A wide pixel filter's rings: per tile, its sums for the pixels of its
+  // neighbours (tile/pixel_filter.h), read by the second pass.
+  std::unique_ptr<float[]> rings;
+  std::optional<PixelFilterFrame> filter;
+  if (frame.pixelFilter) {
+    filter.emplace(PixelFilterFrame{*frame.pixelFilter, frame.grid.tilesX, frame.grid.tilesY,
+                                    frame.clearDepth, frame.coverage, nullptr});
+    rings.reset(new float[tiles * kBorderRingPixels * std::size_t(filter->channels())]);
+    filter->borderRings = rings.get();
+  }
   executor.parallelFor(tiles, 1, [&](std::size_t begin, std::size_t end) {
     const auto scratch = std::make_unique<TileScratch>(frame.samples.count);
+    scratch->pixelFilter = filter ? &*filter : nullptr;
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t t = order[i].second;
       renderTile(int(t), frame, *scratch, out, times[t]);
+    }
+  });
+  if (!filter) return;
+  executor.parallelFor(tiles, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t) {
+      const double start = stageClockMs();
+      finishTileBorders(int(t), *filter, out);
+      times[t].resolve += stageClockMs() - start;
     }
   });
 }

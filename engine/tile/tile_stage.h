@@ -10,6 +10,7 @@
 #include "bin/bins.h"
 #include "io/frame.h"
 #include "setup/triangle_setup.h"
+#include "tile/pixel_filter.h"
 #include "tile/tile_kernel.h"
 #include "vertex/draw.h"
 #include "window/sample_pattern.h"
@@ -44,6 +45,10 @@ struct TileFrame {
   // sample is shaded, else each pixel's visible triangles once.
   const SamplePattern& samples;
   bool shadeSamples;
+  // The samples' reconstruction filter: null for the pixel box filter, else
+  // tile/pixel_filter.h's weights for these samples.
+  const PixelFilterWeights* pixelFilter = nullptr;
+  bool coverage = false;  // fill Frame::coverage
 };
 
 // times: resized to the tile count, one entry per tile.

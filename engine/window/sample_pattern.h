@@ -36,6 +36,14 @@ struct SamplePattern {
 // sample filters for the sample spacing (footprints scaled by 1/sqrt(samples)).
 enum class ShadingRate : std::uint8_t { Pixel, Sample };
 
+// How a frame's samples become its pixels (api/renderer.h RenderSettings).
+enum class PixelFilter : std::uint8_t {
+  Box,  // each pixel the mean of its own samples
+  // Every sample within 2 px of the pixel's centre, weighted by a
+  // Blackman–Harris window, across tile borders (tile/pixel_filter.h).
+  BlackmanHarris,
+};
+
 // Whether N is a sample count the engine renders: 1, 2, 4, 8 or 16.
 constexpr bool isSampleCount(int n) {
   return n == 1 || n == 2 || n == 4 || n == 8 || n == 16;
