@@ -4,6 +4,7 @@
 #include "texture/mip_chain.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "core/error.h"
@@ -99,17 +100,105 @@ Image downsampleBox(const Image& src, int dstW, int dstH, const Executor* execut
   return dst;
 }
 
-MipChain::MipChain(const Image& level0, const Executor* executor) : level0_(&level0) {
+namespace {
+
+// Coverage is measured as Castaño measures it: on the bilinear reconstruction
+// of alpha, at n x n points per texel, so a stroke thinner than a texel covers
+// the fraction of the area it should (counting whole texels, a one-texel
+// line on level 1 covers twice its level-0 share and can only be kept or
+// dropped whole). n is 4 while that stays within 2^22 points (a 512² level),
+// then 2, then 1 (the texel count, fine enough for levels that large); edges
+// clamp. The values are sorted once, so coverage at any threshold is a
+// binary search.
+std::vector<float> sortedCoverageSamples(const Image& level) {
+  const std::size_t texels = std::size_t(level.width) * std::size_t(level.height);
+  const int n = texels * 16 <= (std::size_t(1) << 22)  ? 4
+                : texels * 4 <= (std::size_t(1) << 22) ? 2
+                                                       : 1;
+  std::vector<float> samples;
+  samples.reserve(texels * std::size_t(n * n));
+  const auto alpha = [&](int x, int y) {
+    return double(
+        level.texel(std::clamp(x, 0, level.width - 1), std::clamp(y, 0, level.height - 1))[3]);
+  };
+  for (int y = 0; y < level.height; ++y)
+    for (int x = 0; x < level.width; ++x)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          // Texel space with texel centres at integers: x + (i + 0.5) / n - 0.5.
+          const double sx = x + (i + 0.5) / n - 0.5, sy = y + (j + 0.5) / n - 0.5;
+          const double fx0 = std::floor(sx), fy0 = std::floor(sy);
+          const int x0 = int(fx0), y0 = int(fy0);
+          const double fx = sx - fx0, fy = sy - fy0;
+          const double top = (1 - fx) * alpha(x0, y0) + fx * alpha(x0 + 1, y0);
+          const double bottom = (1 - fx) * alpha(x0, y0 + 1) + fx * alpha(x0 + 1, y0 + 1);
+          samples.push_back(float((1 - fy) * top + fy * bottom));
+        }
+  std::sort(samples.begin(), samples.end());
+  return samples;
+}
+
+// The fraction of the samples at or above `threshold`.
+double fractionAtLeast(const std::vector<float>& sorted, double threshold) {
+  const auto first = std::lower_bound(sorted.begin(), sorted.end(), threshold,
+                                      [](float value, double t) { return double(value) < t; });
+  return double(sorted.end() - first) / double(sorted.size());
+}
+
+}  // namespace
+
+double alphaCoverage(const Image& image, float cutoff) {
+  return fractionAtLeast(sortedCoverageSamples(image), cutoff);
+}
+
+void scaleAlphaToCoverage(Image& level, float cutoff, double coverage) {
+  if (!(cutoff > 0.0f && cutoff <= 1.0f)) return;
+  const std::vector<float> samples = sortedCoverageSamples(level);
+  const auto coverageAt = [&](double scale) { return fractionAtLeast(samples, cutoff / scale); };
+  const auto positive = std::upper_bound(samples.begin(), samples.end(), 0.0f);
+  if (positive == samples.end()) return;  // nothing to scale up
+  // At `high` every sample above 0 passes: no larger scale covers more.
+  double low = 0.0, high = std::max(1.0, double(cutoff) / double(*positive));
+  // 40 halvings bring the interval below 2^-40 of `high`, finer than any
+  // float alpha step, so the two ends differ by at most the samples at one
+  // value. Scaling a sample's texels scales it (the clamp at 1 aside).
+  for (int step = 0; step < 40; ++step) {
+    const double middle = 0.5 * (low + high);
+    (coverageAt(middle) < coverage ? low : high) = middle;
+  }
+  const double scale =
+      std::abs(coverageAt(low) - coverage) < std::abs(coverageAt(high) - coverage) ? low : high;
+  for (std::size_t i = 0; i < level.rgba.size(); i += 4) {
+    const float alpha = level.rgba[i + 3];
+    if (!(alpha > 0.0f)) continue;
+    const float scaled = float(std::min(1.0, double(alpha) * scale));
+    const double factor = double(scaled) / double(alpha);
+    for (int c = 0; c < 3; ++c) level.rgba[i + c] = float(double(level.rgba[i + c]) * factor);
+    level.rgba[i + 3] = scaled;
+  }
+}
+
+MipChain::MipChain(const Image& level0, const Executor* executor,
+                   std::optional<float> coverageCutoff)
+    : level0_(&level0) {
   int w = level0.width;
   int h = level0.height;
   if (w <= 0 || h <= 0) return;
+  const double coverage0 = coverageCutoff ? alphaCoverage(level0, *coverageCutoff) : 0.0;
+  // With a cutoff, each level is reduced from the previous one before its
+  // alpha scale, so scales do not compound down the chain (as NVTT does).
+  Image unscaled;
   // floor(floor(w / 2^l) / 2) == floor(w / 2^(l+1)), so halving the previous
   // level's size gives exactly the header's per-level formula.
   while (w > 1 || h > 1) {
     w = std::max(1, w / 2);
     h = std::max(1, h / 2);
-    const Image& previous = levels_.empty() ? level0 : levels_.back();
+    const Image& previous = levels_.empty() ? level0 : coverageCutoff ? unscaled : levels_.back();
     Image next = downsampleBox(previous, w, h, executor);
+    if (coverageCutoff) {
+      unscaled = next;
+      scaleAlphaToCoverage(next, *coverageCutoff, coverage0);
+    }
     levels_.push_back(std::move(next));
   }
 }
