@@ -106,63 +106,78 @@ namespace {
 // of alpha, at n x n points per texel, so a stroke thinner than a texel covers
 // the fraction of the area it should (counting whole texels, a one-texel
 // line on level 1 covers twice its level-0 share and can only be kept or
-// dropped whole). n is 4 while that stays within 2^22 points (a 512² level),
-// then 2, then 1 (the texel count, fine enough for levels that large); edges
-// clamp. The values are sorted once, so coverage at any threshold is a
-// binary search.
-std::vector<float> sortedCoverageSamples(const Image& level) {
+// dropped whole). n is 4 while that stays within 2^18 points (a 128² level),
+// then 2, then 1 (the texel count, fine enough for levels that large), which
+// keeps the rescale of a 1024² MASK texture's chain near 30 ms; edges clamp.
+std::vector<float> coverageSamples(const Image& level, const Executor* executor) {
+  constexpr std::size_t kMaxPoints = std::size_t(1) << 18;
   const std::size_t texels = std::size_t(level.width) * std::size_t(level.height);
-  const int n = texels * 16 <= (std::size_t(1) << 22)  ? 4
-                : texels * 4 <= (std::size_t(1) << 22) ? 2
-                                                       : 1;
-  std::vector<float> samples;
-  samples.reserve(texels * std::size_t(n * n));
+  const int n = texels * 16 <= kMaxPoints ? 4 : texels * 4 <= kMaxPoints ? 2 : 1;
+  const std::size_t rowPoints = std::size_t(level.width) * std::size_t(n * n);
+  std::vector<float> samples(texels * std::size_t(n * n));
   const auto alpha = [&](int x, int y) {
     return double(
         level.texel(std::clamp(x, 0, level.width - 1), std::clamp(y, 0, level.height - 1))[3]);
   };
-  for (int y = 0; y < level.height; ++y)
-    for (int x = 0; x < level.width; ++x)
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-          // Texel space with texel centres at integers: x + (i + 0.5) / n - 0.5.
-          const double sx = x + (i + 0.5) / n - 0.5, sy = y + (j + 0.5) / n - 0.5;
-          const double fx0 = std::floor(sx), fy0 = std::floor(sy);
-          const int x0 = int(fx0), y0 = int(fy0);
-          const double fx = sx - fx0, fy = sy - fy0;
-          const double top = (1 - fx) * alpha(x0, y0) + fx * alpha(x0 + 1, y0);
-          const double bottom = (1 - fx) * alpha(x0, y0 + 1) + fx * alpha(x0 + 1, y0 + 1);
-          samples.push_back(float((1 - fy) * top + fy * bottom));
-        }
-  std::sort(samples.begin(), samples.end());
+  const auto rows = [&](std::size_t begin, std::size_t end) {
+    for (int y = int(begin); y < int(end); ++y) {
+      float* out = &samples[std::size_t(y) * rowPoints];
+      if (n == 1) {  // one point per texel, at its centre: the texel itself
+        for (int x = 0; x < level.width; ++x) *out++ = level.texel(x, y)[3];
+        continue;
+      }
+      for (int x = 0; x < level.width; ++x)
+        for (int j = 0; j < n; ++j)
+          for (int i = 0; i < n; ++i) {
+            // Texel space with texel centres at integers: x + (i + 0.5) / n - 0.5.
+            const double sx = x + (i + 0.5) / n - 0.5, sy = y + (j + 0.5) / n - 0.5;
+            const double fx0 = std::floor(sx), fy0 = std::floor(sy);
+            const int x0 = int(fx0), y0 = int(fy0);
+            const double fx = sx - fx0, fy = sy - fy0;
+            const double top = (1 - fx) * alpha(x0, y0) + fx * alpha(x0 + 1, y0);
+            const double bottom = (1 - fx) * alpha(x0, y0 + 1) + fx * alpha(x0 + 1, y0 + 1);
+            *out++ = float((1 - fy) * top + fy * bottom);
+          }
+    }
+  };
+  if (executor == nullptr) {
+    rows(0, std::size_t(level.height));
+  } else {
+    executor->parallelFor(std::size_t(level.height), 16, rows);
+  }
   return samples;
 }
 
 // The fraction of the samples at or above `threshold`.
-double fractionAtLeast(const std::vector<float>& sorted, double threshold) {
-  const auto first = std::lower_bound(sorted.begin(), sorted.end(), threshold,
-                                      [](float value, double t) { return double(value) < t; });
-  return double(sorted.end() - first) / double(sorted.size());
+double fractionAtLeast(const std::vector<float>& samples, float threshold) {
+  std::size_t count = 0;
+  for (const float value : samples) count += value >= threshold ? 1 : 0;
+  return double(count) / double(samples.size());
 }
 
 }  // namespace
 
-double alphaCoverage(const Image& image, float cutoff) {
-  return fractionAtLeast(sortedCoverageSamples(image), cutoff);
+double alphaCoverage(const Image& image, float cutoff, const Executor* executor) {
+  return fractionAtLeast(coverageSamples(image, executor), cutoff);
 }
 
-void scaleAlphaToCoverage(Image& level, float cutoff, double coverage) {
+void scaleAlphaToCoverage(Image& level, float cutoff, double coverage, const Executor* executor) {
   if (!(cutoff > 0.0f && cutoff <= 1.0f)) return;
-  const std::vector<float> samples = sortedCoverageSamples(level);
-  const auto coverageAt = [&](double scale) { return fractionAtLeast(samples, cutoff / scale); };
-  const auto positive = std::upper_bound(samples.begin(), samples.end(), 0.0f);
-  if (positive == samples.end()) return;  // nothing to scale up
+  const std::vector<float> samples = coverageSamples(level, executor);
+  // Scaling a sample's texels by s scales the sample (the clamp at 1 aside),
+  // so it passes at scale s when it is at least cutoff / s.
+  const auto coverageAt = [&](double scale) {
+    return fractionAtLeast(samples, float(double(cutoff) / scale));
+  };
+  float smallest = 2.0f;  // the smallest sample above 0
+  for (const float value : samples)
+    if (value > 0.0f) smallest = std::min(smallest, value);
+  if (smallest > 1.0f) return;  // nothing to scale up
   // At `high` every sample above 0 passes: no larger scale covers more.
-  double low = 0.0, high = std::max(1.0, double(cutoff) / double(*positive));
-  // 40 halvings bring the interval below 2^-40 of `high`, finer than any
-  // float alpha step, so the two ends differ by at most the samples at one
-  // value. Scaling a sample's texels scales it (the clamp at 1 aside).
-  for (int step = 0; step < 40; ++step) {
+  double low = 0.0, high = std::max(1.0, double(cutoff) / double(smallest));
+  // 24 halvings bring the interval to 2^-24 of `high`, a float step of the
+  // threshold, so the two ends differ by at most the samples at one value.
+  for (int step = 0; step < 24; ++step) {
     const double middle = 0.5 * (low + high);
     (coverageAt(middle) < coverage ? low : high) = middle;
   }
@@ -184,7 +199,7 @@ MipChain::MipChain(const Image& level0, const Executor* executor,
   int w = level0.width;
   int h = level0.height;
   if (w <= 0 || h <= 0) return;
-  const double coverage0 = coverageCutoff ? alphaCoverage(level0, *coverageCutoff) : 0.0;
+  const double coverage0 = coverageCutoff ? alphaCoverage(level0, *coverageCutoff, executor) : 0.0;
   // With a cutoff, each level is reduced from the previous one before its
   // alpha scale, so scales do not compound down the chain (as NVTT does).
   Image unscaled;
@@ -197,7 +212,7 @@ MipChain::MipChain(const Image& level0, const Executor* executor,
     Image next = downsampleBox(previous, w, h, executor);
     if (coverageCutoff) {
       unscaled = next;
-      scaleAlphaToCoverage(next, *coverageCutoff, coverage0);
+      scaleAlphaToCoverage(next, *coverageCutoff, coverage0, executor);
     }
     levels_.push_back(std::move(next));
   }

@@ -37,7 +37,8 @@ Image downsampleBox(const Image& src, int dstW, int dstH, const Executor* execut
 // The fraction of the image's area where its bilinearly reconstructed alpha
 // is at least `cutoff` (sampled n x n per texel, mip_chain.cpp): what an alpha
 // test at that cutoff keeps of a surface covered by the image.
-double alphaCoverage(const Image& image, float cutoff);
+// Rows in parallel on `executor` when given, here and below.
+double alphaCoverage(const Image& image, float cutoff, const Executor* executor = nullptr);
 
 // Alpha-to-coverage preserving mip levels (Castaño, "Computing Alpha
 // Mipmaps", 2010). Averaging thin opaque texels with transparent ones drops
@@ -48,6 +49,7 @@ double alphaCoverage(const Image& image, float cutoff);
 // premultiplied, so each texel's rgb is scaled by the same factor as its alpha,
 // which keeps its straight colour. Nothing changes for a cutoff outside
 // (0, 1] (all or nothing passes at any scale) or a level with no alpha above 0.
-void scaleAlphaToCoverage(Image& level, float cutoff, double coverage);
+void scaleAlphaToCoverage(Image& level, float cutoff, double coverage,
+                          const Executor* executor = nullptr);
 
 }  // namespace quadra

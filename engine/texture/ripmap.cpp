@@ -21,7 +21,7 @@ Ripmap::Ripmap(const Image& level0, TexelFormat format, const Executor* executor
                std::optional<float> coverageCutoff)
     : countX(levelsDownTo1(level0.width)), countY(levelsDownTo1(level0.height)) {
   storage.reserve(std::size_t(countX) * std::size_t(countY));
-  const double coverage0 = coverageCutoff ? alphaCoverage(level0, *coverageCutoff) : 0.0;
+  const double coverage0 = coverageCutoff ? alphaCoverage(level0, *coverageCutoff, executor) : 0.0;
   // Levels are reduced from their neighbours before any alpha scale, so
   // scales do not compound; only the stored copy is scaled.
   const auto store = [&](const Image& level, bool isLevel0) {
@@ -30,7 +30,7 @@ Ripmap::Ripmap(const Image& level0, TexelFormat format, const Executor* executor
       return;
     }
     Image scaled = level;
-    scaleAlphaToCoverage(scaled, *coverageCutoff, coverage0);
+    scaleAlphaToCoverage(scaled, *coverageCutoff, coverage0, executor);
     storage.emplace_back(scaled, format);
   };
   // Only the float level each new one is reduced from is kept: the first of
