@@ -144,6 +144,31 @@ TEST(TextureAlpha, NoFringeFromTransparentTexelsMagnifiedOrMinified) {
   }
 }
 
+// Every filter reads levels built from the premultiplied level 0 (mips,
+// ripmap, summed-area table): minified across the disc's edge, the straight
+// colour stays white on each, where the straight levels turn it red (on
+// every filter that averages texels).
+TEST(TextureAlpha, EveryFilterReadsPremultipliedLevels) {
+  const Texture straight(whiteDiscOnClearRed(), samplerWith(WrapMode::ClampToEdge));
+  const Texture& blended = straight.forAlpha({TextureAlpha::Use::Blended});
+  std::vector<Lookup> lookups = edgeLookups(3.0);
+  for (const Lookup& l : edgeLookups(3.0))
+    lookups.push_back({l[0], l[1], l[2] * 4.0f, 0.0f, 0.0f, l[5]});
+  for (Filter filter : {Filter::Nearest, Filter::NearestMip, Filter::Anisotropic, Filter::Ewa,
+                        Filter::Area, Filter::SummedArea, Filter::Ripmap}) {
+    SCOPED_TRACE(filterName(filter));
+    for (Isa isa : supportedIsas()) {
+      SCOPED_TRACE(isaName(isa));
+      // 1e-4 leaves room for the summed-area table's fixed point, which
+      // rounds rgb and alpha apart (summed_area.h).
+      EXPECT_LE(worstDistanceFromWhite(sampleAll(blended, filter, isa, lookups), true), 1e-4);
+    }
+    if (filter == Filter::Nearest) continue;  // one texel a lookup: nothing to bleed
+    EXPECT_GT(worstDistanceFromWhite(sampleAll(straight, filter, Isa::Scalar, lookups), false),
+              0.3);
+  }
+}
+
 // Levels whose texels are smaller than the strokes' spacing (16 level-0
 // texels) are held to the bound; on coarser ones every texel holds the same
 // share of stroke, so the alpha test keeps all of the level or none.
