@@ -68,17 +68,18 @@ TEST(LlvmpipePeer, PrintsTheFrameLineAndWritesTheFrame) {
   expectCheckerPlaneFrame(r, "llvmpipe frame_ms ", exr, png);
 }
 
-// Measured at 128x72 (Mesa 22.3.6): 50.2 dB (showcase) to 73 dB apart; the
-// renderers differ in texture LOD and filtering, and in which pixels an edge
-// covers. Bugs planted in the peer one at a time each fall to 39 dB or less
-// on some scene here: rows bottom-up (4.9 dB, checker-plane), every winding
-// flipped (6.9 dB, checker-plane), mirrored instances not flipped (35.8 dB,
-// NegativeScaleTest), MASK drawn as OPAQUE (25.6 dB, AlphaBlendModeTest),
-// blended draws in scene order (39.0 dB, AlphaBlendModeTest) or reversed
-// (16.1 dB, alpha-quads), double-sided materials culled (17.2 dB,
-// TwoSidedPlane from below). 45 dB lies between, 5 dB under the closest
+// Measured at 128x72 (Mesa 22.3.6): 44.1 dB (showcase; 50.2 before its alpha-
+// tested quad's mips kept their coverage, docs/texture-alpha.md: their alpha
+// now sits near the cutoff over whole coarse levels, where the peers' LOD
+// differences flip the test pixel by pixel) to 73 dB apart; the renderers
+// differ in texture LOD and filtering, and in which pixels an edge covers. Bugs planted in the peer
+// one at a time each fall to 39 dB or less on some scene here: rows bottom-up (4.9 dB,
+// checker-plane), every winding flipped (6.9 dB, checker-plane), mirrored instances not flipped
+// (35.8 dB, NegativeScaleTest), MASK drawn as OPAQUE (25.6 dB, AlphaBlendModeTest), blended draws
+// in scene order (39.0 dB, AlphaBlendModeTest) or reversed (16.1 dB, alpha-quads), double-sided
+// materials culled (17.2 dB, TwoSidedPlane from below). 42 dB lies between, 2 dB under the closest
 // genuine pair.
-constexpr double kMinPsnr = 45.0;
+constexpr double kMinPsnr = 42.0;
 
 TEST(LlvmpipePeer, DrawsTheFramesQuadraDraws) {
   SKIP_WITHOUT_PEER();
@@ -89,7 +90,7 @@ TEST(LlvmpipePeer, DrawsTheFramesQuadraDraws) {
 }
 
 // The 8-bit target costs precision (sRGB steps), not content: measured
-// 49.8 dB where the float target is 50.2 dB apart.
+// 44.0 dB where the float target is 44.1 dB apart.
 TEST(LlvmpipePeer, DrawsTheSameFrameIntoAnSrgb8Target) {
   SKIP_WITHOUT_PEER();
   const ImageDifference d =

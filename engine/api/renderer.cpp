@@ -88,8 +88,9 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     FilterSettings filtering(settings.filter, settings.maxAniso);
     filtering.lodBias = settings.lodBias;
     filtering.lodRule = settings.lodRule;
-    s.texture = makeTextureView(*scene.textures.at(std::size_t(material.baseColorTexture)),
-                                filtering, &frame.executor);
+    const Texture& texture = *scene.textures.at(std::size_t(material.baseColorTexture));
+    s.texture =
+        makeTextureView(texture.forAlpha(textureAlphaOf(material)), filtering, &frame.executor);
   }
   s.vertexColor = !mesh.colors.empty();
   s.depthGreater = settings.depth == DepthMode::Reversed;

@@ -6,9 +6,26 @@
 
 namespace quadra {
 
+TextureAlpha textureAlphaOf(const Material& material) {
+  switch (material.alphaMode) {
+    case AlphaMode::Opaque:
+      return {};
+    case AlphaMode::Blend:
+      return {TextureAlpha::Use::Blended};
+    case AlphaMode::Mask: {
+      // The test compares texture alpha times the factor's with the cutoff.
+      // Vertex colour alpha, per pixel, cannot be folded in and is left out.
+      const float factor = material.baseColorFactor.a;
+      return {TextureAlpha::Use::Tested, factor > 0.0f ? material.alphaCutoff / factor : 2.0f};
+    }
+  }
+  return {};
+}
+
 void setTextureStorage(Scene& scene, TexelFormat format) {
   for (std::shared_ptr<const Texture>& texture : scene.textures)
-    texture = std::make_shared<const Texture>(texture->sharedImage(), texture->sampler(), format);
+    texture = std::make_shared<const Texture>(texture->sharedImage(), texture->sampler(), format,
+                                              texture->alpha());
 }
 
 std::size_t Scene::triangleCount() const {

@@ -70,6 +70,12 @@ struct Scene {
   void bounds(glm::vec3& lo, glm::vec3& hi) const;
 };
 
+// How the material reads its base colour texture's alpha, and so which
+// variant of the texture it samples (Texture::forAlpha). For MASK, the cutoff
+// on the texture's own alpha is the material's divided by the base colour
+// factor's alpha (above 1, nothing passes).
+TextureAlpha textureAlphaOf(const Material& material);
+
 // Re-stores every texture of the scene in `format` (sharing the images), for
 // comparing storage formats on one scene.
 void setTextureStorage(Scene& scene, TexelFormat format);

@@ -1,17 +1,42 @@
-// Image storage, the sRGB transfer function (IEC 61966-2-1) in both
-// directions, and the 8-bit decode table that PNG and glTF sRGB textures go
-// through.
+// Image storage, premultiplication, the sRGB transfer function (IEC
+// 61966-2-1) in both directions, and the 8-bit decode table that PNG and glTF
+// sRGB textures go through.
 #include "texture/image.h"
 
 #include <array>
 #include <cmath>
 
 #include "core/large_buffer.h"
+#include "core/parallel.h"
 
 namespace quadra {
 
 Image::Image(int w, int h, const Executor* executor) : width(w), height(h) {
   resizeLarge(rgba, std::size_t(w) * std::size_t(h) * 4, 0.0f, executor);
+}
+
+Image premultiplied(const Image& straight, const Executor* executor) {
+  Image out(straight.width, straight.height, executor);
+  const std::size_t rowFloats = std::size_t(straight.width) * 4;
+  const auto rows = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin * rowFloats; i < end * rowFloats; i += 4) {
+      const float alpha = straight.rgba[i + 3];
+      for (int c = 0; c < 3; ++c) out.rgba[i + c] = straight.rgba[i + c] * alpha;
+      out.rgba[i + 3] = alpha;
+    }
+  };
+  if (executor == nullptr) {
+    rows(0, std::size_t(straight.height));
+  } else {
+    executor->parallelFor(std::size_t(straight.height), 64, rows);
+  }
+  return out;
+}
+
+bool isOpaque(const Image& image) {
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4)
+    if (image.rgba[i] != 1.0f) return false;
+  return true;
 }
 
 namespace {

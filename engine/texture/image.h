@@ -35,6 +35,13 @@ struct Image {
   }
 };
 
+// rgb times alpha per texel (one float rounding each), alpha kept: the form
+// textures whose alpha is read are filtered in (texture/texture.h). Rows in
+// parallel on `executor` when given.
+Image premultiplied(const Image& straight, const Executor* executor = nullptr);
+// Whether every texel's alpha is 1, so premultiplying would change nothing.
+bool isOpaque(const Image& image);
+
 // The sRGB transfer function (IEC 61966-2-1), exact in float.
 float srgbToLinear(float encoded);
 float linearToSrgb(float linear);

@@ -6,6 +6,7 @@
 // memory: about 4x level 0 instead of 4/3.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "texture/image.h"
@@ -26,7 +27,10 @@ struct Ripmap {
   // downsampleBox, so non-power-of-two sizes lose no row or column), each
   // from its left neighbour (or, in column 0, the one above), in parallel on
   // `executor` when given; level (i, j) is max(1, w >> i) x max(1, h >> j).
-  Ripmap(const Image& level0, TexelFormat format, const Executor* executor);
+  // With coverageCutoff, each level's alpha is rescaled to level 0's coverage
+  // as the mip chain's (mip_chain.h scaleAlphaToCoverage), after it is reduced.
+  Ripmap(const Image& level0, TexelFormat format, const Executor* executor,
+         std::optional<float> coverageCutoff = std::nullopt);
 };
 
 }  // namespace quadra

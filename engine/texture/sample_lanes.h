@@ -1185,4 +1185,17 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
   return sampleTextureAs<L, TexelRead<TexelFormat::Rgba32F>>(view, u, v, d);
 }
 
+// The straight colour of a premultiplied lookup (TextureView::premultiplied):
+// rgb / a, one IEEE division, so every path gives the same bits. Where a is 0
+// there is no colour to recover and nothing of it shows: (0, 0, 0, 0).
+template <class L>
+QUADRA_LANE_INLINE Rgba<L> unpremultiplied(const Rgba<L>& c) {
+  using F = typename L::F;
+  const auto covered = c.a > F(0.0f);
+  const F divisor = simd::select(covered, c.a, F(1.0f));
+  return {simd::select(covered, c.r / divisor, F(0.0f)),
+          simd::select(covered, c.g / divisor, F(0.0f)),
+          simd::select(covered, c.b / divisor, F(0.0f)), c.a};
+}
+
 }  // namespace quadra

@@ -8,20 +8,53 @@
 
 namespace quadra {
 
-Texture::Texture(std::shared_ptr<const Image> image, SamplerState sampler, TexelFormat storage)
-    : image_(std::move(image)), sampler_(sampler), storage_(storage) {}
+Texture::Texture(std::shared_ptr<const Image> image, SamplerState sampler, TexelFormat storage,
+                 TextureAlpha alpha)
+    : image_(std::move(image)), sampler_(sampler), storage_(storage), alpha_(alpha) {}
 
 // Out of line: MipChain is only forward-declared in the header.
 Texture::~Texture() = default;
 
+const Texture& Texture::forAlpha(const TextureAlpha& alpha) const {
+  if (alpha == alpha_) return *this;
+  std::call_once(opaqueOnce_, [&] { opaque_ = isOpaque(*image_); });
+  if (opaque_ && alpha_ == TextureAlpha{}) return *this;
+  const std::lock_guard<std::mutex> lock(variantsMutex_);
+  for (const std::unique_ptr<Texture>& variant : variants_)
+    if (variant->alpha() == alpha) return *variant;
+  variants_.push_back(std::make_unique<Texture>(image_, sampler_, storage_, alpha));
+  return *variants_.back();
+}
+
+const Image& Texture::filteredLevel0(const Executor* executor) const {
+  if (!alpha_.premultiplied()) return *image_;
+  std::call_once(premultipliedOnce_, [&] {
+    premultiplied_ = std::make_unique<Image>(premultiplied(*image_, executor));
+  });
+  return *premultiplied_;
+}
+
+namespace {
+
+std::optional<float> coverageCutoffOf(const TextureAlpha& alpha) {
+  if (alpha.use != TextureAlpha::Use::Tested) return std::nullopt;
+  return alpha.cutoff;
+}
+
+}  // namespace
+
 const MipChain& Texture::mips(const Executor* executor) const {
-  std::call_once(mipsOnce_, [&] { mips_ = std::make_unique<MipChain>(*image_, executor); });
+  std::call_once(mipsOnce_, [&] {
+    mips_ =
+        std::make_unique<MipChain>(filteredLevel0(executor), executor, coverageCutoffOf(alpha_));
+  });
   return *mips_;
 }
 
 const PaddedLevel& Texture::sampledLevel0(const Executor* executor) const {
-  std::call_once(level0Once_,
-                 [&] { level0_ = std::make_unique<PaddedLevel>(*image_, storage_, executor); });
+  std::call_once(level0Once_, [&] {
+    level0_ = std::make_unique<PaddedLevel>(filteredLevel0(executor), storage_, executor);
+  });
   return *level0_;
 }
 
@@ -43,8 +76,10 @@ const SummedAreaTable& Texture::summedAreaTable(const Executor* executor) const 
 }
 
 const Ripmap& Texture::ripmap(const Executor* executor) const {
-  std::call_once(ripmapOnce_,
-                 [&] { ripmap_ = std::make_unique<Ripmap>(*image_, storage_, executor); });
+  std::call_once(ripmapOnce_, [&] {
+    ripmap_ = std::make_unique<Ripmap>(filteredLevel0(executor), storage_, executor,
+                                       coverageCutoffOf(alpha_));
+  });
   return *ripmap_;
 }
 

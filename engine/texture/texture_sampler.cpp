@@ -19,6 +19,9 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   view.wrapU = sampler.wrapU;
   view.wrapV = sampler.wrapV;
   std::copy(std::begin(sampler.borderColor), std::end(sampler.borderColor), view.border);
+  view.premultiplied = texture.alpha().premultiplied();
+  if (view.premultiplied)
+    for (int c = 0; c < 3; ++c) view.border[c] *= view.border[3];
   view.minFilter = filter.value_or(sampler.minFilter);
   // An explicit filter decides magnification too: nearest stays nearest.
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;

@@ -33,6 +33,9 @@ struct TextureView {
   TextureLevel levels[kMaxLevels];
   int levelCount = 0;                         // 1 when the filter does not use mips
   TexelFormat format = TexelFormat::Rgba32F;  // of every level
+  // The levels (and border colour) hold rgb premultiplied by alpha, so a
+  // lookup returns premultiplied colour (texture/texture.h TextureAlpha).
+  bool premultiplied = false;
   // rgba8srgb's colour decode (srgb8ToLinearTable), held here so the kernels
   // read a pointer instead of calling out: a call spills every live vector
   // register.

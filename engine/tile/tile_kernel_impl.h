@@ -256,7 +256,9 @@ QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const
       if constexpr (kOutput == ShadeOutput::Derivatives) {
         r = d.dudx, g = d.dvdx, b = d.dudy, a = d.dvdy;
       } else {
-        const Rgba<L> texel = sampleTexture<L>(shade.texture, u, v, d);
+        Rgba<L> texel = sampleTexture<L>(shade.texture, u, v, d);
+        // Textures whose alpha is read filter premultiplied; shading is straight.
+        if (shade.texture.premultiplied) texel = unpremultiplied<L>(texel);
         r = r * texel.r, g = g * texel.g, b = b * texel.b, a = a * texel.a;
       }
     }

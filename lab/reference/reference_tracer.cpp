@@ -45,18 +45,37 @@ glm::dvec4 fetch(const Image& image, const SamplerState& sampler, std::int64_t x
   return {t[0], t[1], t[2], t[3]};
 }
 
-}  // namespace
+// rgb times alpha, exact in double (a product of two floats fits).
+glm::dvec4 premultipliedTexel(const glm::dvec4& straight) {
+  return {straight.r * straight.a, straight.g * straight.a, straight.b * straight.a, straight.a};
+}
 
-glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const glm::dvec2& uv) {
+glm::dvec4 bilinear(const Image& image, const SamplerState& sampler, const glm::dvec2& uv,
+                    bool premultiply) {
+  const auto texel = [&](std::int64_t x, std::int64_t y) {
+    const glm::dvec4 t = fetch(image, sampler, x, y);
+    return premultiply ? premultipliedTexel(t) : t;
+  };
   const double x = uv.x * image.width - 0.5, y = uv.y * image.height - 0.5;
   const double x0 = std::floor(x), y0 = std::floor(y);
   const double fx = x - x0, fy = y - y0;
   const auto ix = std::int64_t(x0), iy = std::int64_t(y0);
-  const glm::dvec4 top =
-      (1 - fx) * fetch(image, sampler, ix, iy) + fx * fetch(image, sampler, ix + 1, iy);
-  const glm::dvec4 bottom =
-      (1 - fx) * fetch(image, sampler, ix, iy + 1) + fx * fetch(image, sampler, ix + 1, iy + 1);
+  const glm::dvec4 top = (1 - fx) * texel(ix, iy) + fx * texel(ix + 1, iy);
+  const glm::dvec4 bottom = (1 - fx) * texel(ix, iy + 1) + fx * texel(ix + 1, iy + 1);
   return (1 - fy) * top + fy * bottom;
+}
+
+}  // namespace
+
+glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const glm::dvec2& uv) {
+  return bilinear(image, sampler, uv, false);
+}
+
+glm::dvec4 sampleBilinearPremultiplied(const Image& image, const SamplerState& sampler,
+                                       const glm::dvec2& uv) {
+  const glm::dvec4 filtered = bilinear(image, sampler, uv, true);
+  if (!(filtered.a > 0.0)) return glm::dvec4(0.0);
+  return {filtered.r / filtered.a, filtered.g / filtered.a, filtered.b / filtered.a, filtered.a};
 }
 
 ReferenceTracer::ReferenceTracer(const Scene& scene, const Camera& camera, int width, int height,
@@ -343,8 +362,11 @@ glm::dvec4 ReferenceTracer::surfaceColour(const TracerHit& hit) const {
     colour = glm::dvec4(material.baseColorFactor);
     if (material.baseColorTexture >= 0) {
       const Texture& texture = *scene_.textures.at(material.baseColorTexture);
-      colour *= sampleBilinear(texture.image(), texture.sampler(),
-                               texCoord(hit, material.baseColorTexCoord));
+      const glm::dvec2 uv = texCoord(hit, material.baseColorTexCoord);
+      // Filtered as the renderer filters it: premultiplied where alpha is read.
+      colour *= textureAlphaOf(material).premultiplied()
+                    ? sampleBilinearPremultiplied(texture.image(), texture.sampler(), uv)
+                    : sampleBilinear(texture.image(), texture.sampler(), uv);
     }
   }
   const Mesh& mesh = *instance.mesh;

@@ -48,6 +48,12 @@ std::int64_t wrapTexel(std::int64_t i, std::int64_t n, WrapMode mode);
 // Level-0 bilinear lookup in double, per the texel convention (lookup at u reads
 // texel-space x = u*W - 0.5; row 0 is v = 0) and the sampler's wrap modes.
 glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const glm::dvec2& uv);
+// The lookup of a texture whose alpha is read (texture/texture.h TextureAlpha):
+// the bilinear average of rgb times alpha (the border colour likewise), then
+// divided by the averaged alpha; (0, 0, 0, 0) where that alpha is 0. `image`
+// is straight (Texture::image()); premultiplying happens here, in double.
+glm::dvec4 sampleBilinearPremultiplied(const Image& image, const SamplerState& sampler,
+                                       const glm::dvec2& uv);
 
 // How shade(), nearestHit() and render() find the triangles a primary ray
 // may hit. Both give bit-identical frames; Exhaustive is the plain loop the

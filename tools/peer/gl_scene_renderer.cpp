@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "osmesa_context.h"
 #include "texture/image.h"
+#include "texture/mip_chain.h"
 
 namespace quadra {
 
@@ -62,6 +63,7 @@ uniform vec4 baseColor;
 uniform float alphaCutoff;
 #ifdef TEXTURED
 uniform sampler2D baseColorTexture;
+uniform bool premultipliedTexture;
 in vec2 uv;
 #endif
 #ifdef VERTEX_COLOR
@@ -71,7 +73,10 @@ layout(location = 0) out vec4 fragColor;
 void main() {
   vec4 c = baseColor;
 #ifdef TEXTURED
-  c *= texture(baseColorTexture, uv);
+  vec4 texel = texture(baseColorTexture, uv);
+  // quadra's shadeColor: straight colour back from premultiplied levels.
+  if (premultipliedTexture) texel.rgb = texel.a > 0.0 ? texel.rgb / texel.a : vec3(0.0);
+  c *= texel;
 #endif
 #ifdef VERTEX_COLOR
   c *= vertexColor;
@@ -186,10 +191,6 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
   if (!floatColor) glEnable(GL_FRAMEBUFFER_SRGB);
   throwOnGlError("making the framebuffer");
 
-  textures_.reserve(scene.textures.size());
-  for (const auto& texture : scene.textures) textures_.push_back(uploadTexture(*texture));
-  throwOnGlError("uploading textures");
-
   static const Material kDefaultMaterial;
   meshes_.resize(scene.meshes.size());
   std::vector<bool> uploaded(scene.meshes.size(), false);
@@ -209,7 +210,14 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
     DrawState draw;
     draw.mesh = &meshes_[m];
     draw.program = &programFor(textured, vertexColor, material.alphaMode);
-    draw.texture = textured ? textures_.at(std::size_t(material.baseColorTexture)) : 0;
+    if (textured) {
+      const Texture& texture = scene.textures.at(std::size_t(material.baseColorTexture))
+                                   ->forAlpha(textureAlphaOf(material));
+      auto [slot, added] = textures_.try_emplace(&texture, 0);
+      if (added) slot->second = uploadTexture(texture);
+      draw.texture = slot->second;
+      draw.premultipliedTexture = texture.alpha().premultiplied();
+    }
     draw.baseColor = material.baseColorFactor;
     draw.alphaCutoff = material.alphaCutoff;
     draw.cull = !material.doubleSided;
@@ -217,7 +225,7 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
     draw.blend = material.alphaMode == AlphaMode::Blend;
     draws_.push_back(draw);
   }
-  throwOnGlError("uploading meshes");
+  throwOnGlError("uploading meshes and textures");
 
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -235,7 +243,7 @@ GlSceneRenderer::~GlSceneRenderer() {
     glDeleteVertexArrays(1, &mesh.vertexArray);
     glDeleteBuffers(4, mesh.buffers);
   }
-  if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
+  for (const auto& [texture, id] : textures_) glDeleteTextures(1, &id);
   for (const auto& [variant, program] : programs_) glDeleteProgram(program.id);
   glDeleteFramebuffers(1, &framebuffer_);
   glDeleteRenderbuffers(1, &colorBuffer_);
@@ -266,6 +274,7 @@ const GlSceneRenderer::Program& GlSceneRenderer::programFor(bool textured, bool 
   program.clipFromModel = glGetUniformLocation(program.id, "clipFromModel");
   program.baseColor = glGetUniformLocation(program.id, "baseColor");
   program.alphaCutoff = glGetUniformLocation(program.id, "alphaCutoff");
+  program.premultipliedTexture = glGetUniformLocation(program.id, "premultipliedTexture");
   glUseProgram(program.id);
   glUniform1i(glGetUniformLocation(program.id, "baseColorTexture"), 0);
   return programs_.emplace(variant, program).first->second;
@@ -296,21 +305,23 @@ void GlSceneRenderer::uploadMesh(const Mesh& mesh, int texcoordSet, bool vertexC
 }
 
 GLuint GlSceneRenderer::uploadTexture(const Texture& texture) {
-  const Image& image = texture.image();
   const TexelFormat storage = settings_.textureFormat.value_or(texture.storage());
   const GlTexelFormat format = glTexelFormat(storage);
-  const std::size_t texels = std::size_t(image.width) * std::size_t(image.height);
-  const int bytes = bytesPerTexel(storage);
-  std::vector<std::uint8_t> encoded(texels * std::size_t(bytes));
-  for (std::size_t i = 0; i < texels; ++i)
-    encodeTexel(storage, &image.rgba[4 * i], &encoded[i * std::size_t(bytes)]);
+  const auto upload = [&](int level, const Image& image) {
+    const std::size_t texels = std::size_t(image.width) * std::size_t(image.height);
+    const int bytes = bytesPerTexel(storage);
+    std::vector<std::uint8_t> encoded(texels * std::size_t(bytes));
+    for (std::size_t i = 0; i < texels; ++i)
+      encodeTexel(storage, &image.rgba[4 * i], &encoded[i * std::size_t(bytes)]);
+    glTexImage2D(GL_TEXTURE_2D, level, format.internalFormat, image.width, image.height, 0, GL_RGBA,
+                 format.type, encoded.data());
+  };
 
   GLuint id = 0;
   glGenTextures(1, &id);
   glBindTexture(GL_TEXTURE_2D, id);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, format.internalFormat, image.width, image.height, 0, GL_RGBA,
-               format.type, encoded.data());
+  upload(0, texture.filteredLevel0());
 
   // The filter as quadra resolves it (texture/texture_sampler.cpp makeTextureView).
   const SamplerState& sampler = texture.sampler();
@@ -324,7 +335,14 @@ GLuint GlSceneRenderer::uploadTexture(const Texture& texture) {
   glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_LOD_BIAS, settings_.lodBias);
   if (filter == Filter::Anisotropic)
     glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY, float(settings_.maxAniso));
-  if (needsMips(filter)) glGenerateMipmap(GL_TEXTURE_2D);
+  // A texture whose alpha is read has quadra's own levels (premultiplied, and
+  // for alpha tests coverage-preserving); GL would build straight ones.
+  if (needsMips(filter) && texture.alpha().premultiplied()) {
+    const MipChain& mips = texture.mips();
+    for (int level = 1; level < mips.levelCount(); ++level) upload(level, mips.level(level));
+  } else if (needsMips(filter)) {
+    glGenerateMipmap(GL_TEXTURE_2D);
+  }
   return id;
 }
 
@@ -333,6 +351,7 @@ void GlSceneRenderer::draw(const DrawState& state, const glm::mat4& clipFromMode
   glUniformMatrix4fv(state.program->clipFromModel, 1, GL_FALSE, &clipFromModel[0][0]);
   glUniform4fv(state.program->baseColor, 1, &state.baseColor[0]);
   glUniform1f(state.program->alphaCutoff, state.alphaCutoff);
+  glUniform1i(state.program->premultipliedTexture, state.premultipliedTexture ? 1 : 0);
   if (state.cull)
     glEnable(GL_CULL_FACE);
   else

@@ -72,7 +72,7 @@ class GlSceneRenderer {
  private:
   struct Program {
     GLuint id = 0;
-    GLint clipFromModel = -1, baseColor = -1, alphaCutoff = -1;
+    GLint clipFromModel = -1, baseColor = -1, alphaCutoff = -1, premultipliedTexture = -1;
   };
   struct MeshBuffers {
     GLuint vertexArray = 0;
@@ -82,7 +82,8 @@ class GlSceneRenderer {
   struct DrawState {
     const MeshBuffers* mesh = nullptr;
     const Program* program = nullptr;
-    GLuint texture = 0;  // 0: untextured
+    GLuint texture = 0;                 // 0: untextured
+    bool premultipliedTexture = false;  // its levels hold rgb·a, as quadra's (texture/texture.h)
     glm::vec4 baseColor{1.0f};
     float alphaCutoff = 0.5f;
     bool cull = true, frontClockwise = false, blend = false;
@@ -97,8 +98,9 @@ class GlSceneRenderer {
   PeerSettings settings_;
   GLuint framebuffer_ = 0, colorBuffer_ = 0, depthBuffer_ = 0;
   std::map<int, Program> programs_;
-  std::vector<MeshBuffers> meshes_;       // one per scene mesh
-  std::vector<GLuint> textures_;          // one per scene texture
+  std::vector<MeshBuffers> meshes_;  // one per scene mesh
+  // One per texture variant the materials read (Texture::forAlpha).
+  std::map<const Texture*, GLuint> textures_;
   std::vector<DrawState> draws_;          // one per scene instance
   std::vector<float> colorFloat_;         // the last frame read back, Rgba32F
   std::vector<std::uint8_t> colorBytes_;  // the last frame read back, Srgba8
