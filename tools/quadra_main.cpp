@@ -68,6 +68,8 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --shading-rate pixel|sample
                          with --samples: shade once per pixel and visible triangle
                          (default, multisampling) or every sample (supersampling)
+  --alpha-to-coverage    MASK materials cover round(alpha x samples) of a pixel's samples
+                         instead of testing alpha against their cutoff (at 1 sample: 0.5)
   --threads N            default: all cores
   --isa auto|scalar|sse2|avx2|avx512
                          kernel path (default auto: the best this CPU has)
@@ -141,6 +143,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   addIsaOption(options, cmd.config.isa);
   options.integer("--frames", cmd.frames, 1, 100000);
   options.flag("--stats", [&] { cmd.stats = true; });
+  options.flag("--alpha-to-coverage", [&] { cmd.settings.alphaToCoverage = true; });
   addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);

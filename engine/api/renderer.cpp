@@ -99,6 +99,10 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     s.blend = BlendMode::Over;
     s.depthWrite = false;
   }
+  if (s.alphaMode == AlphaMode::Mask && settings.alphaToCoverage) {
+    s.alphaToCoverage = true;
+    s.alphaCutoff = 0.5f;  // one sample's; several samples' are the tile stage's
+  }
   if (settings.debugView == DebugView::CoverageCount) {
     s = ShadeState{};
     s.baseColor = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);

@@ -86,6 +86,12 @@ struct RenderSettings {
   bool frameDepth = true;
   // Fill Frame::coverage (the EXR mask channel), filtered by pixelFilter.
   bool frameCoverage = false;
+  // MASK materials: instead of testing alpha against their cutoff, cover
+  // round(alpha * samples) of a pixel's samples (alpha to coverage: each
+  // sample k of N passes where its own alpha is at least (k + 0.5) / N; at
+  // one sample, alpha 0.5 is the cutoff), so alpha-tested edges resolve to
+  // their alpha instead of a hard step.
+  bool alphaToCoverage = false;
 };
 
 // Where a frame's time went, in ms of wall time. Setup and bin run in one

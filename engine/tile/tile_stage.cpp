@@ -54,6 +54,10 @@ struct TileScratch {
   std::vector<float> jobColor;
   std::vector<std::uint32_t> runJobs;
   BlendedFragments blended;  // the forward "over" draws' fragments, per sample
+  // With alpha to coverage, one masked draw's state per sample plane
+  // (shadeAtSample), for the draw coverageDraw.
+  std::vector<ShadeState> coverageShades;
+  std::uint32_t coverageDraw = 0xFFFFFFFFu;
   // A wide pixel filter's frame (renderTiles) and working memory
   // (tile/pixel_filter.h); null with the box filter.
   const PixelFilterFrame* pixelFilter = nullptr;
@@ -100,6 +104,23 @@ bool forwardWins(int tileIndex, const std::vector<Draw>& draws,
   return true;
 }
 
+// A draw's state at sample plane k. With alpha to coverage, a masked draw's
+// cutoff at plane k of N is (k + 0.5) / N, so where alpha is even over a
+// pixel round(alpha * N) of its samples pass (D3D's sample order already
+// spreads consecutive samples over the pixel).
+const ShadeState& shadeAtSample(const TileFrame& frame, TileScratch& s, std::uint32_t draw, int k) {
+  const ShadeState& shade = frame.draws[draw].shade;
+  if (!shade.alphaToCoverage || frame.samples.count == 1) return shade;
+  if (s.coverageDraw != draw) {
+    s.coverageDraw = draw;
+    s.coverageShades.assign(std::size_t(frame.samples.count), shade);
+    for (int j = 0; j < frame.samples.count; ++j)
+      s.coverageShades[std::size_t(j)].alphaCutoff =
+          (float(j) + 0.5f) / float(frame.samples.count);  // exact: N is a power of two
+  }
+  return s.coverageShades[std::size_t(k)];
+}
+
 // One triangle's visibility at every sample, each plane with the triangle
 // moved to its sample; whether it won any. Out of line, so the one-sample
 // loop stays as lean as it was (callgrind: 2% more instructions a frame
@@ -114,7 +135,8 @@ bool forwardWins(int tileIndex, const std::vector<Draw>& draws,
   for (int k = 0; k < frame.samples.count; ++k) {
     const SampleOffset o = frame.samples.offsets[k];
     for (int j = 0; j < planeCount; ++j) moved[j] = entry.planes[j].atSample(o);
-    won |= kernel.visibility(atSample(*entry.triangle, o), moved, shade, id, s.planes[k]);
+    won |= kernel.visibility(atSample(*entry.triangle, o), moved,
+                             shadeAtSample(frame, s, entry.draw, k), id, s.planes[k]);
   }
   return won;
 }
@@ -478,7 +500,8 @@ void forwardDraws(const TileFrame& frame, TileScratch& s) {
     BlendedFragments* const deferred = inDepthOrder ? &s.blended : nullptr;
     forEachSample(frame, t, 2 + shade.attributes.count,
                   [&](const TriangleRecord& r, const Plane* p, int plane) {
-                    kernel.rasterize(r, p, shade, s.planes[plane], deferred, plane);
+                    kernel.rasterize(r, p, shadeAtSample(frame, s, t.draw, plane), s.planes[plane],
+                                     deferred, plane);
                   });
   }
   if (ordered && !s.blended.empty()) s.blended.composite(s.planes.get());

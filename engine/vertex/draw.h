@@ -48,6 +48,9 @@ struct ShadeState {
   bool lit = false;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
+  // A masked draw's cutoff differs per sample (RenderSettings::alphaToCoverage;
+  // the tile stage's shadeAtSample).
+  bool alphaToCoverage = false;
   bool depthTest = true;
   bool depthGreater = false;  // reversed depth (api/camera.h DepthMode): GREATER, not LESS
   bool depthWrite = true;
