@@ -13,6 +13,7 @@
 #include "tile/blended_fragments.h"
 #include "tile/tile_buffers.h"
 #include "vertex/draw.h"
+#include "window/sample_pattern.h"
 
 namespace quadra {
 
@@ -91,6 +92,13 @@ struct TileKernels {
   // whether it won any.
   bool (*visibility)(const TriangleRecord& triangle, const Plane* planes, const ShadeState& shade,
                      std::uint32_t id, TileBuffers& tile);
+  // The same at every sample of a multisampled tile, plane k holding sample k
+  // of `pattern`, for a draw that is not masked (`planes`: its depth plane);
+  // the same bits as `visibility` on each plane with the triangle moved to
+  // its sample (atSample), the small triangles' work shared between samples.
+  bool (*visibilityAtSamples)(const TriangleRecord& triangle, const Plane* planes,
+                              const ShadeState& shade, std::uint32_t id,
+                              const SamplePattern& pattern, TileBuffers* samplePlanes);
   // Shading pass: the colour of every pixel of the run, all of one draw.
   void (*shade)(const ShadeState& shade, const ShadeRun& run, TileBuffers& tile);
 };

@@ -12,9 +12,11 @@
 // picked by the linker for another ISA's caller.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 #include "simd/kernel_isa.h"
@@ -873,6 +875,136 @@ bool visibility(const TriangleRecord& t, const Plane* p, const ShadeState& s, st
   return visit.template operator()<Features<false, false, false, AlphaMode::Opaque>>();
 }
 
+// visibilityAtSamples for a small triangle (nearly all of a dense mesh's):
+// its blocks, the edges' steps and the group walk once, and in each group
+// every sample's coverage and depth test. The same bits as `visibility` on
+// each plane with the triangle moved to its sample: the moved edges differ by
+// whole integers (EdgeFunction::atSample), and each sample tests its moved
+// depth plane. Returns -1, having done nothing, for larger triangles, which
+// walk each plane with the tile-wide edge tests.
+int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const ShadeState& s,
+                             std::uint32_t id, const SamplePattern& pattern, TileBuffers* planes) {
+  const TileBuffers& tile = planes[0];  // every plane has the tile's origin and size
+  const int xBegin = std::max(t.minX - tile.originX, 0);
+  const int yBegin = std::max(t.minY - tile.originY, 0);
+  const int xEnd = std::min(t.maxX - tile.originX + 1, tile.width);
+  const int yEnd = std::min(t.maxY - tile.originY + 1, tile.height);
+  if (xBegin >= xEnd || yBegin >= yEnd) return 0;
+  constexpr int kSmallPixels = 4 * kBlockSize * kBlockSize;  // rasterizeWith's small parts
+  if ((xEnd - xBegin) * (yEnd - yBegin) >= kSmallPixels || !LaneEdges::fits(t)) return -1;
+
+  static const LaneOffsets lane;  // const after construction; per ISA namespace
+  const int samples = pattern.count;
+  std::int32_t a[3], b[3];
+  std::int64_t high[3];  // max of E - E(corner) over a block
+  I laneOffset[3];       // E - E(group corner) at each lane's pixel
+  for (int e = 0; e < 3; ++e) {
+    a[e] = t.edges[e].a, b[e] = t.edges[e].b;
+    high[e] = std::max<std::int64_t>(0, std::int64_t(a[e]) * (kBlockSize - 1)) +
+              std::max<std::int64_t>(0, std::int64_t(b[e]) * (kBlockSize - 1));
+    laneOffset[e] = I(a[e]) * lane.xi + I(b[e]) * lane.yi;
+  }
+  std::int64_t shift[kMaxSamples][3];  // each sample's edges minus the centre's
+  TilePlane z[kMaxSamples];
+  std::optional<BlockDepthTest> depthTest[kMaxSamples];
+  for (int k = 0; k < samples; ++k) {
+    const SampleOffset o = pattern.offsets[k];
+    for (int e = 0; e < 3; ++e) shift[k][e] = t.edges[e].atSample(o).c - t.edges[e].c;
+    const Plane depth = planeInTile(p[0].atSample(o), t, tile);
+    z[k] = {F(depth.dx), F(depth.dy), F(depth.c)};
+    depthTest[k].emplace(depth, s);
+  }
+
+  const F triangleId = simd::asFloat(I(std::int32_t(id)));
+  constexpr int kGroupsPerBlock = kBlockSize * kBlockSize / L::kWidth;
+  // A lane's edge value is within 7 (|a| + |b|) < 0.875 * 2^30 of its block
+  // corner's (LaneEdges::fits), so a corner clamped to +-2^30 keeps every
+  // lane's sign and stays inside 32 bits.
+  constexpr std::int64_t kClamp = std::int64_t(1) << 30;
+  I base[kMaxSamples][3];  // per sample, the edges at the lanes of the block's first group
+  F low[kMaxSamples], highDepth[kMaxSamples];
+  int visited[kMaxSamples];
+  bool won = false;
+  for (int by = yBegin & ~(kBlockSize - 1); by < yEnd; by += kBlockSize) {
+    for (int bx = xBegin & ~(kBlockSize - 1); bx < xEnd; bx += kBlockSize) {
+      const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+      std::int64_t corner[3];
+      for (int e = 0; e < 3; ++e) corner[e] = t.edges[e].at(tile.originX + bx, tile.originY + by);
+      std::uint32_t tested = 0;  // bit k: sample k may have coverage in the block
+      for (int k = 0; k < samples; ++k) {
+        if (depthTest[k]->hidden(bx, by, block, planes[k])) continue;
+        bool outside = false;
+        for (int e = 0; e < 3; ++e) {
+          const std::int64_t at = corner[e] + shift[k][e];
+          outside = outside || at + high[e] <= 0;
+          base[k][e] = I(std::int32_t(std::clamp(at, -kClamp, kClamp))) + laneOffset[e];
+        }
+        if (outside) continue;
+        tested |= 1u << k;
+        low[k] = F(std::numeric_limits<float>::infinity());
+        highDepth[k] = F(-std::numeric_limits<float>::infinity());
+        visited[k] = 0;
+      }
+      if (tested == 0) continue;
+      const bool clipped = bx + kBlockSize > tile.width || by + kBlockSize > tile.height;
+      const BlockRange range(bx, by, xBegin, xEnd, yBegin, yEnd);
+      for (int gy = range.rowBegin & ~1; gy < range.rowEnd; gy += 2) {
+        for (int gx = range.columnBegin / kGroupWidth * kGroupWidth; gx < range.columnEnd;
+             gx += kGroupWidth) {
+          const F x = lane.x + F(float(bx + gx)), y = lane.y + F(float(by + gy));
+          const M inTile = clipped ? (x < F(float(tile.width))) & (y < F(float(tile.height)))
+                                   : F(0.0f) == F(0.0f);
+          const I step[3] = {I(a[0] * gx + b[0] * gy), I(a[1] * gx + b[1] * gy),
+                             I(a[2] * gx + b[2] * gy)};
+          const int index = TileBuffers::index(bx + gx, by + gy);
+          for (std::uint32_t left = tested; left != 0; left &= left - 1) {
+            const int k = __builtin_ctz(left);
+            I value = base[k][0] + step[0];
+            value = simd::min(value, base[k][1] + step[1]);
+            value = simd::min(value, base[k][2] + step[2]);
+            M cover = (simd::toFloat(value) > F(0.0f)) & inTile;
+            if (!simd::any(cover)) continue;
+            // VisibilityShader::shadeGroup at sample k.
+            float* const depth = planes[k].depth + index;
+            const F zValue = z[k].at(x, y);
+            const F zOld = F::load_aligned(depth);
+            cover = cover & (s.depthGreater ? zValue > zOld : zValue < zOld);
+            F zNow = zOld;
+            if (simd::any(cover)) {
+              won = true;
+              zNow = simd::select(cover, zValue, zOld);
+              zNow.store_aligned(depth);
+              float* const ids = reinterpret_cast<float*>(planes[k].visible + index);
+              simd::select(cover, triangleId, F::load_aligned(ids)).store_aligned(ids);
+            }
+            low[k] = simd::min(low[k], zNow), highDepth[k] = simd::max(highDepth[k], zNow);
+            ++visited[k];
+          }
+        }
+      }
+      for (std::uint32_t left = tested; left != 0; left &= left - 1) {
+        const int k = __builtin_ctz(left);
+        if (visited[k] > 0)
+          updateBlockDepth(planes[k], block, low[k], highDepth[k], visited[k] == kGroupsPerBlock);
+      }
+    }
+  }
+  return won ? 1 : 0;
+}
+
+bool visibilityAtSamples(const TriangleRecord& t, const Plane* p, const ShadeState& s,
+                         std::uint32_t id, const SamplePattern& pattern, TileBuffers* planes) {
+  const int small = visibilitySmallAtSamples(t, p, s, id, pattern, planes);
+  if (small >= 0) return small == 1;
+  // Larger triangles: each plane as a frame of its own, the triangle moved to its sample.
+  bool won = false;
+  for (int k = 0; k < pattern.count; ++k) {
+    const Plane depth = p[0].atSample(pattern.offsets[k]);
+    won |= visibility(atSample(t, pattern.offsets[k]), &depth, s, id, planes[k]);
+  }
+  return won;
+}
+
 void shade(const ShadeState& s, const ShadeRun& run, TileBuffers& tile) {
   withFeatures(s, [&]<class Feat>() {
     if constexpr (Feat::kAlpha != AlphaMode::Blend) {
@@ -892,6 +1024,7 @@ const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
                                    &QUADRA_KERNEL_NAMESPACE::rasterize,
                                    &QUADRA_KERNEL_NAMESPACE::orderBlended,
                                    &QUADRA_KERNEL_NAMESPACE::visibility,
+                                   &QUADRA_KERNEL_NAMESPACE::visibilityAtSamples,
                                    &QUADRA_KERNEL_NAMESPACE::shade};
   return kernels;
 }

@@ -128,8 +128,11 @@ const ShadeState& shadeAtSample(const TileFrame& frame, TileScratch& s, std::uin
 [[gnu::noinline]] bool visibilityAtSamples(const TileKernels& kernel, const TileTriangle& entry,
                                            const ShadeState& shade, std::uint32_t id,
                                            const TileFrame& frame, TileScratch& s) {
-  // Depth alone, or a masked draw's alpha test's planes too.
-  const int planeCount = shade.alphaMode == AlphaMode::Mask ? 2 + shade.attributes.count : 1;
+  if (shade.alphaMode != AlphaMode::Mask)
+    return kernel.visibilityAtSamples(*entry.triangle, entry.planes, shade, id, frame.samples,
+                                      s.planes.get());
+  // A masked draw's alpha test: its planes moved too, and its cutoff per sample.
+  const int planeCount = 2 + shade.attributes.count;
   Plane moved[2 + kMaxShadedAttributes];
   bool won = false;
   for (int k = 0; k < frame.samples.count; ++k) {
