@@ -14,6 +14,7 @@
 #include "tile/tile_stage.h"
 
 #include <algorithm>
+#include <bit>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -323,42 +324,53 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   s.uniformVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
   s.jobs.clear();
   std::uint32_t ids[kMaxSamples];
+  float
+      meanScale[kMaxSamples + 1];  // per count of samples: their offsets' sum to a mean, in pixels
+  for (int held = 1; held <= kMaxSamples; ++held)
+    meanScale[held] = 1.0f / float(held * kSampleUnitsPerPixel);
   for (const std::uint16_t p : s.mixedPixels) {
     s.uniformVisible[p] = kNoTriangle;
     for (int k = 0; k < samples; ++k) ids[k] = planes[k].visible[p];
-    std::uint32_t done = 0;  // samples already in a job
-    for (int k = 0; k < samples; ++k) {
-      if (done >> k & 1u) continue;
-      if (ids[k] == kNoTriangle) {
-        for (int c = 0; c < 4; ++c) planes[k].color[c][p] = frame.clearColor[c];
+    const float x = float(TileBuffers::xAt(p)), y = float(TileBuffers::yAt(p));
+    for (std::uint32_t left = (1u << samples) - 1; left != 0;) {
+      const int k = __builtin_ctz(left);
+      const std::uint32_t id = ids[k];
+      std::uint32_t mask = 0;
+      for (int j = k; j < samples; ++j) mask |= std::uint32_t(ids[j] == id) << j;
+      left &= ~mask;
+      if (id == kNoTriangle) {
+        for (std::uint32_t m = mask; m != 0; m &= m - 1)
+          for (int c = 0; c < 4; ++c) planes[__builtin_ctz(m)].color[c][p] = frame.clearColor[c];
         continue;
       }
       int sumX = 0, sumY = 0, held = 0;
-      std::uint32_t mask = 0;
-      for (int j = k; j < samples; ++j) {
-        if (ids[j] != ids[k]) continue;
-        mask |= 1u << j;
-        sumX += frame.samples.offsets[j].x, sumY += frame.samples.offsets[j].y, ++held;
+      for (std::uint32_t m = mask; m != 0; m &= m - 1, ++held) {
+        const SampleOffset o = frame.samples.offsets[__builtin_ctz(m)];
+        sumX += o.x, sumY += o.y;
       }
-      done |= mask;
-      const float scale = 1.0f / float(held * kSampleUnitsPerPixel);
-      s.jobs.push_back({float(TileBuffers::xAt(p)) + float(sumX) * scale,
-                        float(TileBuffers::yAt(p)) + float(sumY) * scale, ids[k], p,
-                        std::uint16_t(mask)});
+      const float scale = meanScale[held];
+      s.jobs.push_back(
+          {x + float(sumX) * scale, y + float(sumY) * scale, id, p, std::uint16_t(mask)});
     }
   }
   shadePlane(frame.draws, kernels, s.uniformVisible.data(), planes[0], s);
   if (s.jobs.empty()) return;
 
-  // Jobs by run (draw), in pixel order within each: the kernel shades one draw at a time.
+  // Jobs by run (draw), in pixel order within each: the kernel shades one
+  // draw at a time. One draw (a dense mesh's tiles): they are in order already.
   const std::uint32_t runs = assignRuns(s);
   s.runJobs.assign(runs + 1, 0);
-  for (const ShadeJob& job : s.jobs) ++s.runJobs[s.runOf[job.triangle] + 1];
-  for (std::uint32_t r = 0; r < runs; ++r) s.runJobs[r + 1] += s.runJobs[r];
-  s.sortedJobs.resize(s.jobs.size());
-  s.groupCursor.assign(s.runJobs.begin(), s.runJobs.end() - 1);
-  for (const ShadeJob& job : s.jobs) s.sortedJobs[s.groupCursor[s.runOf[job.triangle]]++] = job;
-  s.jobColor.resize(3 * s.jobs.size());
+  if (runs == 1) {
+    s.runJobs[1] = std::uint32_t(s.jobs.size());
+    s.sortedJobs.swap(s.jobs);
+  } else {
+    for (const ShadeJob& job : s.jobs) ++s.runJobs[s.runOf[job.triangle] + 1];
+    for (std::uint32_t r = 0; r < runs; ++r) s.runJobs[r + 1] += s.runJobs[r];
+    s.sortedJobs.resize(s.jobs.size());
+    s.groupCursor.assign(s.runJobs.begin(), s.runJobs.end() - 1);
+    for (const ShadeJob& job : s.jobs) s.sortedJobs[s.groupCursor[s.runOf[job.triangle]]++] = job;
+  }
+  s.jobColor.resize(3 * s.sortedJobs.size());
   for (std::uint32_t r = 0; r < runs; ++r) {
     const std::uint32_t first = s.runJobs[r], count = s.runJobs[r + 1] - first;
     if (count == 0) continue;
@@ -387,12 +399,17 @@ void fillSamplePlanes(const TileFrame& frame, TileScratch& s) {
   const std::uint32_t* const differs = s.sampleDiffers.data();
   for (int k = 1; k < frame.samples.count; ++k)
     for (int c = 0; c < 4; ++c) {
-      const float* from = s.planes[0].color[c];
-      float* to = s.planes[k].color[c];
-      // A select, not a conditional store, so it vectorizes (a branch per
-      // pixel made alpha-quads' 16-sample frame 1.8x slower than shading
-      // every sample).
-      for (int p = 0; p < TileBuffers::kPixels; ++p) to[p] = differs[p] == 0 ? from[p] : to[p];
+      const float* __restrict from = s.planes[0].color[c];
+      float* __restrict to = s.planes[k].color[c];
+      // A select on the bits, not a conditional store or a float select, so
+      // it vectorizes on the baseline ISA (a branch per pixel made
+      // alpha-quads' 16-sample frame 1.8x slower than shading every sample;
+      // the float select ran scalar, 2.4 instructions a pixel).
+      for (int p = 0; p < TileBuffers::kPixels; ++p) {
+        const std::uint32_t fromPlane0 = differs[p] == 0 ? ~0u : 0u;
+        to[p] = std::bit_cast<float>((std::bit_cast<std::uint32_t>(from[p]) & fromPlane0) |
+                                     (std::bit_cast<std::uint32_t>(to[p]) & ~fromPlane0));
+      }
     }
   s.allMixed = true;
 }
@@ -521,6 +538,11 @@ void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame
                       perPixel ? s.sampleDiffers.data() : nullptr, s.filter, out);
   } else {
     if (frame.coverage) boxCoverage(s.planes.get(), samples, frame.clearDepth, out);
+    // Where many pixels' samples differ (small triangles), whole planes
+    // averaged in lanes cost less than those pixels gathered one by one: the
+    // same sums (samples of one colour average to exactly it).
+    if (samples > 1 && !s.allMixed && s.mixedPixels.size() > TileBuffers::kPixels / 8)
+      fillSamplePlanes(frame, s);
     if (samples > 1) averageSamples(frame, s);
   }
   if (samples > 1) nearestSampleDepth(frame, s);
