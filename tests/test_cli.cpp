@@ -100,6 +100,46 @@ TEST(Cli, MalformedGltfIsAOneLineError) {
   expectOneLineError(run("render " + bad.string() + " --width 32 --height 32"), bad.string());
 }
 
+// The scene sandbox: a glTF whose buffer lies outside its folder is refused
+// (one line naming the file and the URI, exit 1, nothing written) until
+// --allow-path names the folder the buffer is in.
+TEST(Cli, GltfReadingOutsideItsFolderIsRefusedUnlessAllowed) {
+  const fs::path root = testDir() / "sandbox";
+  fs::remove_all(root);
+  fs::create_directories(root / "scene");
+  fs::create_directories(root / "outside");
+  const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::ofstream(root / "outside" / "triangle.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(triangle), sizeof triangle);
+  const fs::path gltf = root / "scene" / "triangle.gltf";
+  std::ofstream(gltf) << R"({"asset":{"version":"2.0"},
+    "buffers":[{"byteLength":36,"uri":"../outside/triangle.bin"}],
+    "bufferViews":[{"buffer":0,"byteLength":36}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+  const fs::path out = tempPath("sandboxed.png");
+  const std::string render =
+      "render " + gltf.string() + " --width 32 --height 32 --out " + out.string();
+
+  const RunResult refused = run(render);
+  expectOneLineError(refused, gltf.string() + ": URI '../outside/triangle.bin' resolves to ");
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_FALSE(fs::exists(out));
+
+  const std::string nowhere = (root / "nowhere").string();
+  const RunResult missing = run(render + " --allow-path " + nowhere);
+  expectOneLineError(missing, "--allow-path: '" + nowhere + "' is not an existing folder");
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_FALSE(fs::exists(out));
+
+  const RunResult allowed = run(render + " --allow-path " + (root / "scene").string() +
+                                " --allow-path " + (root / "outside").string());
+  EXPECT_EQ(allowed.exitCode, 0) << allowed.err;
+  EXPECT_TRUE(fs::exists(out));
+  fs::remove_all(root);
+}
+
 TEST(Cli, SampleReadsLookupsAndWritesValuesInOrder) {
   // A 2x1 texture: left texel linear 0, right texel linear 1 (an EXR, read as linear).
   Frame texture;
@@ -259,6 +299,15 @@ TEST(Cli, SharedOptionsSayTheSameWhicheverCommandHasThem) {
   for (const char* command : {"render builtin:checker-plane", "sample"})
     expectUsageError(run(std::string(command) + " --lod-bias 33"),
                      "--lod-bias: must lie in -32..32", {});
+  // Every command that loads glTF files takes --allow-path, and checks it
+  // even when its scenes are built in.
+  for (const CommandLineCase& c : everyCommand()) {
+    if (c.command != "render" && c.command != "report frames" && c.command != "report samples")
+      continue;
+    SCOPED_TRACE(c.command);
+    expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --allow-path /nonexistent"),
+                     "--allow-path: '/nonexistent' is not an existing folder", c.written);
+  }
 }
 
 TEST(Cli, VersionPrintsTheProjectVersion) {

@@ -6,6 +6,8 @@
 // the triangle counts listed in their README (counted by an outside script).
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -1165,6 +1167,186 @@ TEST(GltfLoaderErrors, CorruptedFilesNeverCrash) {
     }
   }
   EXPECT_GT(loaded, 0);  // some edits hit padding or irrelevant bytes
+}
+
+// ---- the sandbox: URIs may read only inside the file's folder ---------------------------
+
+// The square with a material that reads image 0 (which the caller adds).
+Doc texturedSquareDoc() {
+  Doc doc = squareDoc();
+  doc.meshes.clear();
+  doc.textures = {"{\"source\":0}"};
+  doc.materials = {"{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}"};
+  const int uv = doc.addData(std::vector<float>(8, 0.5f), kFloat, 2);
+  doc.addMesh(primitive({{"POSITION", 0}, {"TEXCOORD_0", uv}}, 1, -1, 0));
+  return doc;
+}
+
+// A scene folder with a sub-folder, and a folder beside it ("outside") that
+// holds the square's buffer and a 1x1 PNG. Each document is written in the
+// scene folder with the buffer and image URIs under test.
+class SandboxFolders {
+ public:
+  SandboxFolders() {
+    fs::create_directories(scene() / "sub");
+    fs::create_directories(outside());
+    writeBytes((outside() / "square.bin").string(), doc_.bin.data(), doc_.bin.size());
+    writeBytes((scene() / "square.bin").string(), doc_.bin.data(), doc_.bin.size());
+    const std::vector<std::uint8_t> png = encodePng(1, 1, 8, {255, 0, 0, 255});
+    writeBytes((outside() / "red.png").string(), png.data(), png.size());
+    writeBytes((scene() / "red.png").string(), png.data(), png.size());
+  }
+  fs::path scene() const { return fs::path(root_.file("scene")); }
+  fs::path outside() const { return fs::path(root_.file("outside")); }
+
+  // name.gltf in the scene folder: the square, its buffer at bufferUri, a
+  // material reading the image at imageUri.
+  std::string write(const std::string& name, const std::string& bufferUri,
+                    const std::string& imageUri) const {
+    Doc doc = doc_;
+    doc.images = {"{\"uri\":\"" + imageUri + "\"}"};
+    const std::string path = (scene() / (name + ".gltf")).string();
+    writeText(path, doc.json(bufferUri));
+    return path;
+  }
+
+ private:
+  TempDir root_;
+  Doc doc_ = texturedSquareDoc();
+};
+
+// The scene loaded: two triangles and the red texel, wherever they came from.
+void expectRedSquare(const std::string& path, const LoadOptions& options = {}) {
+  SCOPED_TRACE(path);
+  Scene scene;
+  ASSERT_NO_THROW(scene = loadGltf(path, options));
+  EXPECT_EQ(scene.triangleCount(), 2u);
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.textures[0]->image().texel(0, 0)[0], 1.0f);
+  EXPECT_EQ(scene.textures[0]->image().texel(0, 0)[1], 0.0f);
+}
+
+// Each way out of the folder, as a buffer URI and as an image URI: refused
+// with the URI named (percent-decoded), and read once --allow-path names the
+// folder it leads to.
+TEST(GltfSandbox, EveryWayOutIsRefusedUnlessAllowed) {
+  SandboxFolders folders;
+  ASSERT_NO_FATAL_FAILURE(
+      fs::create_symlink(folders.outside() / "square.bin", folders.scene() / "link.bin"));
+  fs::create_symlink(folders.outside() / "red.png", folders.scene() / "link.png");
+  fs::create_directory_symlink(folders.outside(), folders.scene() / "linked");
+  const std::string out = folders.outside().string();
+  struct Escape {
+    std::string name, buffer, image;
+    std::string bufferNamed, imageNamed;  // the URIs the errors name
+  };
+  const std::vector<Escape> escapes = {
+      {"absolute", out + "/square.bin", out + "/red.png", "", ""},
+      {"file-uri", "file://" + out + "/square.bin", "file://" + out + "/red.png", "", ""},
+      {"file-uri-localhost", "file://localhost" + out + "/square.bin",
+       "file://localhost" + out + "/red.png", "", ""},
+      {"dotdot", "../outside/square.bin", "../outside/red.png", "", ""},
+      {"sub-dotdot", "sub/../../outside/square.bin", "sub/../../outside/red.png", "", ""},
+      {"percent-dotdot", "%2E%2E/outside/square.bin", "%2e%2e%2Foutside%2Fred.png",
+       "../outside/square.bin", "../outside/red.png"},
+      {"symlink", "link.bin", "link.png", "", ""},
+      {"symlinked-folder", "linked/square.bin", "linked/red.png", "", ""},
+  };
+  for (const Escape& escape : escapes) {
+    SCOPED_TRACE(escape.name);
+    // The buffer alone escaping, then the image alone.
+    const std::string viaBuffer = folders.write(escape.name + "-buffer", escape.buffer, "red.png");
+    const std::string viaImage = folders.write(escape.name + "-image", "square.bin", escape.image);
+    const std::string& bufferNamed =
+        escape.bufferNamed.empty() ? escape.buffer : escape.bufferNamed;
+    const std::string& imageNamed = escape.imageNamed.empty() ? escape.image : escape.imageNamed;
+    expectError(viaBuffer, "URI '" + bufferNamed + "'");
+    expectError(viaImage, "URI '" + imageNamed + "'");
+    expectRedSquare(viaBuffer, {.allowedPaths = {out}});
+    expectRedSquare(viaImage, {.allowedPaths = {out}});
+  }
+  // The messages say why.
+  expectError(folders.write("why-dotdot", "../outside/square.bin", "red.png"),
+              "outside the scene's folder");
+  expectError(folders.write("why-absolute", out + "/square.bin", "red.png"),
+              "is an absolute path outside every --allow-path folder");
+  expectError(folders.write("why-file", "file://" + out + "/square.bin", "red.png"),
+              "is a file: URI outside every --allow-path folder");
+}
+
+// The default sandbox holds relative references only: an absolute path or
+// file: URI into the scene's own folder is refused too, unless that folder is
+// allowed by name. An allowed folder widens exactly to itself: not to its
+// parent, nor to a sibling that shares its name as a prefix.
+TEST(GltfSandbox, AllowPathWidensExactlyToItsFolder) {
+  SandboxFolders folders;
+  const std::string own = (folders.scene() / "square.bin").string();
+  const std::string absolute = folders.write("absolute-own", own, "red.png");
+  expectError(absolute, "is an absolute path");
+  expectRedSquare(absolute, {.allowedPaths = {folders.scene().string()}});
+  expectRedSquare(folders.write("file-own", "file://" + own, "red.png"),
+                  {.allowedPaths = {folders.scene().string()}});
+
+  fs::create_directories(folders.outside() / "inner");
+  fs::create_directories(fs::path(folders.outside().string() + "-sibling"));
+  fs::copy_file(folders.outside() / "square.bin",
+                fs::path(folders.outside().string() + "-sibling") / "square.bin");
+  const std::string inner = (folders.outside() / "inner").string();
+  expectError(folders.write("parent", "../outside/square.bin", "red.png"),
+              "URI '../outside/square.bin'", {.allowedPaths = {inner}});
+  expectError(folders.write("sibling", "../outside-sibling/square.bin", "red.png"),
+              "URI '../outside-sibling/square.bin'",
+              {.allowedPaths = {folders.outside().string()}});
+  // Several folders: each one counts.
+  expectRedSquare(folders.write("two", "../outside/square.bin", "red.png"),
+                  {.allowedPaths = {inner, folders.outside().string()}});
+}
+
+// What stays inside loads as before: a '..' that comes back, a symlink to a
+// file inside, percent-encoded names, data: URIs, and a GLB's own chunk.
+TEST(GltfSandbox, ReferencesThatStayInsideLoad) {
+  SandboxFolders folders;
+  expectRedSquare(folders.write("plain", "square.bin", "red.png"));
+  expectRedSquare(folders.write("dotdot-inside", "sub/../square.bin", "./sub/../red.png"));
+  expectRedSquare(folders.write("percent", "sub%2F..%2Fsquare.bin", "r%65d.png"));
+  fs::create_symlink(folders.scene() / "square.bin", folders.scene() / "sub" / "inner.bin");
+  expectRedSquare(folders.write("symlink-inside", "sub/inner.bin", "red.png"));
+
+  const Doc square = squareDoc();
+  Doc embedded = texturedSquareDoc();
+  embedded.images = {"{\"uri\":\"data:image/png;base64," +
+                     base64(encodePng(1, 1, 8, {255, 0, 0, 255})) + "\"}"};
+  const std::string dataPath = (folders.scene() / "data.gltf").string();
+  writeText(dataPath,
+            embedded.json("data:application/octet-stream;base64," + base64(embedded.bin)));
+  expectRedSquare(dataPath);
+  const TempDir glbDir;
+  EXPECT_EQ(loadGltf(square.writeGlb(glbDir, "chunk")).triangleCount(), 2u);
+}
+
+// Other schemes are never files; a FIFO or a folder is never read (a FIFO
+// would block the load); an --allow-path folder that does not exist is an
+// error that names it.
+TEST(GltfSandbox, OtherSchemesSpecialFilesAndMissingAllowedFolders) {
+  SandboxFolders folders;
+  expectError(folders.write("http", "http://example.com/square.bin", "red.png"),
+              "URI 'http://example.com/square.bin' has the scheme 'http:'");
+  expectError(folders.write("https-image", "square.bin", "HTTPS://example.com/red.png"),
+              "has the scheme 'https:'");
+  expectError(folders.write("file-host", "file://example.com/square.bin", "red.png"),
+              "names the host 'example.com'");
+  ASSERT_EQ(mkfifo((folders.scene() / "fifo.bin").c_str(), 0600), 0);
+  expectError(folders.write("fifo", "fifo.bin", "red.png"), "URI 'fifo.bin' is not a regular file");
+  expectError(folders.write("folder", "sub", "red.png"), "URI 'sub' is not a regular file");
+
+  const std::string path = folders.write("plain", "square.bin", "red.png");
+  const std::string missing = (folders.outside() / "missing").string();
+  try {
+    loadGltf(path, {.allowedPaths = {missing}});
+    ADD_FAILURE() << "a missing --allow-path folder was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "--allow-path: '" + missing + "' is not an existing folder");
+  }
 }
 
 // ---- the shared sample models ------------------------------------------------------------

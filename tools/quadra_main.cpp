@@ -35,6 +35,9 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
        quadra --version
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
+  --allow-path DIR       a folder besides the glTF file's own that its buffer and image URIs
+                         may read (repeatable; default: its own folder only, by relative
+                         URIs; absolute paths and file: URIs only inside a DIR given here)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
   --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
                          override the scene's first camera (far 0 = infinite)

@@ -10,6 +10,7 @@
 #include "api/camera.h"
 #include "api/renderer.h"
 #include "core/error.h"
+#include "core/file_sandbox.h"
 #include "lab/scene/builtin_scenes.h"
 
 namespace quadra {
@@ -49,6 +50,14 @@ void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& l
     *given = true;
   });
   options.integer("--scene", load.sceneIndex, 0, 1 << 20);
+  addAllowPathOption(options, load);
+}
+
+void addAllowPathOption(CommandOptions& options, LoadOptions& load) {
+  options.value("--allow-path", [&load](const std::string&, const std::string& folder) {
+    canonicalAllowedFolder(folder);  // a missing folder is an error even for builtin scenes
+    load.allowedPaths.push_back(folder);
+  });
 }
 
 void addSizeOptions(CommandOptions& options, int& width, int& height) {

@@ -25,8 +25,12 @@ constexpr const char* kBuiltinScenePrefix = "builtin:";
 Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
                         const std::string& program);
 
-// SCENE, the one positional argument, and --scene N (which glTF scene).
+// SCENE, the one positional argument, --scene N (which glTF scene) and
+// --allow-path.
 void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& load);
+// --allow-path DIR, repeatable: a folder besides the scene's own that its URIs
+// may read (LoadOptions::allowedPaths); one that does not exist is an error.
+void addAllowPathOption(CommandOptions& options, LoadOptions& load);
 // --width and --height, each 1..kMaxViewportSize.
 void addSizeOptions(CommandOptions& options, int& width, int& height);
 // --out FILE.exr|FILE.png, repeatable: the files the last frame is written to.

@@ -39,7 +39,7 @@ namespace fs = std::filesystem;
 constexpr const char* kFramesUsage =
     R"(usage: quadra report frames [--width W] [--height H] [--threads N] [--frames K]
                             [--rounds R] [--scenes LIST] [--assets DIR] [--out-dir DIR]
-                            [--llvmpipe-framebuffer rgba32f|srgba8]
+                            [--llvmpipe-framebuffer rgba32f|srgba8] [--allow-path DIR]
   --width W --height H  frame size (default 1920x1080)
   --threads N           threads of both renderers (default: all cores)
   --frames K            timed frames per timing run, after one warm-up (default 5)
@@ -53,6 +53,8 @@ constexpr const char* kFramesUsage =
   --llvmpipe-framebuffer rgba32f|srgba8
                         llvmpipe's colour buffer: rgba32f (default) holds what quadra's
                         frame holds; srgba8 is llvmpipe's cheapest target
+  --allow-path DIR      a folder the glTF files' URIs may read besides their own
+                        (repeatable; passed to both renderers)
 Each scene is rendered by `quadra render` and, where it was built beside this
 quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and unlit
 shading), as separate processes with the same options, taking turns at going first.
@@ -72,6 +74,7 @@ struct FramesOptions {
   std::string assets = QUADRA_ASSETS_DIR;
   std::string outDir = "out";
   std::string peerFramebuffer = "rgba32f";  // quadra-llvmpipe --framebuffer
+  LoadOptions load;                         // --allow-path, passed on
 };
 
 std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
@@ -87,6 +90,7 @@ std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
   parser.choice("--llvmpipe-framebuffer", "framebuffer",
                 {{"rgba32f", std::string("rgba32f")}, {"srgba8", std::string("srgba8")}},
                 options.peerFramebuffer);
+  addAllowPathOption(parser, options.load);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -183,6 +187,8 @@ std::map<std::string, std::string> runRender(const Contender& contender, const S
                                         "--threads", std::to_string(options.threads),
                                         "--frames",  std::to_string(frames)};
   arguments.insert(arguments.end(), {"--out", output.string()});
+  for (const std::string& folder : options.load.allowedPaths)
+    arguments.insert(arguments.end(), {"--allow-path", folder});
   arguments.insert(arguments.end(), contender.options.begin(), contender.options.end());
   const ProcessResult run = runProcess(contender.program, arguments, scratch);
   if (run.exitCode != 0)

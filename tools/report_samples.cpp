@@ -39,6 +39,7 @@ constexpr const char* kSamplesUsage =
     R"(usage: quadra report samples [--width W] [--height H] [--threads N] [--isa ISA]
                              [--frames K] [--rounds R] [--scenes LIST] [--samples LIST]
                              [--filter F] [--aniso N] [--reference-spp N] [--out-dir DIR]
+                             [--allow-path DIR]
   --width W --height H  frame size (default 480x270: the reference frames of the
                         default scenes then take 1-8 s each on two threads, ~50 s in
                         all with their checks)
@@ -56,6 +57,8 @@ constexpr const char* kSamplesUsage =
                         whose reference takes ~40 minutes at 480x270 (about a
                         thousand of its triangles overlap each pixel), and
                         invalid-input, whose NaN attributes the tracer shades)
+  --allow-path DIR      a folder the glTF files' URIs may read besides their own
+                        (repeatable; as for quadra render)
   --samples LIST        comma-separated sample counts, each 1, 2, 4, 8 or 16
                         (default 1,4,8,16)
   --filter F --aniso N  one texture filter for every texture (nearest|bilinear|
@@ -111,6 +114,7 @@ struct SamplesOptions {
   std::optional<Filter> filter;  // unset: the scenes' samplers decide
   int maxAniso = 16;
   float lodBias = 0.0f;
+  LoadOptions load;  // --allow-path
 };
 
 std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args) {
@@ -134,6 +138,7 @@ std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args)
   addFilterOptions(parser, options.filter, options.maxAniso, options.lodBias);
   parser.integer("--reference-spp", options.referenceSpp, 1, 256);
   parser.text("--out-dir", options.outDir);
+  addAllowPathOption(parser, options.load);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -381,7 +386,7 @@ int runSamplesReport(const std::vector<std::string>& args) {
   // last one should not cost the first ones' minutes.
   std::vector<Scene> loaded;
   for (const std::string& scene : scenes)
-    loaded.push_back(loadSceneArgument(scene, LoadOptions{}, "quadra"));
+    loaded.push_back(loadSceneArgument(scene, options.load, "quadra"));
   Renderer renderer({.threads = options.threads, .isa = options.isa});  // checks --isa
   const fs::path outDir(options.outDir);
   std::error_code ec;

@@ -1,8 +1,9 @@
 // loadGltf: reads the file, validates a GLB container before tinygltf sees it,
-// lets tinygltf parse the JSON (and fetch buffers), then walks the chosen
-// scene's node tree into instances and cameras. Primitives, accessors and
-// materials are converted by the other gltf_*.cpp files; every reference and
-// range is checked there, because tinygltf has had overflows in both.
+// lets tinygltf parse the JSON (and fetch buffers and images, only inside the
+// sandbox of core/file_sandbox.h), then walks the chosen scene's node tree
+// into instances and cameras. Primitives, accessors and materials are
+// converted by the other gltf_*.cpp files; every reference and range is
+// checked there, because tinygltf has had overflows in both.
 #include "scene/gltf_loader.h"
 
 #include <tiny_gltf.h>
@@ -11,12 +12,14 @@
 #include <filesystem>
 #include <map>
 #include <new>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/file_bytes.h"
+#include "core/file_sandbox.h"
 #include "core/parallel.h"
 #include "scene/gltf_internal.h"
 
@@ -101,13 +104,69 @@ void checkGlbLayout(const std::string& path, const std::vector<std::uint8_t>& by
   if (offset == 12) throw makeError(path, "GLB has no JSON chunk");
 }
 
+// ---- external files ----------------------------------------------------------
+
+// tinygltf's file callbacks, confined to the sandbox. For a URI it asks for
+// JoinPath(baseDir, decoded URI), then for "./" + the URI (the working
+// directory, which glTF never means); only the first is answered, so the
+// reference is what follows baseDir. Nothing is opened that resolve() did not
+// approve, and the first refusal is kept for the error: tinygltf itself only
+// warns about an image it could not read.
+struct SandboxedFiles {
+  const FileSandbox& sandbox;
+  std::string prefix;  // baseDir as tinygltf joins it, ending in '/'
+  std::set<std::string> approved;
+  std::string refusal;  // "URI '<reference>' <why>"
+};
+
+std::string expandSandboxed(const std::string& joined, void* user) {
+  auto& files = *static_cast<SandboxedFiles*>(user);
+  if (joined.compare(0, files.prefix.size(), files.prefix) != 0) return "";
+  const std::string reference = joined.substr(files.prefix.size());
+  const FileSandbox::Resolved resolved = files.sandbox.resolve(reference);
+  if (!resolved.refusal.empty()) {
+    if (files.refusal.empty()) files.refusal = "URI '" + reference + "' " + resolved.refusal;
+    return "";
+  }
+  files.approved.insert(resolved.path.string());
+  return resolved.path.string();
+}
+
+bool existsSandboxed(const std::string& path, void* user) {
+  const auto& files = *static_cast<SandboxedFiles*>(user);
+  std::error_code ec;
+  return files.approved.count(path) != 0 && std::filesystem::is_regular_file(path, ec);
+}
+
+bool readSandboxed(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* user) {
+  const auto& files = *static_cast<SandboxedFiles*>(user);
+  try {
+    if (files.approved.count(path) == 0) throw makeError(path, "outside the sandbox");
+    *out = readWholeFile(path);
+    return true;
+  } catch (const Error& e) {
+    if (err) *err += e.what();
+    return false;
+  }
+}
+
+bool writeRefused(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "the loader writes no files";
+  return false;
+}
+
 tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8_t>& bytes,
-                           gltf::ImageStash& stash) {
+                           const LoadOptions& options, gltf::ImageStash& stash) {
   const bool binary = isGlb(path, bytes);
   if (binary) checkGlbLayout(path, bytes);
+  const FileSandbox sandbox(std::filesystem::path(path).parent_path(), options.allowedPaths);
+  const std::string baseDir = sandbox.home().string();
+  SandboxedFiles files{sandbox, baseDir.back() == '/' ? baseDir : baseDir + "/", {}, {}};
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&gltf::stashImageBytes, &stash);
-  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  parser.SetFsCallbacks(
+      {&existsSandboxed, &expandSandboxed, &readSandboxed, &writeRefused, &files});
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
@@ -120,6 +179,7 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8
   } catch (const std::exception& e) {
     throw makeError(path, "invalid glTF (" + firstLine(e.what()) + ")");
   }
+  if (!files.refusal.empty()) throw makeError(path, files.refusal);
   if (!ok) {
     const std::string problem = firstLine(err);
     throw makeError(path, problem.empty() ? "invalid glTF" : problem);
@@ -411,7 +471,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options,
   try {
     const std::vector<std::uint8_t> bytes = readWholeFile(path);
     gltf::ImageStash stash;
-    const tinygltf::Model model = parseModel(path, bytes, stash);
+    const tinygltf::Model model = parseModel(path, bytes, options, stash);
     Scene scene = convertModel(path, model, stash, options, collected);
     if (notes) {
       for (const std::string& note : collected) notes->push_back(oneLine(note));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -10,11 +11,15 @@ namespace quadra {
 
 struct LoadOptions {
   int sceneIndex = -1;  // -1: the file's default scene (or scene 0)
+  // Folders besides the file's own that its buffer and image URIs may read
+  // (--allow-path); each must exist. The rules: README, "Scene sandbox".
+  std::vector<std::string> allowedPaths = {};
 };
 
 // Throws Error("<path>: <problem>") for anything malformed or unsupported that
-// cannot be ignored. Things it can ignore (points, lines) go to notes, one
-// line each.
+// cannot be ignored, and for a URI that reads outside the sandbox
+// ("<path>: URI '<uri>' <why>", the URI percent-decoded). Things it can
+// ignore (points, lines) go to notes, one line each.
 Scene loadGltf(const std::string& path, const LoadOptions& options = {},
                std::vector<std::string>* notes = nullptr);
 

@@ -35,6 +35,8 @@ OSMesa) for comparison with `quadra render`: the same loader, camera, draw
 order and shading.
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
+  --allow-path DIR       a folder the glTF file's URIs may read besides its own (repeatable,
+                         as for quadra render)
   --width W --height H   image size, default 1920x1080
   --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
                          override the scene's first camera (far 0 = infinite)
