@@ -7,10 +7,11 @@
 // Samples: a multisampled tile is one TileBuffers plane per sample, plane s
 // holding every pixel's sample s. The kernels see each plane as a frame of
 // its own, rendered with the triangle moved by minus sample s's offset
-// (atSample): coverage and depth per sample with no kernel of their own,
-// exact on the fixed-point grid. The shading pass then shades each pixel's
-// visible triangles once (or, shading per sample, each plane), and the
-// resolve averages the planes.
+// (atSample): coverage and depth per sample, exact on the fixed-point grid;
+// small triangles' visibility walks all the planes at once
+// (TileKernels::visibilityAtSamples, the same bits). The shading pass then
+// shades each pixel's visible triangles once (or, shading per sample, each
+// plane), and the resolve averages the planes.
 #include "tile/tile_stage.h"
 
 #include <algorithm>
