@@ -11,6 +11,7 @@
 #include <cstring>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "api/renderer.h"
@@ -27,9 +28,14 @@ namespace {
 
 constexpr const char* kUsage =
     R"(usage: quadra report stability [--threads N] [--isa auto|scalar|sse2|avx2|avx512]
+                              [--sections LIST]
   --threads N  threads for the frames (default: all cores; the determinism
                and random-triangle checks also use 1, 2, 3 and 8)
   --isa ISA    kernel path for the frames (default: the best the CPU has)
+  --sections LIST  only these, comma-separated (default: all, in this order):
+               perspective, coverage, random-triangles, samples,
+               samples-random-triangles, invalid-input, z-fighting, lod,
+               determinism
 Prints: case, check, measured figure, bound, pass/fail. Exit status 1 when
 any check fails. The cases are builtin: scenes (quadra render builtin:NAME).
 )";
@@ -212,17 +218,18 @@ void pixelExactCoverage(Context& ctx, const std::string& name) {
 
 // Coverage per sample (4 per pixel) on the same scenes as the one-sample
 // checks: the perspective hard cases away from their edges, the pixel-exact
-// ones at every pixel.
-void sampleCoverageCases(Context& ctx) {
+// ones (`exact`) at every pixel.
+void sampleCoverageCases(Context& ctx, bool perspective, const std::vector<std::string>& exact) {
   constexpr int kSamples = 4;
   for (const char* name : {"near-plane", "huge-1e6", "huge-1e30", "grazing"}) {
+    if (!perspective) break;
     const Scene scene = hardCase(name);
     ctx.add(name, "4 samples: pixels != reference sample coverage, > 1/128 px from an edge",
             coverageMismatches(ctx, scene, ReferenceCoverage(scene, kWidth, kHeight, kSamples),
                                1.0 / 128),
             Bound::Equal, 0);
   }
-  for (const char* name : {"slivers", "random-triangles"}) {
+  for (const std::string& name : exact) {
     const Scene scene = hardCase(name);
     ctx.add(
         name, "4 samples: pixels != reference sample coverage (all pixels)",
@@ -517,20 +524,49 @@ int runStabilityReport(const std::vector<std::string>& args) {
   CommandOptions options("report stability", kUsage);
   addThreadsOption(options, ctx.threads);
   addIsaOption(options, ctx.isa);
+  std::string sectionList;
+  options.text("--sections", sectionList);
   if (options.parse(args) == Parsed::HelpShown) return 0;
   supportedIsa(ctx.isa);  // fails before the first frame
 
-  for (const char* name : {"near-plane", "huge-1e6", "huge-1e30", "grazing"})
-    perspectiveCase(ctx, name);
-  pixelExactCoverage(ctx, "slivers");
-  watertightCase(ctx);
-  closedMeshCase(ctx);
-  randomTrianglesCase(ctx);
-  sampleCoverageCases(ctx);
-  invalidInputCase(ctx);
-  zFightingCases(ctx);
-  lodCases(ctx);
-  determinismCases(ctx);
+  // The report's parts, in its order; each can run alone (the tests run them
+  // side by side, the whole report being the suite's longest test under the
+  // sanitizers).
+  const std::vector<std::pair<std::string, std::function<void()>>> sections = {
+      {"perspective",
+       [&] {
+         for (const char* name : {"near-plane", "huge-1e6", "huge-1e30", "grazing"})
+           perspectiveCase(ctx, name);
+       }},
+      {"coverage",
+       [&] {
+         pixelExactCoverage(ctx, "slivers");
+         watertightCase(ctx);
+         closedMeshCase(ctx);
+       }},
+      {"random-triangles", [&] { randomTrianglesCase(ctx); }},
+      {"samples", [&] { sampleCoverageCases(ctx, true, {"slivers"}); }},
+      {"samples-random-triangles", [&] { sampleCoverageCases(ctx, false, {"random-triangles"}); }},
+      {"invalid-input", [&] { invalidInputCase(ctx); }},
+      {"z-fighting", [&] { zFightingCases(ctx); }},
+      {"lod", [&] { lodCases(ctx); }},
+      {"determinism", [&] { determinismCases(ctx); }},
+  };
+  std::vector<std::string> chosen;
+  for (const auto& section : sections) chosen.push_back(section.first);
+  if (!sectionList.empty()) {
+    chosen = splitList("--sections", sectionList);
+    for (const std::string& name : chosen) {
+      const bool known = std::any_of(sections.begin(), sections.end(),
+                                     [&](const auto& section) { return section.first == name; });
+      if (known) continue;
+      std::string names;
+      for (const auto& section : sections) names += (names.empty() ? "" : ", ") + section.first;
+      throw Error("--sections: unknown section '" + name + "' (" + names + ")");
+    }
+  }
+  for (const auto& section : sections)
+    if (std::find(chosen.begin(), chosen.end(), section.first) != chosen.end()) section.second();
 
   int failed = 0;
   std::printf("%-26s %-74s %12s %10s  %s\n", "case", "check", "figure", "bound", "result");
