@@ -1,6 +1,6 @@
 // Test helpers shared by the rendering tests: one frame through a fresh
-// Renderer, the one call every test otherwise spells out, and the kernel
-// paths this CPU can run.
+// Renderer, the one call every test otherwise spells out; the kernel paths
+// this CPU can run; a frame as an Image.
 #pragma once
 
 #include <optional>
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "api/renderer.h"
+#include "texture/image.h"
 
 namespace quadra {
 
@@ -30,6 +31,16 @@ inline Scene doubleSidedMeshScene(Mesh mesh) {
   scene.meshes.push_back(std::move(mesh));
   scene.instances.push_back(Instance{});
   return scene;
+}
+
+// A frame's colour as an Image (premultiplied linear RGBA), for
+// imageDifference against a reference.
+inline Image frameImage(const Frame& frame) {
+  Image image;
+  image.width = frame.width;
+  image.height = frame.height;
+  image.rgba = frame.rgba;
+  return image;
 }
 
 inline Frame renderOnce(const Scene& scene, const Camera& camera, const RenderSettings& settings,

@@ -141,6 +141,50 @@ TEST(Cli, GltfReadingOutsideItsFolderIsRefusedUnlessAllowed) {
   fs::remove_all(root);
 }
 
+// One triangle in a data URI, with the given extension lists.
+fs::path triangleWithExtensions(const std::string& name, const std::string& extensions) {
+  const fs::path path = tempPath(name);
+  std::ofstream(path)
+      << "{\"asset\":{\"version\":\"2.0\"}," << extensions
+      << "\"buffers\":[{\"byteLength\":36,\"uri\":\"data:application/octet-stream;base64,"
+         "AAAAvwAAAL8AAAAAAAAAPwAAAL8AAAAAAAAAAAAAAD8AAAAA\"}],"
+         "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
+         "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":"
+         "\"VEC3\",\"min\":[-0.5,-0.5,0],\"max\":[0.5,0.5,0]}],"
+         "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+         "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}]}";
+  return path;
+}
+
+// A required extension quadra does not implement would draw the scene wrong:
+// exit 1, one line naming the file and the extension, nothing written. An
+// optional one is drawn without: one note line, exit 0.
+TEST(Cli, UnimplementedExtensionsRequiredAreErrorsOptionalAreNotes) {
+  const fs::path out = tempPath("extension.png");
+  const fs::path required =
+      triangleWithExtensions("required.gltf",
+                             "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
+                             "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],");
+  const RunResult r =
+      run("render " + required.string() + " --width 32 --height 32 --out " + out.string());
+  EXPECT_EQ(r.exitCode, 1);
+  expectOneLineError(r, required.string() +
+                            ": unsupported required extension "
+                            "KHR_draco_mesh_compression");
+  EXPECT_FALSE(fs::exists(out));
+
+  const fs::path optional = triangleWithExtensions(
+      "optional.gltf",
+      "\"extensionsUsed\":[\"KHR_materials_sheen\",\"KHR_texture_transform\"],"
+      "\"extensionsRequired\":[\"KHR_texture_transform\"],");
+  const RunResult o =
+      run("render " + optional.string() + " --width 32 --height 32 --out " + out.string());
+  EXPECT_EQ(o.exitCode, 0) << o.err;
+  EXPECT_EQ(o.err, "quadra: note: " + optional.string() +
+                       ": optional extension KHR_materials_sheen is not supported; ignored\n");
+  EXPECT_TRUE(fs::exists(out));
+}
+
 TEST(Cli, SampleReadsLookupsAndWritesValuesInOrder) {
   // A 2x1 texture: left texel linear 0, right texel linear 1 (an EXR, read as linear).
   Frame texture;

@@ -1,13 +1,16 @@
 // LOD bias and min/max LOD (OpenGL semantics: λ' = clamp(λ + bias, min, max))
 // through the batch sampler, on every ISA path, against independent
 // expectations: a bias of +1 is the footprint doubled, maxLod 0 is level-0
-// bilinear, minLod 2 is the double-precision bilinear of mip level 2.
+// bilinear, minLod 2 is the double-precision bilinear of mip level 2; and the
+// nearest-texel mipmap filters against the texels of the levels they choose.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "lab/image/image_difference.h"
@@ -150,6 +153,93 @@ TEST_F(LodControls, MagnificationEndsWhereTheBiasedFootprintReachesOneTexel) {
         EXPECT_GT(fromNearest, 0.05) << isaName(isa) << " bias " << bias;
       }
     }
+}
+
+// glTF's NEAREST_MIPMAP_NEAREST and NEAREST_MIPMAP_LINEAR (OpenGL's
+// semantics): the nearest texel of the nearest level, or the nearest texels
+// of the two levels around λ blended by its fraction; and, with linear
+// magnification, bilinear level 0 up to λ = 0.5 (GL's switch-over point).
+class NearestMipmaps : public LodControls {
+ protected:
+  Texture textureWith(Filter filter) const {
+    SamplerState sampler;
+    sampler.minFilter = filter;
+    sampler.minLinear = false;
+    return Texture(image_, sampler);
+  }
+  // The texel of mip level `level` whose square holds (u, v), in double.
+  void nearestTexel(int level, float u, float v, double out[4]) const {
+    const Image& image = texture_.mips().level(level);
+    const float* t = image.texel(int(std::floor(double(u) * image.width)),
+                                 int(std::floor(double(v) * image.height)));
+    for (int c = 0; c < 4; ++c) out[c] = t[c];
+  }
+  static FilterSettings glRule() {
+    FilterSettings settings;
+    settings.lodRule = LodRule::Gl;
+    return settings;
+  }
+};
+
+TEST_F(NearestMipmaps, NearestMipmapNearestReadsTheNearestTexelOfTheNearestLevel) {
+  const Texture texture = textureWith(Filter::NearestMip);
+  // λ = log2(3) = 1.58 rounds to level 2, log2(5) = 2.32 to 2, log2(2.3) = 1.2 to 1.
+  for (const auto& [texelsPerPixel, level] : {std::pair{3.0, 2}, {5.0, 2}, {2.3, 1}}) {
+    const Batch batch = makeBatch(400, texelsPerPixel);
+    for (Isa isa : supportedIsas()) {
+      const std::vector<float> got = sample(texture, glRule(), isa, batch);
+      for (std::size_t i = 0; i < batch.u.size(); ++i) {
+        double expected[4];
+        nearestTexel(level, batch.u[i], batch.v[i], expected);
+        for (int c = 0; c < 4; ++c)
+          ASSERT_EQ(got[i * 4 + c], float(expected[c]))
+              << isaName(isa) << " lookup " << i << " at " << texelsPerPixel;
+      }
+    }
+  }
+}
+
+TEST_F(NearestMipmaps, NearestMipmapLinearBlendsTheNearestTexelsOfTwoLevels) {
+  const Texture texture = textureWith(Filter::Trilinear);
+  for (const double texelsPerPixel : {3.0, 6.5}) {
+    const double lod = std::log2(texelsPerPixel);
+    const int fine = int(std::floor(lod));
+    const Batch batch = makeBatch(400, texelsPerPixel);
+    for (Isa isa : supportedIsas()) {
+      const std::vector<float> got = sample(texture, glRule(), isa, batch);
+      double worst = 0.0;
+      for (std::size_t i = 0; i < batch.u.size(); ++i) {
+        double a[4], b[4];
+        nearestTexel(fine, batch.u[i], batch.v[i], a);
+        nearestTexel(fine + 1, batch.u[i], batch.v[i], b);
+        for (int c = 0; c < 4; ++c) {
+          const double expected = a[c] + (b[c] - a[c]) * (lod - fine);
+          worst = std::max(worst, std::fabs(double(got[i * 4 + c]) - expected));
+        }
+      }
+      // The float LOD's rounding (~1e-6 of a level) times texel differences <= 1.
+      EXPECT_LT(worst, 1e-5) << isaName(isa) << " at " << texelsPerPixel;
+    }
+  }
+}
+
+TEST_F(NearestMipmaps, LinearMagnificationHoldsUpToHalfALevel) {
+  for (const Filter filter : {Filter::NearestMip, Filter::Trilinear}) {
+    const Texture texture = textureWith(filter);
+    // λ = log2(1.3) = 0.38: magnified by GL's rule, bilinear on level 0.
+    const Batch below = makeBatch(300, 1.3);
+    // λ = log2(1.6) = 0.68: minified, nearest texels (of level 1 for
+    // nearest-mip; of levels 0 and 1 for the linear blend).
+    const Batch above = makeBatch(300, 1.6);
+    for (Isa isa : supportedIsas()) {
+      EXPECT_EQ(sample(texture, glRule(), isa, below),
+                sample(texture, FilterSettings(Filter::Bilinear), isa, below))
+          << isaName(isa) << " " << filterName(filter);
+      EXPECT_NE(sample(texture, glRule(), isa, above),
+                sample(texture, FilterSettings(Filter::Bilinear), isa, above))
+          << isaName(isa) << " " << filterName(filter);
+    }
+  }
 }
 
 // The box rule exists to bring trilinear frames nearer the ideal image (each

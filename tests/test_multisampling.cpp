@@ -19,21 +19,14 @@ namespace {
 constexpr int kWidth = 128;
 constexpr int kHeight = 72;
 
-Image asImage(const Frame& frame) {
-  Image image;
-  image.width = frame.width;
-  image.height = frame.height;
-  image.rgba = frame.rgba;
-  return image;
-}
-
 double psnrAgainst(const Image& ideal, const Scene& scene, int samples, ShadingRate rate) {
   RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.samples = samples;
   settings.shadingRate = rate;
-  return imageDifference(asImage(renderOnce(scene, firstCameraOrDefault(scene), settings)), ideal)
+  return imageDifference(frameImage(renderOnce(scene, firstCameraOrDefault(scene), settings)),
+                         ideal)
       .psnr;
 }
 

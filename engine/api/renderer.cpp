@@ -84,6 +84,8 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   s.alphaMode = material.alphaMode;
   s.alphaCutoff = material.alphaCutoff;
   s.textured = material.baseColorTexture >= 0 && !mesh.texcoords[g.texcoordSet].empty();
+  g.transformTexcoords = s.textured && !material.baseColorTransform.isIdentity();
+  if (g.transformTexcoords) g.texcoordTransform = material.baseColorTransform.matrix();
   if (s.textured) {
     FilterSettings filtering(settings.filter, settings.maxAniso);
     filtering.lodBias = settings.lodBias;
@@ -109,6 +111,7 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     s.blend = BlendMode::Add;
     s.depthTest = s.depthWrite = false;
     g.texcoordSet = 0;
+    g.transformTexcoords = false;
   } else if (settings.debugView == DebugView::TexCoord ||
              settings.debugView == DebugView::Derivatives) {
     s.textured = s.vertexColor = s.lit = false;
@@ -117,7 +120,8 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     s.depthWrite = true;
     s.output = settings.debugView == DebugView::TexCoord ? ShadeOutput::TexCoord
                                                          : ShadeOutput::Derivatives;
-    g.texcoordSet = 0;
+    g.texcoordSet = 0;  // TEXCOORD_0 as stored, whatever the material reads
+    g.transformTexcoords = false;
   }
 
   s.derivatives = settings.derivatives;

@@ -187,16 +187,22 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8
   return model;
 }
 
+// The extensions quadra implements: integer attribute types are read
+// generically, so quantized meshes load; the base colour texture's transform
+// is applied (the other texture slots are not drawn, so theirs do not matter).
+bool implemented(const std::string& extension) {
+  return extension == "KHR_mesh_quantization" || extension == "KHR_texture_transform";
+}
+
+// A required extension quadra does not implement would draw the scene wrong:
+// an error. An optional one leaves a valid fallback (glTF 2.0 §3.12): a note.
 void checkExtensions(const ModelRef& ref, std::vector<std::string>& notes) {
   for (const std::string& extension : ref.model.extensionsRequired) {
-    // Integer attribute types are read generically, so quantized meshes load.
-    if (extension == "KHR_mesh_quantization" || extension == "KHR_texture_transform") continue;
-    throw ref.fail("unsupported required extension " + extension);
+    if (!implemented(extension)) throw ref.fail("unsupported required extension " + extension);
   }
   for (const std::string& extension : ref.model.extensionsUsed) {
-    if (extension == "KHR_texture_transform") {
-      notes.push_back(ref.note("KHR_texture_transform ignored (textures are drawn untransformed)"));
-    }
+    if (!implemented(extension))
+      notes.push_back(ref.note("optional extension " + extension + " is not supported; ignored"));
   }
 }
 

@@ -1,11 +1,13 @@
-// glTF materials, textures, samplers and images → Scene materials and
-// textures, made only for what a drawn primitive uses: an image is decoded
-// (sRGB → linear float RGBA) only when some used material's baseColorTexture
-// reads it, and textures sharing an image share one decoded Image.
+// glTF materials (with KHR_texture_transform on the base colour texture),
+// textures, samplers and images → Scene materials and textures, made only for what a drawn
+// primitive uses: an image is decoded (sRGB → linear float RGBA) only when some used material's
+// baseColorTexture reads it, and textures sharing an image share one decoded Image.
 #include <tiny_gltf.h>
 
 #include <cctype>
+#include <cfloat>
 #include <climits>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <set>
@@ -32,19 +34,27 @@ WrapMode wrapMode(const ModelRef& ref, int sampler, int code) {
                  std::to_string(code));
 }
 
-Filter minFilter(const ModelRef& ref, int sampler, int code) {
+// glTF's minFilter codes are OpenGL's: the first word filters within a mip
+// level (minLinear), the second chooses between levels.
+void setMinFilter(const ModelRef& ref, int sampler, int code, SamplerState& state) {
+  state.minLinear = code != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST &&
+                    code != TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR;
   switch (code) {
     case -1:  // unset: the implementation chooses; mipmapped is the safe choice
     case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
     case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR:
-      return Filter::Trilinear;
+      state.minFilter = Filter::Trilinear;
+      return;
     case TINYGLTF_TEXTURE_FILTER_NEAREST:
-      return Filter::Nearest;
+      state.minFilter = Filter::Nearest;
+      return;
     case TINYGLTF_TEXTURE_FILTER_LINEAR:
-      return Filter::Bilinear;
+      state.minFilter = Filter::Bilinear;
+      return;
     case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
     case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
-      return Filter::NearestMip;
+      state.minFilter = Filter::NearestMip;
+      return;
   }
   throw ref.fail("sampler " + std::to_string(sampler) + " has unknown minFilter " +
                  std::to_string(code));
@@ -65,8 +75,44 @@ SamplerState samplerState(const ModelRef& ref, int index) {
                    std::to_string(sampler.magFilter));
   }
   state.magLinear = sampler.magFilter != TINYGLTF_TEXTURE_FILTER_NEAREST;
-  state.minFilter = minFilter(ref, index, sampler.minFilter);
+  setMinFilter(ref, index, sampler.minFilter, state);
   return state;
+}
+
+// A number from the file that a float holds finitely.
+float finiteFloat(const ModelRef& ref, const tinygltf::Value& value, const std::string& what) {
+  const double number = value.IsNumber() ? value.GetNumberAsDouble() : 0.0;
+  if (!value.IsNumber() || !(std::fabs(number) <= double(FLT_MAX))) {
+    throw ref.fail(what + " is not a finite number");
+  }
+  return float(number);
+}
+
+glm::vec2 finiteVec2(const ModelRef& ref, const tinygltf::Value& value, const std::string& what) {
+  if (!value.IsArray() || value.ArrayLen() != 2) throw ref.fail(what + " does not have 2 numbers");
+  return {finiteFloat(ref, value.Get(0), what), finiteFloat(ref, value.Get(1), what)};
+}
+
+// KHR_texture_transform on a textureInfo: offset, rotation, scale, and a
+// texCoord that replaces the textureInfo's own when present.
+TextureTransform textureTransform(const ModelRef& ref, const tinygltf::Value& extension,
+                                  const std::string& where, int& texCoord) {
+  const std::string what = where + " KHR_texture_transform";
+  if (!extension.IsObject()) throw ref.fail(what + " is not an object");
+  TextureTransform transform;
+  if (extension.Has("offset"))
+    transform.offset = finiteVec2(ref, extension.Get("offset"), what + " offset");
+  if (extension.Has("rotation"))
+    transform.rotation = finiteFloat(ref, extension.Get("rotation"), what + " rotation");
+  if (extension.Has("scale"))
+    transform.scale = finiteVec2(ref, extension.Get("scale"), what + " scale");
+  if (extension.Has("texCoord")) {
+    const tinygltf::Value& set = extension.Get("texCoord");
+    if (!set.IsInt() || set.GetNumberAsInt() < 0)
+      throw ref.fail(what + " texCoord is not a non-negative integer");
+    texCoord = set.GetNumberAsInt();
+  }
+  return transform;
 }
 
 AlphaMode alphaMode(const ModelRef& ref, int material, const std::string& name) {
@@ -129,11 +175,17 @@ int MaterialTable::sceneMaterial(int gltfMaterial) {
   const tinygltf::TextureInfo& baseColor = source.pbrMetallicRoughness.baseColorTexture;
   if (baseColor.index != -1) {
     material.baseColorTexture = sceneTexture(baseColor.index, what);
-    if (baseColor.texCoord == 0 || baseColor.texCoord == 1) {
-      material.baseColorTexCoord = baseColor.texCoord;
+    int texCoord = baseColor.texCoord;
+    if (const auto found = baseColor.extensions.find("KHR_texture_transform");
+        found != baseColor.extensions.end()) {
+      material.baseColorTransform =
+          textureTransform(ref_, found->second, what + " baseColorTexture", texCoord);
+    }
+    if (texCoord == 0 || texCoord == 1) {
+      material.baseColorTexCoord = texCoord;
     } else {
       notes_.push_back(ref_.note(what + " baseColorTexture reads TEXCOORD_" +
-                                 std::to_string(baseColor.texCoord) +
+                                 std::to_string(texCoord) +
                                  ", which is not supported; using TEXCOORD_0"));
     }
   }

@@ -1,10 +1,21 @@
-// Scene members: triangle counts and world-space bounds; re-storing textures.
+// Scene members: triangle counts and world-space bounds; re-storing textures;
+// the texture transform's matrix.
 #include "scene/scene.h"
 
 #include <cmath>
 #include <limits>
 
 namespace quadra {
+
+glm::mat3x2 TextureTransform::matrix() const {
+  // T * R * S of KHR_texture_transform, multiplied out: the first column is
+  // S's x scale carried through R's first column (cos r, -sin r), the second
+  // S's y scale through (sin r, cos r). Double, so each entry rounds once.
+  const double c = std::cos(double(rotation)), s = std::sin(double(rotation));
+  const double sx = scale.x, sy = scale.y;
+  return glm::mat3x2(float(c * sx), float(-s * sx), float(s * sy), float(c * sy), offset.x,
+                     offset.y);
+}
 
 TextureAlpha textureAlphaOf(const Material& material) {
   switch (material.alphaMode) {

@@ -20,10 +20,28 @@ namespace quadra {
 
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
 
+// glTF's KHR_texture_transform, as the file gives it: a texture reads
+// uv' = T(offset) R(rotation) S(scale) (u, v, 1), with R turning (1, 0) to
+// (cos r, -sin r), i.e. counter-clockwise as the image is viewed (v down).
+// The default is the identity.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians
+  glm::vec2 scale{1.0f};
+
+  bool isIdentity() const {
+    return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
+  }
+  // The 2x3 matrix above (columns: the images of u, of v, and the offset),
+  // evaluated in double and rounded once per entry.
+  glm::mat3x2 matrix() const;
+};
+
 struct Material {
   glm::vec4 baseColorFactor{1.0f};
-  int baseColorTexture = -1;  // index into Scene::textures, -1 when none
-  int baseColorTexCoord = 0;  // which TEXCOORD_n set the texture reads (0 or 1)
+  int baseColorTexture = -1;            // index into Scene::textures, -1 when none
+  int baseColorTexCoord = 0;            // which TEXCOORD_n set the texture reads (0 or 1)
+  TextureTransform baseColorTransform;  // applied to that set before the lookup
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool doubleSided = false;

@@ -396,6 +396,15 @@ QUADRA_LANE_INLINE typename L::F controlledLod(const TextureView& view, const ty
   return simd::min(simd::max(lod + F(view.lodBias), F(view.minLod)), F(view.maxLod));
 }
 
+// One mip level per lane, filtered within the level as view.minLinear says:
+// bilinear, or the nearest texel.
+template <class L, class R>
+QUADRA_LANE_INLINE Rgba<L> sampleWithinLevel(const TextureView& view, const typename L::F& u,
+                                             const typename L::F& v, const typename L::I& level) {
+  return view.minLinear ? sampleBilinear<L, R>(view, u, v, level)
+                        : sampleNearest<L, R>(view, u, v, level);
+}
+
 // Trilinear (or nearest-mip) at LOD λ; λ <= 0 is magnification.
 template <class L, class R>
 QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typename L::F& u,
@@ -407,15 +416,15 @@ QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typena
   lod = simd::min(simd::max(lod, F(0.0f)), lastLevel);  // simd::max(NaN, 0) is 0: level 0
   if (!linearBetweenLevels) {
     const I level = simd::toInt(simd::floor(lod + F(0.5f)));
-    return sampleBilinear<L, R>(view, u, v, simd::min(level, I(view.levelCount - 1)));
+    return sampleWithinLevel<L, R>(view, u, v, simd::min(level, I(view.levelCount - 1)));
   }
   const F levelFloor = simd::floor(lod);
   const F t = lod - levelFloor;
   const I level0 = simd::toInt(levelFloor);
   const I level1 = simd::min(level0 + I(1), I(view.levelCount - 1));
-  const Rgba<L> fine = sampleBilinear<L, R>(view, u, v, level0);
+  const Rgba<L> fine = sampleWithinLevel<L, R>(view, u, v, level0);
   if (!simd::any(t > F(0.0f))) return fine;
-  const Rgba<L> coarse = sampleBilinear<L, R>(view, u, v, level1);
+  const Rgba<L> coarse = sampleWithinLevel<L, R>(view, u, v, level1);
   return sampling::lerp<L>(fine, coarse, t);
 }
 
@@ -1145,14 +1154,22 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
                           : sampleNearest<L, R>(view, u, v, level0);
   F lod = controlledLod<L>(view, F(0.5f) * simd::log2<L>(lengthSq));
   lod = simd::select(surelyMagnified, simd::min(lod, F(0.0f)), lod);
-  const auto magnified = ~(lod > F(0.0f));
+  // OpenGL's switch-over point c (4.6 §8.14.2): 0.5 for linear magnification
+  // over nearest-texel mipmaps, so λ <= 0.5 reads bilinear level 0 rather than
+  // level 0's nearest texel; else 0.
+  const float switchOver = view.magLinear && !view.minLinear ? 0.5f : 0.0f;
+  const auto magnified = ~(lod > F(switchOver));
   if (!view.magLinear && simd::all(magnified)) return sampleNearest<L, R>(view, u, v, level0);
   Rgba<L> c = filter == Filter::Anisotropic
                   ? sampleAnisotropic<L, R>(view, u, v, d)
                   : sampleMipmapped<L, R>(view, u, v, lod, filter == Filter::Trilinear);
-  if (!view.magLinear && simd::any(magnified)) {
-    const Rgba<L> n = sampleNearest<L, R>(view, u, v, level0);
-    c = sampling::selectRgba<L>(magnified, n, c);
+  // Magnified lanes take the magnification filter where it differs from the
+  // filter within a level (the anisotropic filter's taps are bilinear).
+  const bool minLinear = view.minLinear || filter == Filter::Anisotropic;
+  if (view.magLinear != minLinear && simd::any(magnified)) {
+    const Rgba<L> m = view.magLinear ? sampleBilinear<L, R>(view, u, v, level0)
+                                     : sampleNearest<L, R>(view, u, v, level0);
+    c = sampling::selectRgba<L>(magnified, m, c);
   }
   return c;
 }

@@ -54,6 +54,11 @@ struct SamplerState {
   WrapMode wrapV = WrapMode::Repeat;
   bool magLinear = true;
   Filter minFilter = Filter::Trilinear;  // default when glTF leaves it unset
+  // Within a mip level when minified, for NearestMip and Trilinear: bilinear,
+  // or the nearest texel (glTF's and GL's NEAREST_MIPMAP_NEAREST and
+  // NEAREST_MIPMAP_LINEAR: the nearest texel of the nearest level, or of the
+  // two nearest levels blended).
+  bool minLinear = true;
   float borderColor[4] = {0.0f, 0.0f, 0.0f, 0.0f};
 };
 

@@ -25,6 +25,7 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   view.minFilter = filter.value_or(sampler.minFilter);
   // An explicit filter decides magnification too: nearest stays nearest.
   view.magLinear = filter ? *filter != Filter::Nearest : sampler.magLinear;
+  view.minLinear = filter ? true : sampler.minLinear;
   view.maxAniso = settings.maxAniso;
   view.gatherTexels = settings.gatherTexels;
   const float ruleOffset = view.minFilter == Filter::Trilinear && settings.lodRule == LodRule::Box

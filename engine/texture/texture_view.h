@@ -45,6 +45,7 @@ struct TextureView {
   float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   Filter minFilter = Filter::Trilinear;  // used when the footprint is minified (LOD > 0)
   bool magLinear = true;                 // used when magnified (LOD <= 0)
+  bool minLinear = true;                 // within a level, minified (SamplerState)
   int maxAniso = 16;
   // RGBA32F bilinear rows through hardware gathers instead of pair loads (the
   // benchmarked alternative; AVX2 and AVX-512 paths only).

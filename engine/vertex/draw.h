@@ -28,6 +28,13 @@ struct DrawGeometry {
   glm::mat4 modelView{1.0f};
   glm::mat4 projection{1.0f};
   int texcoordSet = 0;
+  // The material's texture transform (scene.h TextureTransform), applied to
+  // each vertex's coordinates: it is affine, so interpolating the transformed
+  // coordinates gives the transformed interpolation, and the derivatives the
+  // LOD is chosen from follow. Off for the identity, which keeps those draws'
+  // bits.
+  bool transformTexcoords = false;
+  glm::mat3x2 texcoordTransform{1.0f};
   bool cullBackFaces = true;
   bool frontIsClockwise = false;  // the world matrix mirrors (negative determinant)
   AttributeLayout attributes;

@@ -57,7 +57,8 @@ void transformBlock(const DrawGeometry& g, const glm::mat4& modelViewProjection,
     v[3] = clip.w;
     float* attr = v + 4;
     if (a.texcoord >= 0) {
-      const glm::vec2 uv = texcoords.empty() ? glm::vec2(0.0f) : texcoords[i];
+      glm::vec2 uv = texcoords.empty() ? glm::vec2(0.0f) : texcoords[i];
+      if (g.transformTexcoords) uv = g.texcoordTransform * glm::vec3(uv, 1.0f);
       attr[a.texcoord] = uv.x;
       attr[a.texcoord + 1] = uv.y;
     }

@@ -354,6 +354,20 @@ glm::dvec2 ReferenceTracer::texCoord(const TracerHit& hit, int set) const {
   return sum;
 }
 
+namespace {
+
+// KHR_texture_transform in double, step by step as the extension defines it
+// (scale, then rotation, then offset), apart from the engine's matrix
+// (TextureTransform::matrix) so that the comparison checks it.
+glm::dvec2 transformed(const TextureTransform& transform, glm::dvec2 uv) {
+  uv *= glm::dvec2(transform.scale);
+  const double c = std::cos(double(transform.rotation)), s = std::sin(double(transform.rotation));
+  uv = glm::dvec2(c * uv.x + s * uv.y, c * uv.y - s * uv.x);
+  return uv + glm::dvec2(transform.offset);
+}
+
+}  // namespace
+
 glm::dvec4 ReferenceTracer::surfaceColour(const TracerHit& hit) const {
   const PreparedInstance& instance = instances_[hit.instance];
   glm::dvec4 colour(1.0);
@@ -362,7 +376,8 @@ glm::dvec4 ReferenceTracer::surfaceColour(const TracerHit& hit) const {
     colour = glm::dvec4(material.baseColorFactor);
     if (material.baseColorTexture >= 0) {
       const Texture& texture = *scene_.textures.at(material.baseColorTexture);
-      const glm::dvec2 uv = texCoord(hit, material.baseColorTexCoord);
+      const glm::dvec2 uv =
+          transformed(material.baseColorTransform, texCoord(hit, material.baseColorTexCoord));
       // Filtered as the renderer filters it: premultiplied where alpha is read.
       colour *= textureAlphaOf(material).premultiplied()
                     ? sampleBilinearPremultiplied(texture.image(), texture.sampler(), uv)

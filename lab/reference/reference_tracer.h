@@ -2,7 +2,8 @@
 // ray caster. Each pixel averages S x S stratified subsamples (a box filter);
 // each subsample's primary ray takes its exact nearest triangle hit, whose
 // barycentrics give the attributes; colour is baseColorFactor x level-0
-// bilinear texture x COLOR_0 (unlit only), with OPAQUE / MASK handled per the
+// bilinear texture (at the coordinates after the material's texture
+// transform) x COLOR_0 (unlit only), with OPAQUE / MASK handled per the
 // spec and BLEND composited back to front over the nearest opaque hit.
 //
 // Which triangles a primary ray is tested against: by default those whose

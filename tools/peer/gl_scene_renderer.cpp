@@ -41,6 +41,7 @@ layout(location = 0) in vec3 position;
 uniform mat4 clipFromModel;
 #ifdef TEXTURED
 layout(location = 1) in vec2 texcoord;
+uniform mat3x2 uvTransform;  // the material's texture transform (scene.h)
 out vec2 uv;
 #endif
 #ifdef VERTEX_COLOR
@@ -50,7 +51,7 @@ out vec4 vertexColor;
 void main() {
   gl_Position = clipFromModel * vec4(position, 1.0);
 #ifdef TEXTURED
-  uv = texcoord;
+  uv = uvTransform * vec3(texcoord, 1.0);
 #endif
 #ifdef VERTEX_COLOR
   vertexColor = color;
@@ -123,16 +124,18 @@ GLint glWrap(WrapMode wrap) {
   return GL_REPEAT;
 }
 
-// quadra's nearest-mip is bilinear within the nearest level.
-GLint glMinFilter(Filter filter) {
+// quadra's nearest-mip is bilinear within the nearest level, unless the
+// sampler asks for the nearest texel within levels (SamplerState::minLinear).
+GLint glMinFilter(Filter filter, bool minLinear) {
   switch (filter) {
     case Filter::Nearest:
       return GL_NEAREST;
     case Filter::Bilinear:
       return GL_LINEAR;
     case Filter::NearestMip:
-      return GL_LINEAR_MIPMAP_NEAREST;
+      return minLinear ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST;
     case Filter::Trilinear:
+      return minLinear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR;
     case Filter::Anisotropic:
       return GL_LINEAR_MIPMAP_LINEAR;
     default:
@@ -217,6 +220,7 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
       if (added) slot->second = uploadTexture(texture);
       draw.texture = slot->second;
       draw.premultipliedTexture = texture.alpha().premultiplied();
+      draw.uvTransform = material.baseColorTransform.matrix();
     }
     draw.baseColor = material.baseColorFactor;
     draw.alphaCutoff = material.alphaCutoff;
@@ -275,6 +279,7 @@ const GlSceneRenderer::Program& GlSceneRenderer::programFor(bool textured, bool 
   program.baseColor = glGetUniformLocation(program.id, "baseColor");
   program.alphaCutoff = glGetUniformLocation(program.id, "alphaCutoff");
   program.premultipliedTexture = glGetUniformLocation(program.id, "premultipliedTexture");
+  program.uvTransform = glGetUniformLocation(program.id, "uvTransform");
   glUseProgram(program.id);
   glUniform1i(glGetUniformLocation(program.id, "baseColorTexture"), 0);
   return programs_.emplace(variant, program).first->second;
@@ -327,10 +332,11 @@ GLuint GlSceneRenderer::uploadTexture(const Texture& texture) {
   const SamplerState& sampler = texture.sampler();
   const Filter filter = settings_.filter.value_or(sampler.minFilter);
   const bool magLinear = settings_.filter ? filter != Filter::Nearest : sampler.magLinear;
+  const bool minLinear = settings_.filter ? true : sampler.minLinear;
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, glWrap(sampler.wrapU));
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, glWrap(sampler.wrapV));
   glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, sampler.borderColor);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, glMinFilter(filter));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, glMinFilter(filter, minLinear));
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, magLinear ? GL_LINEAR : GL_NEAREST);
   glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_LOD_BIAS, settings_.lodBias);
   if (filter == Filter::Anisotropic)
@@ -352,6 +358,8 @@ void GlSceneRenderer::draw(const DrawState& state, const glm::mat4& clipFromMode
   glUniform4fv(state.program->baseColor, 1, &state.baseColor[0]);
   glUniform1f(state.program->alphaCutoff, state.alphaCutoff);
   glUniform1i(state.program->premultipliedTexture, state.premultipliedTexture ? 1 : 0);
+  if (state.program->uvTransform >= 0)
+    glUniformMatrix3x2fv(state.program->uvTransform, 1, GL_FALSE, &state.uvTransform[0][0]);
   if (state.cull)
     glEnable(GL_CULL_FACE);
   else

@@ -72,7 +72,8 @@ class GlSceneRenderer {
  private:
   struct Program {
     GLuint id = 0;
-    GLint clipFromModel = -1, baseColor = -1, alphaCutoff = -1, premultipliedTexture = -1;
+    GLint clipFromModel = -1, baseColor = -1, alphaCutoff = -1, premultipliedTexture = -1,
+          uvTransform = -1;
   };
   struct MeshBuffers {
     GLuint vertexArray = 0;
@@ -84,6 +85,7 @@ class GlSceneRenderer {
     const Program* program = nullptr;
     GLuint texture = 0;                 // 0: untextured
     bool premultipliedTexture = false;  // its levels hold rgb·a, as quadra's (texture/texture.h)
+    glm::mat3x2 uvTransform{1.0f};
     glm::vec4 baseColor{1.0f};
     float alphaCutoff = 0.5f;
     bool cull = true, frontClockwise = false, blend = false;
