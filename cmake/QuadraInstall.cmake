@@ -10,7 +10,7 @@ include(CMakePackageConfigHelpers)
 # so one missing here fails there).
 set(QUADRA_PUBLIC_HEADERS
     api/renderer.h api/camera.h
-    scene/scene.h scene/gltf_loader.h
+    scene/scene.h scene/gltf_loader.h scene/animation.h
     io/frame.h io/image_io.h
     texture/texture.h texture/image.h texture/sampler_state.h texture/texel_format.h
     texture/texture_sampler.h texture/texture_view.h

@@ -1,6 +1,6 @@
 // Internals of the glTF loader shared by its translation units: the model a
 // load is reading plus its path (for messages), the checked accessor reader,
-// primitive → Mesh conversion, and the material/texture/image table. Not part
+// primitive → Mesh conversion, animations, and the material/texture/image table. Not part
 // of the public API; tinygltf types are only forward-declared here.
 #pragma once
 
@@ -72,6 +72,15 @@ struct PrimitiveNeeds {
 // Returns false (with a note) when the primitive draws nothing we rasterize.
 bool buildMesh(const ModelRef& ref, int meshIndex, int primitiveIndex, const PrimitiveNeeds& needs,
                Mesh& out, std::vector<std::string>& notes);
+
+// ---- animations (gltf_animation.cpp) ----------------------------------------
+
+// The file's animations into scene.animations, in file order (so an index
+// names the same animation in both). sceneNodeOf maps a glTF node to its
+// Scene::nodes entry, -1 for nodes outside the chosen scene, whose channels
+// are dropped. Every sampler's accessors are checked, used or not.
+void readAnimations(const ModelRef& ref, const std::vector<int>& sceneNodeOf, Scene& scene,
+                    std::vector<std::string>& notes);
 
 // ---- materials, textures, images (gltf_material.cpp) -------------------------
 

@@ -208,45 +208,56 @@ void checkExtensions(const ModelRef& ref, std::vector<std::string>& notes) {
 
 // ---- node tree ----------------------------------------------------------------
 
-glm::mat4 localMatrix(const ModelRef& ref, int index) {
-  const tinygltf::Node& node = ref.model.nodes[std::size_t(index)];
+// The node's rest transform, and its TRS parts for an animation to replace.
+Node readNode(const ModelRef& ref, int index) {
+  const tinygltf::Node& source = ref.model.nodes[std::size_t(index)];
   const std::string what = "node " + std::to_string(index);
-  if (!node.matrix.empty()) {
-    if (node.matrix.size() != 16) throw ref.fail(what + " matrix does not have 16 numbers");
-    glm::mat4 m;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = float(node.matrix[std::size_t(i)]);
-    return m;  // both glTF and glm store columns first
+  Node node;
+  if (!source.matrix.empty()) {
+    if (source.matrix.size() != 16) throw ref.fail(what + " matrix does not have 16 numbers");
+    for (int i = 0; i < 16; ++i)
+      glm::value_ptr(node.local)[i] = float(source.matrix[std::size_t(i)]);
+    node.hasMatrix = true;  // both glTF and glm store columns first
+    return node;
   }
-  if (!node.translation.empty() && node.translation.size() != 3) {
+  if (!source.translation.empty() && source.translation.size() != 3) {
     throw ref.fail(what + " translation does not have 3 numbers");
   }
-  if (!node.rotation.empty() && node.rotation.size() != 4) {
+  if (!source.rotation.empty() && source.rotation.size() != 4) {
     throw ref.fail(what + " rotation does not have 4 numbers");
   }
-  if (!node.scale.empty() && node.scale.size() != 3) {
+  if (!source.scale.empty() && source.scale.size() != 3) {
     throw ref.fail(what + " scale does not have 3 numbers");
   }
+  // Only the parts the file gives are applied, so a static scene's matrices
+  // keep the bits they had before nodes were kept for animation.
   glm::mat4 m(1.0f);
-  if (!node.translation.empty()) {
-    m = glm::translate(m, glm::vec3(float(node.translation[0]), float(node.translation[1]),
-                                    float(node.translation[2])));
+  if (!source.translation.empty()) {
+    node.translation = glm::vec3(float(source.translation[0]), float(source.translation[1]),
+                                 float(source.translation[2]));
+    m = glm::translate(m, node.translation);
   }
-  if (!node.rotation.empty()) {
+  if (!source.rotation.empty()) {
     // glTF stores x, y, z, w; glm's constructor takes w first.
-    glm::quat q(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
-                float(node.rotation[2]));
+    glm::quat q(float(source.rotation[3]), float(source.rotation[0]), float(source.rotation[1]),
+                float(source.rotation[2]));
     const float length = glm::length(q);
     if (length > 0.0f && std::isfinite(length)) q /= length;  // exporters round
+    node.rotation = q;
     m *= glm::mat4_cast(q);
   }
-  if (!node.scale.empty()) {
-    m = glm::scale(m, glm::vec3(float(node.scale[0]), float(node.scale[1]), float(node.scale[2])));
+  if (!source.scale.empty()) {
+    node.scale = glm::vec3(float(source.scale[0]), float(source.scale[1]), float(source.scale[2]));
+    m = glm::scale(m, node.scale);
   }
-  return m;
+  node.local = m;
+  return node;
 }
 
 struct PlacedNode {
-  int node;
+  int node;    // glTF node index
+  int parent;  // index of the parent's PlacedNode in the walk's order; -1: a root
+  Node local;  // its rest transform
   glm::mat4 world;
 };
 
@@ -255,27 +266,36 @@ struct PlacedNode {
 std::vector<PlacedNode> walkNodes(const ModelRef& ref, const std::vector<int>& roots) {
   const std::size_t nodeCount = ref.model.nodes.size();
   std::vector<char> visited(nodeCount, 0);
-  std::vector<PlacedNode> stack, order;
+  // Stack entries: the node to visit, its parent's position in `order` and
+  // the parent's world transform.
+  struct Pending {
+    int node, parent;
+    glm::mat4 parentWorld;
+  };
+  std::vector<Pending> stack;
+  std::vector<PlacedNode> order;
   for (auto root = roots.rbegin(); root != roots.rend(); ++root) {
-    stack.push_back({*root, glm::mat4(1.0f)});
+    stack.push_back({*root, -1, glm::mat4(1.0f)});
   }
   while (!stack.empty()) {
-    const PlacedNode parent = stack.back();
+    const Pending next = stack.back();
     stack.pop_back();
-    if (parent.node < 0 || std::size_t(parent.node) >= nodeCount) {
-      throw ref.fail("node " + std::to_string(parent.node) + " does not exist (the file has " +
+    if (next.node < 0 || std::size_t(next.node) >= nodeCount) {
+      throw ref.fail("node " + std::to_string(next.node) + " does not exist (the file has " +
                      std::to_string(nodeCount) + ")");
     }
-    if (visited[std::size_t(parent.node)]) {
-      throw ref.fail("node " + std::to_string(parent.node) +
+    if (visited[std::size_t(next.node)]) {
+      throw ref.fail("node " + std::to_string(next.node) +
                      " is reached twice (a cycle or a node with two parents)");
     }
-    visited[std::size_t(parent.node)] = 1;
-    const glm::mat4 world = parent.world * localMatrix(ref, parent.node);
-    order.push_back({parent.node, world});
-    const std::vector<int>& children = ref.model.nodes[std::size_t(parent.node)].children;
+    visited[std::size_t(next.node)] = 1;
+    const Node local = readNode(ref, next.node);
+    const glm::mat4 world = next.parentWorld * local.local;
+    order.push_back({next.node, next.parent, local, world});
+    const int placed = int(order.size()) - 1;
+    const std::vector<int>& children = ref.model.nodes[std::size_t(next.node)].children;
     for (auto child = children.rbegin(); child != children.rend(); ++child) {
-      stack.push_back({*child, world});
+      stack.push_back({*child, placed, world});
     }
   }
   return order;
@@ -314,23 +334,15 @@ bool positiveFinite(double v) {
   return std::isfinite(v) && v > 0.0;
 }
 
-// Camera::world is a rigid transform: the node's scale is divided out.
-glm::mat4 withoutScale(glm::mat4 world) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const float length = glm::length(glm::vec3(world[axis]));
-    if (length > 0.0f && std::isfinite(length)) world[axis] /= length;
-  }
-  return world;
-}
-
-Camera makeCamera(const ModelRef& ref, int index, const glm::mat4& world) {
+Camera makeCamera(const ModelRef& ref, int index, const glm::mat4& world, int sceneNode) {
   if (index < 0 || std::size_t(index) >= ref.model.cameras.size()) {
     throw ref.fail("camera " + std::to_string(index) + " does not exist");
   }
   const tinygltf::Camera& source = ref.model.cameras[std::size_t(index)];
   const std::string what = "camera " + std::to_string(index);
   Camera camera;
-  camera.world = withoutScale(world);
+  camera.world = cameraWorldOf(world);
+  camera.node = sceneNode;
   if (source.type == "perspective") {
     const tinygltf::PerspectiveCamera& p = source.perspective;
     const bool farOk = p.zfar == 0.0 || (std::isfinite(p.zfar) && p.zfar > p.znear);
@@ -396,9 +408,16 @@ class SceneBuilder {
   SceneBuilder(const ModelRef& ref, gltf::MaterialTable& materials, Scene& scene)
       : ref_(ref), materials_(materials), scene_(scene) {}
 
+  // Nodes come in walk order, parents first, as Scene::nodes keeps them.
   void addNode(const PlacedNode& placed) {
+    const int sceneNode = int(scene_.nodes.size());
+    Node kept = placed.local;
+    kept.parent = placed.parent;
+    kept.fileIndex = placed.node;
+    scene_.nodes.push_back(kept);
     const tinygltf::Node& node = ref_.model.nodes[std::size_t(placed.node)];
-    if (node.camera != -1) scene_.cameras.push_back(makeCamera(ref_, node.camera, placed.world));
+    if (node.camera != -1)
+      scene_.cameras.push_back(makeCamera(ref_, node.camera, placed.world, sceneNode));
     if (node.mesh == -1) return;
     if (node.mesh < 0 || std::size_t(node.mesh) >= ref_.model.meshes.size()) {
       throw ref_.fail("node " + std::to_string(placed.node) + " refers to mesh " +
@@ -406,7 +425,7 @@ class SceneBuilder {
     }
     const std::size_t primitiveCount = ref_.model.meshes[std::size_t(node.mesh)].primitives.size();
     for (std::size_t p = 0; p < primitiveCount; ++p) {
-      placements_.push_back({jobFor(node.mesh, int(p)), placed.world});
+      placements_.push_back({jobFor(node.mesh, int(p)), placed.world, sceneNode});
     }
   }
 
@@ -423,9 +442,10 @@ class SceneBuilder {
       sceneMesh[i] = int(scene_.meshes.size());
       scene_.meshes.push_back(std::move(job.result));
     }
-    for (const auto& [job, world] : placements_) {
-      if (sceneMesh[std::size_t(job)] >= 0)
-        scene_.instances.push_back({sceneMesh[std::size_t(job)], world});
+    for (const Placement& placement : placements_) {
+      if (sceneMesh[std::size_t(placement.job)] >= 0)
+        scene_.instances.push_back(
+            {sceneMesh[std::size_t(placement.job)], placement.world, placement.node});
     }
   }
 
@@ -449,7 +469,12 @@ class SceneBuilder {
   Scene& scene_;
   std::vector<PrimitiveJob> jobs_;
   std::map<std::pair<int, int>, int> jobOf_;
-  std::vector<std::pair<int, glm::mat4>> placements_;  // (job, world)
+  struct Placement {
+    int job;
+    glm::mat4 world;
+    int node;  // scene node
+  };
+  std::vector<Placement> placements_;
 };
 
 Scene convertModel(const std::string& path, const tinygltf::Model& model,
@@ -461,10 +486,12 @@ Scene convertModel(const std::string& path, const tinygltf::Model& model,
   scene.name = path;
   gltf::MaterialTable materials(ref, stash, notes);
   SceneBuilder builder(ref, materials, scene);
-  for (const PlacedNode& placed : walkNodes(ref, sceneRoots(ref, options, notes))) {
-    builder.addNode(placed);
-  }
+  const std::vector<PlacedNode> placed = walkNodes(ref, sceneRoots(ref, options, notes));
+  for (const PlacedNode& node : placed) builder.addNode(node);
   builder.finish(notes);
+  std::vector<int> sceneNodeOf(model.nodes.size(), -1);
+  for (std::size_t i = 0; i < placed.size(); ++i) sceneNodeOf[std::size_t(placed[i].node)] = int(i);
+  gltf::readAnimations(ref, sceneNodeOf, scene, notes);
   materials.finish(scene);
   return scene;
 }

@@ -1,5 +1,5 @@
 // Scene members: triangle counts and world-space bounds; re-storing textures;
-// the texture transform's matrix.
+// the texture transform's matrix; the camera transform of a node.
 #include "scene/scene.h"
 
 #include <cmath>
@@ -37,6 +37,14 @@ void setTextureStorage(Scene& scene, TexelFormat format) {
   for (std::shared_ptr<const Texture>& texture : scene.textures)
     texture = std::make_shared<const Texture>(texture->sharedImage(), texture->sampler(), format,
                                               texture->alpha());
+}
+
+glm::mat4 cameraWorldOf(glm::mat4 nodeWorld) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const float length = glm::length(glm::vec3(nodeWorld[axis]));
+    if (length > 0.0f && std::isfinite(length)) nodeWorld[axis] /= length;
+  }
+  return nodeWorld;
 }
 
 std::size_t Scene::triangleCount() const {

@@ -3,7 +3,9 @@
 //
 // Geometry is kept per primitive as plain triangle lists (strips and fans are
 // expanded at load), with attributes as float arrays: the vertex stage reads
-// nothing else.
+// nothing else. The node tree the instances and cameras hang from is kept with
+// the file's animations, so that a frame at time t can move them
+// (scene/animation.h); a scene without animations never needs it.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +14,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "texture/texel_format.h"
 #include "texture/texture.h"
@@ -62,6 +65,51 @@ struct Mesh {
 struct Instance {
   int mesh = 0;
   glm::mat4 world{1.0f};
+  int node = -1;  // the Scene::nodes entry it hangs from; -1: placed once (built-in scenes)
+};
+
+// A node of the glTF tree the scene was placed from. Scene::nodes lists them
+// parents first (a pre-order walk), so one pass in order composes every
+// node's world transform. A node given by a matrix keeps it (glTF forbids
+// animating such a node); the others keep their translation, rotation and
+// scale, which an animation channel replaces one property at a time.
+struct Node {
+  int parent = -1;     // index into Scene::nodes, smaller than this node's; -1: a root
+  int fileIndex = -1;  // the node's index in the glTF file
+  bool hasMatrix = false;
+  glm::mat4 local{1.0f};  // the rest transform as loaded (T * R * S, or the matrix)
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z; normalized
+  glm::vec3 scale{1.0f};
+};
+
+// glTF 2.0 §3.11 animation samplers: `times` are seconds, non-decreasing;
+// each key has `components` floats (3 for translation and scale, 4 for a
+// rotation quaternion x, y, z, w), and CUBICSPLINE keys three such groups:
+// in-tangent, value, out-tangent.
+enum class Interpolation : std::uint8_t { Step, Linear, CubicSpline };
+struct AnimationSampler {
+  Interpolation interpolation = Interpolation::Linear;
+  int components = 3;
+  std::vector<float> times;
+  std::vector<float> values;
+};
+
+// Node properties a channel can drive. Morph target weights (glTF path
+// "weights") would be a fourth, driving a per-instance weight vector that the
+// vertex stage blends; skins would add joint nodes whose world transforms the
+// vertex stage reads. Neither is modelled yet: the loader notes and skips them.
+enum class AnimatedProperty : std::uint8_t { Translation, Rotation, Scale };
+struct AnimationChannel {
+  int sampler = 0;  // index into Animation::samplers
+  int node = 0;     // index into Scene::nodes
+  AnimatedProperty property = AnimatedProperty::Translation;
+};
+
+struct Animation {
+  std::string name;  // may be empty
+  std::vector<AnimationSampler> samplers;
+  std::vector<AnimationChannel> channels;
 };
 
 struct Camera {
@@ -73,6 +121,7 @@ struct Camera {
   float znear = 0.1f;
   float zfar = 0.0f;      // 0: infinite (perspective only)
   glm::mat4 world{1.0f};  // camera-to-world; the camera looks down its -Z
+  int node = -1;          // the Scene::nodes entry it hangs from; -1: placed once
 };
 
 struct Scene {
@@ -82,11 +131,17 @@ struct Scene {
   std::vector<std::shared_ptr<const Texture>> textures;
   std::vector<Instance> instances;
   std::vector<Camera> cameras;
+  std::vector<Node> nodes;  // empty for scenes not loaded from a node tree
+  std::vector<Animation> animations;
 
   std::size_t triangleCount() const;  // over instances
   // World-space bounds of all instances; min > max when the scene is empty.
   void bounds(glm::vec3& lo, glm::vec3& hi) const;
 };
+
+// Camera::world for a camera on a node with world transform `nodeWorld`:
+// a rigid transform, the node's scale divided out.
+glm::mat4 cameraWorldOf(glm::mat4 nodeWorld);
 
 // How the material reads its base colour texture's alpha, and so which
 // variant of the texture it samples (Texture::forAlpha). For MASK, the cutoff
