@@ -20,6 +20,8 @@
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 #include "render_options.h"
+#include "scene/animation.h"
+#include "sequence_options.h"
 #include "window/sample_pattern.h"
 
 namespace quadra {
@@ -79,6 +81,13 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --frames K             K timed frames after one warm-up (default 1)
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
+  --sequence FIRST:LAST  render frames FIRST..LAST of an animation, frame f at time f/fps,
+                         each frame timed once; every --out must hold a run of '#', which
+                         each frame's file has its number in, zero-padded to the run's
+                         length (--out 'out/walk_####.exr'); a scene without animations
+                         renders the same frame each time
+  --fps F                frames per second of --sequence (default 24)
+  --animation NAME|INDEX the animation --sequence plays (default: the scene's first)
   --stats                also print where the time went: "quadra stages_ms load=... first_frame=...
                          draws=... vertex=... setup=... bin=... raster=... shade=... resolve=...
                          write=..."
@@ -98,6 +107,11 @@ struct RenderCommand {
   RenderSettings settings;
   RendererConfig config;
   int frames = 1;
+  bool framesGiven = false;
+  std::optional<FrameRange> sequence;
+  double fps = 24.0;
+  bool fpsGiven = false;
+  std::optional<std::string> animation;  // --animation as given
   bool stats = false;
   std::vector<std::string> outputs;
   CameraOverrides camera;
@@ -144,11 +158,36 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   });
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
-  options.integer("--frames", cmd.frames, 1, 100000);
+  options.value("--frames", [&cmd](const std::string& option, const std::string& value) {
+    cmd.frames = parseInteger(option, value, 1, 100000);
+    cmd.framesGiven = true;
+  });
   options.flag("--stats", [&] { cmd.stats = true; });
   options.flag("--alpha-to-coverage", [&] { cmd.settings.alphaToCoverage = true; });
   addOutputOption(options, cmd.outputs);
+  options.value("--sequence", [&cmd](const std::string& option, const std::string& value) {
+    cmd.sequence = parseFrameRange(option, value);
+  });
+  options.value("--fps", [&cmd](const std::string& option, const std::string& value) {
+    cmd.fps = parseNumber(option, value);
+    if (!(cmd.fps > 0.0)) throw Error(option + ": '" + value + "' must be positive");
+    cmd.fpsGiven = true;
+  });
+  options.value("--animation",
+                [&cmd](const std::string&, const std::string& value) { cmd.animation = value; });
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  if (!cmd.sequence) {
+    if (cmd.fpsGiven) throw Error("--fps: only with --sequence");
+    if (cmd.animation) throw Error("--animation: only with --sequence");
+  } else {
+    if (cmd.framesGiven)
+      throw Error("--frames: not with --sequence (each frame of a sequence is timed once)");
+    for (const std::string& path : cmd.outputs) {
+      if (!hasFrameField(path))
+        throw Error("--out: '" + path +
+                    "' has no run of '#' for the frame number (needed with --sequence)");
+    }
+  }
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   return cmd;
 }
@@ -183,6 +222,63 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
       .count();
 }
 
+// The frame_ms line (DESIGN.md "Contracts") over the timed frames; the
+// triangle counts are the last frame's.
+void printFrameLine(const RenderCommand& cmd, const Renderer& renderer,
+                    const std::vector<double>& times, const FrameStats& stats) {
+  const FrameTimeSummary summary = summarizeFrameTimes(times);
+  std::printf(
+      "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
+      "isa=%s frames=%zu drawn=%zu culled=%zu clipped=%zu\n",
+      summary.median, summary.min, summary.max, stats.trianglesIn, cmd.settings.width,
+      cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), times.size(),
+      stats.trianglesDrawn,
+      stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
+      stats.clipped);
+}
+
+// --sequence: frame f of the range posed at time f / fps, rendered once and
+// written to each --out with its number in the name. The scene is loaded
+// once and only its instances and cameras move; the renderer keeps its
+// buffers from frame to frame. Each file is written whole under a temporary
+// name and renamed (io/image_io.h), so a stopped sequence leaves only
+// complete frames.
+int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, double loadMs) {
+  // Chosen before anything is rendered, so a wrong name writes nothing.
+  const int animation = cmd.animation ? findAnimation(scene, "--animation", *cmd.animation)
+                                      : (scene.animations.empty() ? -1 : 0);
+  // A scene without a camera is framed once, at its rest pose: a camera that
+  // re-framed the animated bounds every frame would move with them.
+  const std::optional<Camera> fixedCamera =
+      scene.cameras.empty() ? std::optional<Camera>(chooseCamera(scene, cmd.camera)) : std::nullopt;
+  const Executor writer(renderer.threadCount());
+  std::vector<glm::mat4> worlds;
+  std::vector<double> times;
+  std::vector<StageTimes> stages;
+  FrameStats stats;
+  Frame frame;
+  double writeMs = 0.0;
+  for (int f = cmd.sequence->first; f <= cmd.sequence->last; ++f) {
+    const auto start = std::chrono::steady_clock::now();
+    poseNodes(scene, animation, double(f) / cmd.fps, worlds);
+    placeOnNodes(scene, worlds);
+    const Camera camera = fixedCamera ? *fixedCamera : chooseCamera(scene, cmd.camera);
+    stats = renderer.render(scene, camera, cmd.settings, frame);
+    times.push_back(millisecondsSince(start));
+    stages.push_back(stats.stages);
+    const auto writeStart = std::chrono::steady_clock::now();
+    for (const std::string& pattern : cmd.outputs) {
+      const std::string path = framePath(pattern, f);
+      writeFrame(frame, path, &writer);
+      std::cout << "quadra wrote " << path << "\n";
+    }
+    writeMs += millisecondsSince(writeStart);
+  }
+  printFrameLine(cmd, renderer, times, stats);
+  if (cmd.stats) printStages(loadMs, times.front(), stages, writeMs);
+  return 0;
+}
+
 int renderCommand(const std::vector<std::string>& args) {
   const std::optional<RenderCommand> parsed = parseRender(args);
   if (!parsed) return 0;
@@ -194,8 +290,9 @@ int renderCommand(const std::vector<std::string>& args) {
   // need depth): a PNG-only render has no use for the pool's threads.
   if (outputsNeedDepth(cmd.outputs)) Imf::setGlobalThreadCount(renderer.threadCount());
   const auto loadStart = std::chrono::steady_clock::now();
-  const Scene scene = loadScene(cmd);
+  Scene scene = loadScene(cmd);
   const double loadMs = millisecondsSince(loadStart);
+  if (cmd.sequence) return renderSequence(cmd, renderer, scene, loadMs);
   const Camera camera = chooseCamera(scene, cmd.camera);
 
   Frame frame;
@@ -217,15 +314,7 @@ int renderCommand(const std::vector<std::string>& args) {
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);
-  const FrameTimeSummary summary = summarizeFrameTimes(times);
-  std::printf(
-      "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
-      "isa=%s frames=%d drawn=%zu culled=%zu clipped=%zu\n",
-      summary.median, summary.min, summary.max, stats.trianglesIn, cmd.settings.width,
-      cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), cmd.frames,
-      stats.trianglesDrawn,
-      stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
-      stats.clipped);
+  printFrameLine(cmd, renderer, times, stats);
   if (cmd.stats) printStages(loadMs, firstFrameMs, stages, writeMs);
   return 0;
 }

@@ -1,0 +1,132 @@
+// `quadra render --sequence` end to end: numbered frames of a moving model,
+// a static scene's identical frames, the animation chosen by name or index,
+// and every bad input a one-line error that writes nothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_helpers.h"
+
+namespace quadra {
+namespace {
+
+std::string modelPath(const std::string& model) {
+  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
+}
+
+// An empty scratch folder of its own for each test.
+fs::path emptyFolder(const std::string& name) {
+  const fs::path dir = testDir() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> fileNames(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string bytesOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+constexpr const char* kSmall = " --width 64 --height 48 --threads 2";
+
+RunResult render(const std::string& arguments) {
+  return run("render " + arguments);
+}
+
+TEST(AnimationCli, SequenceWritesNumberedFramesThatMove) {
+  const std::string model = modelPath("AnimatedTriangle");
+  if (!fs::exists(model)) GTEST_SKIP() << "no " << model;
+  const fs::path dir = emptyFolder("moving");
+  // The triangle turns a quarter in its first 0.25 s: at 8 fps, frames 0, 1
+  // and 2 are 0, 22.5 and 45 degrees round.
+  const RunResult r =
+      render(model + kSmall + " --sequence 0:2 --fps 8 --out " + (dir / "tri_####.exr").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(fileNames(dir),
+            (std::vector<std::string>{"tri_0000.exr", "tri_0001.exr", "tri_0002.exr"}));
+  EXPECT_EQ(lineKeyValues(r.out, "quadra frame_ms ").at("frames"), "3");
+  std::vector<Image> frames;
+  for (const std::string& name : fileNames(dir)) frames.push_back(readImage((dir / name).string()));
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_NE(frames[0].rgba, frames[1].rgba);
+  EXPECT_NE(frames[1].rgba, frames[2].rgba);
+  EXPECT_NE(frames[0].rgba, frames[2].rgba);
+}
+
+TEST(AnimationCli, StaticSceneSequenceRepeatsTheStillFrame) {
+  const fs::path dir = emptyFolder("static");
+  const RunResult still =
+      render(std::string("builtin:showcase") + kSmall + " --out " + (dir / "still.png").string());
+  ASSERT_EQ(still.exitCode, 0) << still.err;
+  const RunResult r = render(std::string("builtin:showcase") + kSmall + " --sequence 9:10 --out " +
+                             (dir / "seq_#.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(fileNames(dir), (std::vector<std::string>{"seq_10.png", "seq_9.png", "still.png"}));
+  const std::string stillBytes = bytesOf(dir / "still.png");
+  EXPECT_EQ(bytesOf(dir / "seq_9.png"), stillBytes);
+  EXPECT_EQ(bytesOf(dir / "seq_10.png"), stillBytes);
+}
+
+TEST(AnimationCli, AnimationIsChosenByNameOrIndex) {
+  const std::string model = modelPath("InterpolationTest");
+  if (!fs::exists(model)) GTEST_SKIP() << "no " << model;
+  const fs::path dir = emptyFolder("chosen");
+  // Frame 12 at 24 fps is 0.5 s: the translation animations have moved.
+  for (const auto& [choice, name] :
+       {std::pair{"'Linear Translation'", "name_##.exr"}, std::pair{"8", "index_##.exr"},
+        std::pair{"0", "other_##.exr"}}) {
+    const RunResult r = render(model + kSmall + " --sequence 12:12 --animation " + choice +
+                               " --out " + (dir / name).string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+  }
+  EXPECT_EQ(bytesOf(dir / "name_12.exr"), bytesOf(dir / "index_12.exr"));
+  EXPECT_NE(bytesOf(dir / "name_12.exr"), bytesOf(dir / "other_12.exr"));
+}
+
+TEST(AnimationCli, BadSequenceInputIsOneLineAndWritesNothing) {
+  const std::string model = modelPath("AnimatedTriangle");
+  if (!fs::exists(model)) GTEST_SKIP() << "no " << model;
+  const fs::path dir = emptyFolder("bad");
+  const std::string out = " --out " + (dir / "f_###.exr").string();
+  struct Case {
+    std::string arguments, mentions;
+  };
+  const Case cases[] = {
+      {model + " --sequence 0:2 --animation 1" + out, "no such animation"},
+      {model + " --sequence 0:2 --animation walk" + out, "'walk': no such animation"},
+      {"builtin:showcase --sequence 0:2 --animation 0" + out, "no such animation"},
+      {model + " --sequence 3:1" + out, "reversed"},
+      {model + " --sequence 3" + out, "FIRST:LAST"},
+      {model + " --sequence 2:" + out, "FIRST:LAST"},
+      {model + " --sequence -1:2" + out, "--sequence"},
+      {model + " --sequence 0:2 --out " + (dir / "f.exr").string(), "no run of '#'"},
+      {model + " --sequence 0:2 --fps 0" + out, "--fps"},
+      {model + " --animation 0" + out, "only with --sequence"},
+      {model + " --fps 30" + out, "only with --sequence"},
+      {model + " --sequence 0:2 --frames 3" + out, "--frames"},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = render(c.arguments + kSmall);
+    EXPECT_EQ(r.exitCode, 1) << c.arguments;
+    expectOneLineError(r, c.mentions);
+    EXPECT_TRUE(fs::is_empty(dir)) << c.arguments << " wrote a file";
+  }
+}
+
+}  // namespace
+}  // namespace quadra
