@@ -18,6 +18,16 @@ if(QUADRA_SANITIZE)
   message(STATUS "quadra: sanitizers ${QUADRA_SANITIZE}")
 endif()
 
+# Fuzz builds (QUADRA_FUZZ): libFuzzer's coverage feedback needs every object
+# instrumented, the engine's included; only the fuzz targets link libFuzzer's
+# main (-fsanitize=fuzzer, tests/fuzz/CMakeLists.txt).
+if(QUADRA_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "QUADRA_FUZZ needs clang (libFuzzer); scripts/fuzz.sh sets it")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()
+
 # A sanitized static library references the sanitizer runtime, so whatever
 # links it must link that runtime too, including an embedder that finds the
 # installed package (the InstallAndFindPackage test): export the link flag.

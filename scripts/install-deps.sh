@@ -4,10 +4,11 @@ set -euo pipefail
 # libosmesa6-dev: Mesa's llvmpipe for comparisons (quadra-llvmpipe, `quadra
 # report frames`); libopenimageio-dev: OpenImageIO's TextureSystem for `quadra
 # report textures` (the module quadra_oiio_peer.so, loaded only by that
-# report). quadra itself links neither.
+# report). quadra itself links neither. clang and libclang-rt-14-dev (which
+# holds libFuzzer): the fuzz targets (scripts/fuzz.sh).
 packages=(build-essential cmake pkg-config libtbb-dev libxsimd-dev libglm-dev libtinygltf-dev
   libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libjpeg62-turbo-dev libbenchmark-dev
-  libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git)
+  libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include <xsimd/xsimd.hpp>
@@ -261,9 +262,23 @@ template <class T, class A>
 inline xsimd::batch<T, A> abs(const xsimd::batch<T, A>& a) {
   return xsimd::abs(a);
 }
+// On SSE2 (no roundps/roundpd) xsimd 8.1 floors through a conversion to
+// integer lanes on every lane and keeps the input where |a| is at least
+// 2^(mantissa bits); converting such a lane (1e30, Inf, NaN) is undefined
+// behaviour (UBSan float-cast-overflow, found by the lookups_csv fuzz
+// target). Those lanes are already integers or NaN, so they are swapped for
+// 0 before the conversion and put back after: the same values, no UB. The
+// other ISAs round natively and skip the two selects.
 template <class T, class A>
 inline xsimd::batch<T, A> floor(const xsimd::batch<T, A>& a) {
-  return xsimd::floor(a);
+  if constexpr (std::is_same_v<A, xsimd::sse2>) {
+    using B = xsimd::batch<T, A>;
+    const auto small =
+        xsimd::abs(a) < B(T(std::uint64_t(1) << (std::numeric_limits<T>::digits - 1)));
+    return xsimd::select(small, xsimd::floor(xsimd::select(small, a, B(T(0)))), a);
+  } else {
+    return xsimd::floor(a);
+  }
 }
 // Not `a != a`: xsimd's != is the ordered compare on AVX (false for NaN) and
 // the unordered one on SSE2 (true), so only this names NaN on every path.

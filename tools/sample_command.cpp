@@ -1,14 +1,11 @@
 // `quadra sample`: batch texture lookups from a CSV for scoring the sampler
 // from outside (DESIGN.md "Contracts"). Reads everything first, times only the
 // lookups, writes the values once (temporary file + rename).
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +14,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "io/image_io.h"
+#include "lookups_csv.h"
 #include "texture/texture_sampler.h"
 
 namespace quadra {
@@ -70,58 +68,6 @@ std::optional<SampleCommand> parseSample(const std::vector<std::string>& args) {
   if (!endsWithIgnoringCase(cmd.outPath, ".csv"))
     throw Error(cmd.outPath + ": output must be a .csv file");
   return cmd;
-}
-
-std::string trim(const std::string& s) {
-  const std::size_t a = s.find_first_not_of(" \t\r");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
-}
-
-// Structure-of-arrays lookups read from the CSV.
-struct Lookups {
-  std::vector<float> column[6];
-  LookupBatch batch() const {
-    return {column[0].data(), column[1].data(), column[2].data(), column[3].data(),
-            column[4].data(), column[5].data(), column[0].size()};
-  }
-};
-
-Lookups readLookups(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw Error(path + ": cannot open for reading");
-  std::string line;
-  if (!std::getline(file, line))
-    throw Error(path + ": empty file (expected header u,v,dudx,dvdx,dudy,dvdy)");
-  std::string header = trim(line);
-  if (!header.empty() && static_cast<unsigned char>(header[0]) == 0xEF && header.size() >= 3)
-    header = header.substr(3);  // UTF-8 byte order mark
-  header.erase(std::remove(header.begin(), header.end(), ' '), header.end());
-  if (header != "u,v,dudx,dvdx,dudy,dvdy")
-    throw Error(path + ": line 1: header must be u,v,dudx,dvdx,dudy,dvdy");
-  Lookups lookups;
-  for (std::size_t lineNumber = 2; std::getline(file, line); ++lineNumber) {
-    const std::string row = trim(line);
-    if (row.empty()) continue;
-    std::stringstream fields(row);
-    std::string field;
-    int n = 0;
-    while (std::getline(fields, field, ',')) {
-      if (n == 6)
-        throw Error(path + ": line " + std::to_string(lineNumber) + ": more than 6 fields");
-      char* end = nullptr;
-      const std::string text = trim(field);
-      const float value = std::strtof(text.c_str(), &end);
-      if (text.empty() || *end != '\0')
-        throw Error(path + ": line " + std::to_string(lineNumber) + ": '" + text +
-                    "' is not a number");
-      lookups.column[n++].push_back(value);
-    }
-    if (n != 6)
-      throw Error(path + ": line " + std::to_string(lineNumber) + ": expected 6 fields, found " +
-                  std::to_string(n));
-  }
-  return lookups;
 }
 
 void writeValues(const std::string& path, const std::vector<float>& rgba) {

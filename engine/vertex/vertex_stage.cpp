@@ -30,6 +30,10 @@ std::uint8_t outcodeOf(const float* v, int floats, double guardX, double guardY)
   }
   if (carries & 0x80000000u) return kNotFinite;
   const double x = v[0], y = v[1], z = v[2], w = v[3];
+  // (0, 0, 0, 0) is no point at all and passes every plane test below; its
+  // projection would be 0/0 (found by the render fuzz target with a
+  // degenerate matrix). Dropped like a non-finite vertex.
+  if (x == 0.0 && y == 0.0 && z == 0.0 && w == 0.0) return kNotFinite;
   std::uint8_t code = 0;
   if (z < 0.0) code |= kOutsideNear;
   if (z > w) code |= kOutsideFar;
