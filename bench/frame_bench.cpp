@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "api/renderer.h"
 #include "lab/scene/builtin_scenes.h"
+#include "scene/animation.h"
 #include "scene/gltf_loader.h"
 
 namespace quadra {
@@ -119,6 +121,26 @@ void scalingPixels(benchmark::State& state) {
   scalingRun(state, "builtin:dense-mesh", width, height, std::int64_t(width) * height);
 }
 
+// A sequence's frames: builtin:flyover posed at each next frame time (24 fps,
+// round its 4 s) and rendered, 2 threads, so posing and the moving camera
+// are in the time; beside frameTime on a still, it shows what a frame of a
+// sequence costs more (quadra render --sequence prints the same as
+// steady_fps, with the files written on their own thread).
+void sequenceFrames(benchmark::State& state) {
+  Scene scene = loadBenchScene("builtin:flyover");
+  WarmRenderer warm(scene, firstCameraOrDefault(scene), 2, kWidth, kHeight);
+  std::vector<glm::mat4> worlds;
+  int frame = 0;
+  for (auto _ : state) {
+    poseNodes(scene, 0, double(frame++ % 96) / 24.0, worlds);
+    placeOnNodes(scene, worlds);
+    warm.renderer.render(scene, scene.cameras.front(), warm.settings, warm.frame);
+    benchmark::DoNotOptimize(warm.frame.rgba.data());
+  }
+  state.counters["frames/s"] =
+      benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 // The harness alone: what an empty timed loop costs.
 void baseline(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(state.iterations());
@@ -151,6 +173,8 @@ BENCHMARK(scalingPixels)
     ->Complexity()
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+BENCHMARK(sequenceFrames)->UseRealTime()->Unit(benchmark::kMillisecond);
+QUADRA_FRAME_BENCHMARK(flyover_still, "builtin:flyover");
 QUADRA_FRAME_BENCHMARK(checker_plane, "builtin:checker-plane");
 QUADRA_FRAME_BENCHMARK(alpha_quads, "builtin:alpha-quads");
 QUADRA_FRAME_BENCHMARK(dense_mesh, "builtin:dense-mesh");

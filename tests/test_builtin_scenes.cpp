@@ -109,9 +109,9 @@ glm::vec2 project(const glm::mat4& viewProj, const glm::vec3& world) {
 
 // The picture scenes first, then the hard cases of lab/scene/hard_case_scenes.h
 // (deliberately extreme or invalid geometry, checked by the stability report).
-const std::vector<std::string> kPictureScenes = {"showcase",           "checker-plane",
-                                                 "alpha-quads",        "dense-mesh",
-                                                 "intersecting-glass", "overlapping-glass"};
+const std::vector<std::string> kPictureScenes = {
+    "showcase",           "checker-plane",     "alpha-quads", "dense-mesh",
+    "intersecting-glass", "overlapping-glass", "flyover"};
 
 TEST(BuiltinScenes, NamesAndUnknownName) {
   std::vector<std::string> expected = kPictureScenes;
@@ -121,11 +121,12 @@ TEST(BuiltinScenes, NamesAndUnknownName) {
     makeBuiltinScene("no-such-scene");
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()).rfind(
-                  "builtin:no-such-scene: unknown built-in scene (known: showcase, checker-plane, "
-                  "alpha-quads, dense-mesh, intersecting-glass, overlapping-glass, near-plane,",
-                  0),
-              0u)
+    EXPECT_EQ(
+        std::string(e.what()).rfind(
+            "builtin:no-such-scene: unknown built-in scene (known: showcase, checker-plane, "
+            "alpha-quads, dense-mesh, intersecting-glass, overlapping-glass, flyover, near-plane,",
+            0),
+        0u)
         << e.what();
   }
 }

@@ -45,8 +45,8 @@ constexpr const char* kFramesUsage =
   --frames K            timed frames per timing run, after one warm-up (default 5)
   --rounds R            rounds of runs; each figure is the median over them (default 3)
   --scenes LIST         comma-separated builtin:NAME, sample model names (folders of
-                        --assets) or .gltf/.glb files (default: every built-in scene,
-                        then every model in --assets)
+                        --assets) or .gltf/.glb files (default: every built-in scene
+                        but flyover, the sequence scene, then every model in --assets)
   --assets DIR          the sample models, DIR/<Model>/glTF/<Model>.gltf
                         (default: ../shared/assets beside the source tree)
   --out-dir DIR         where frames.csv and the images (DIR/frames/) go (default out)
@@ -126,8 +126,11 @@ std::vector<SceneEntry> chooseScenes(const FramesOptions& options) {
   const std::vector<std::string> builtins = builtinSceneNames();
   std::vector<SceneEntry> scenes;
   if (options.scenes.empty()) {
-    for (const std::string& name : builtins)
+    for (const std::string& name : builtins) {
+      // The sequence scene: its still is showcase's content, measured there.
+      if (name == "flyover") continue;
       scenes.push_back({kBuiltinScenePrefix + name, kBuiltinScenePrefix + name});
+    }
     for (const SceneEntry& model : sampleModels(options.assets)) scenes.push_back(model);
     return scenes;
   }

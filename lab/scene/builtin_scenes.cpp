@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "api/camera.h"
 #include "core/error.h"
 #include "lab/scene/hard_case_scenes.h"
 #include "lab/texture/test_textures.h"
@@ -377,11 +378,161 @@ Scene overlappingGlass() {
   return scene;
 }
 
+// ---- animation ----------------------------------------------------------------------
+
+// Appends a node with its rest transform composed as the glTF loader composes
+// one (T * R * S), so that poseNodes at any key time rebuilds the same bits.
+int addNode(Scene& scene, int parent, const glm::vec3& translation, const glm::quat& rotation,
+            const glm::vec3& scale) {
+  Node node;
+  node.parent = parent;
+  node.fileIndex = int(scene.nodes.size());
+  node.translation = translation;
+  node.rotation = rotation;
+  node.scale = scale;
+  node.local =
+      glm::scale(glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation), scale);
+  scene.nodes.push_back(node);
+  return int(scene.nodes.size()) - 1;
+}
+
+// A sampler with one key per time; `values` holds `components` floats per key
+// (three groups of them per key for CUBICSPLINE: in-tangent, value, out-tangent).
+void addChannel(Animation& animation, int node, AnimatedProperty property,
+                Interpolation interpolation, std::vector<float> times, std::vector<float> values) {
+  AnimationSampler sampler;
+  sampler.interpolation = interpolation;
+  sampler.components = property == AnimatedProperty::Rotation ? 4 : 3;
+  sampler.times = std::move(times);
+  sampler.values = std::move(values);
+  animation.samplers.push_back(std::move(sampler));
+  animation.channels.push_back({int(animation.samplers.size()) - 1, node, property});
+}
+
+void appendQuat(std::vector<float>& values, const glm::quat& q) {
+  values.insert(values.end(), {q.x, q.y, q.z, q.w});
+}
+
+// The sequence scene (builtin:flyover, 4 s): the camera, on a node, flies an
+// arc over the showcase's ground (LINEAR translation, slerped rotation); a
+// turntable node carries a cube that spins on its own node (a hierarchy); a
+// ball bounces (CUBICSPLINE, tangents from a parabola's speed at the ground)
+// and a masked panel turns in steps (STEP). Every interpolation and a moving
+// camera, so sequences, motion and resumption are tested without files.
+Scene flyover() {
+  Scene scene;
+  scene.name = "builtin:flyover";
+  Material ground, cube, sphere, mask;
+  ground.baseColorTexture = addTexture(scene, makeCheckerTexture(256, 256, 32));
+  ground.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+  cube.baseColorTexture = addTexture(scene, makeGradientGridImage(256));
+  mask.baseColorTexture = addTexture(scene, makeHolesImage(128));
+  mask.alphaMode = AlphaMode::Mask;
+  mask.doubleSided = true;
+  const int groundMesh = addMesh(scene, makeGroundPlane(20.0f, 4.0f, addMaterial(scene, ground)));
+  const int cubeMesh = addMesh(scene, makeCube(addMaterial(scene, cube)));
+  Mesh ball = makeSphere(32, 64, addMaterial(scene, sphere));
+  paintByNormal(ball);
+  const int ballMesh = addMesh(scene, std::move(ball));
+  const int maskMesh = addMesh(scene, makeQuad(addMaterial(scene, mask)));
+
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  const glm::quat none(1.0f, 0.0f, 0.0f, 0.0f);
+  const int turntable = addNode(scene, -1, glm::vec3(0.0f), none, glm::vec3(1.0f));
+  const int spinner = addNode(scene, turntable, {2.4f, 0.75f, 0.0f}, none, glm::vec3(0.6f));
+  const float ballRadius = 0.6f, ballTop = 2.2f;
+  const int bouncer = addNode(scene, -1, {-0.6f, ballRadius, 1.2f}, none, glm::vec3(ballRadius));
+  const int panel = addNode(scene, -1, {-1.2f, 1.2f, -3.0f}, glm::angleAxis(radians(15.0f), up),
+                            {1.6f, 1.2f, 1.0f});
+  const glm::vec3 target(0.0f, 0.8f, 0.0f);
+  auto eyeAt = [](float t) {  // t in [0, 1] along the flight
+    const float angle = radians(-50.0f + 100.0f * t);
+    return glm::vec3(7.0f * std::sin(angle), 3.4f - 1.4f * t, 7.0f * std::cos(angle));
+  };
+  auto lookFrom = [&](const glm::vec3& eye) {
+    return glm::quat_cast(glm::mat3(lookAtWorld(eye, target, up)));
+  };
+  const int cameraNode = addNode(scene, -1, eyeAt(0.0f), lookFrom(eyeAt(0.0f)), glm::vec3(1.0f));
+
+  scene.instances.push_back({groundMesh, glm::mat4(1.0f)});
+  scene.instances.push_back({cubeMesh, scene.nodes[std::size_t(spinner)].local, spinner});
+  scene.instances.push_back({ballMesh, scene.nodes[std::size_t(bouncer)].local, bouncer});
+  scene.instances.push_back({maskMesh, scene.nodes[std::size_t(panel)].local, panel});
+  Camera camera = perspectiveCamera(eyeAt(0.0f), target, 50.0f, 0.1f);
+  camera.world = cameraWorldOf(scene.nodes[std::size_t(cameraNode)].local);
+  camera.node = cameraNode;
+  scene.cameras.push_back(camera);
+  // The spinner hangs below the turntable: its rest world is the product.
+  scene.instances[1].world = scene.nodes[std::size_t(turntable)].local * scene.instances[1].world;
+
+  Animation animation;
+  animation.name = "flyover";
+  constexpr float kSeconds = 4.0f;
+  {  // camera: nine keys along the arc
+    std::vector<float> times, translations, rotations;
+    for (int k = 0; k <= 8; ++k) {
+      const float t = float(k) / 8.0f;
+      const glm::vec3 eye = eyeAt(t);
+      times.push_back(kSeconds * t);
+      translations.insert(translations.end(), {eye.x, eye.y, eye.z});
+      appendQuat(rotations, lookFrom(eye));
+    }
+    addChannel(animation, cameraNode, AnimatedProperty::Translation, Interpolation::Linear, times,
+               translations);
+    addChannel(animation, cameraNode, AnimatedProperty::Rotation, Interpolation::Linear, times,
+               rotations);
+  }
+  {  // turntable: a full turn in thirds (each key within 180 degrees of the last)
+    std::vector<float> rotations;
+    for (int k = 0; k <= 3; ++k) appendQuat(rotations, glm::angleAxis(radians(120.0f * k), up));
+    addChannel(animation, turntable, AnimatedProperty::Rotation, Interpolation::Linear,
+               {0.0f, kSeconds / 3.0f, 2.0f * kSeconds / 3.0f, kSeconds}, rotations);
+  }
+  {  // spinner: two turns about a tilted axis, a quarter turn a key
+    const glm::vec3 axis = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));
+    std::vector<float> times, rotations;
+    for (int k = 0; k <= 8; ++k) {
+      times.push_back(kSeconds * float(k) / 8.0f);
+      appendQuat(rotations, glm::angleAxis(radians(90.0f * float(k)), axis));
+    }
+    addChannel(animation, spinner, AnimatedProperty::Rotation, Interpolation::Linear, times,
+               rotations);
+  }
+  {  // ball: a bounce every second; at the ground the speed of a parabola
+     // peaking at ballTop half a second later, at the top zero
+    // (glTF stores tangents per second; the spline scales them by the interval.)
+    const float interval = 0.5f;
+    const float speed = 2.0f * (ballTop - ballRadius) / interval;
+    std::vector<float> times, values;
+    for (int k = 0; k <= 8; ++k) {
+      const bool atGround = k % 2 == 0;
+      const float y = atGround ? ballRadius : ballTop;
+      const float in = atGround ? -speed : 0.0f;
+      const float out = atGround ? speed : 0.0f;
+      times.push_back(interval * float(k));
+      values.insert(values.end(), {0.0f, in, 0.0f, -0.6f, y, 1.2f, 0.0f, out, 0.0f});
+    }
+    addChannel(animation, bouncer, AnimatedProperty::Translation, Interpolation::CubicSpline, times,
+               values);
+  }
+  {  // panel: turns 45 degrees a second, in steps
+    std::vector<float> times, rotations;
+    for (int k = 0; k <= 4; ++k) {
+      times.push_back(float(k));
+      appendQuat(rotations, glm::angleAxis(radians(15.0f + 45.0f * float(k)), up));
+    }
+    addChannel(animation, panel, AnimatedProperty::Rotation, Interpolation::Step, times, rotations);
+  }
+  scene.animations.push_back(std::move(animation));
+  return scene;
+}
+
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
   std::vector<std::string> names = {"showcase",   "checker-plane",      "alpha-quads",
-                                    "dense-mesh", "intersecting-glass", "overlapping-glass"};
+                                    "dense-mesh", "intersecting-glass", "overlapping-glass",
+                                    "flyover"};
   for (const std::string& name : hardCaseSceneNames()) names.push_back(name);
   return names;
 }
@@ -393,6 +544,7 @@ Scene makeBuiltinScene(const std::string& name) {
   if (name == "dense-mesh") return denseMesh(500, "builtin:dense-mesh");
   if (name == "intersecting-glass") return intersectingGlass();
   if (name == "overlapping-glass") return overlappingGlass();
+  if (name == "flyover") return flyover();
   if (name.rfind("dense-mesh:", 0) == 0) {
     const std::string count = name.substr(std::string("dense-mesh:").size());
     char* end = nullptr;
