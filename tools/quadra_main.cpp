@@ -22,6 +22,7 @@
 #include "render_options.h"
 #include "scene/animation.h"
 #include "sequence_options.h"
+#include "sequence_writer.h"
 #include "window/sample_pattern.h"
 
 namespace quadra {
@@ -88,6 +89,10 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          renders the same frame each time
   --fps F                frames per second of --sequence (default 24)
   --animation NAME|INDEX the animation --sequence plays (default: the scene's first)
+  --orbit N              a turntable: frames 0..N-1, frame k seen from the default framing
+                         turned 360 x k / N degrees about the vertical through the scene's
+                         centre (the scene at rest; its own cameras unused); --out as for
+                         --sequence
   --stats                also print where the time went: "quadra stages_ms load=... first_frame=...
                          draws=... vertex=... setup=... bin=... raster=... shade=... resolve=...
                          write=..."
@@ -112,11 +117,17 @@ struct RenderCommand {
   double fps = 24.0;
   bool fpsGiven = false;
   std::optional<std::string> animation;  // --animation as given
+  std::optional<int> orbit;              // --orbit N: views around the scene, frames 0..N-1
   bool stats = false;
   std::vector<std::string> outputs;
   CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
+
+RenderCommand finishRender(RenderCommand& cmd) {
+  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  return cmd;
+}
 
 // nullopt: --help printed the usage.
 std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
@@ -175,7 +186,26 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   });
   options.value("--animation",
                 [&cmd](const std::string&, const std::string& value) { cmd.animation = value; });
+  options.value("--orbit", [&cmd](const std::string& option, const std::string& value) {
+    cmd.orbit = parseInteger(option, value, 1, 1000000);
+  });
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
+  if (cmd.orbit) {
+    if (cmd.sequence) throw Error("--orbit: not with --sequence (a turntable poses nothing)");
+    if (cmd.fpsGiven || cmd.animation)
+      throw Error("--orbit: not with --fps or --animation (the scene stays at rest)");
+    if (cmd.camera.eye || cmd.camera.target || cmd.camera.up)
+      throw Error("--orbit: not with --eye, --target or --up (the orbit places the camera)");
+    if (cmd.framesGiven)
+      throw Error("--frames: not with --orbit (each frame of a turntable is timed once)");
+    for (const std::string& path : cmd.outputs) {
+      if (!hasFrameField(path))
+        throw Error("--out: '" + path +
+                    "' has no run of '#' for the frame number (needed with --orbit)");
+    }
+    cmd.sequence = FrameRange{0, *cmd.orbit - 1};
+    return finishRender(cmd);
+  }
   if (!cmd.sequence) {
     if (cmd.fpsGiven) throw Error("--fps: only with --sequence");
     if (cmd.animation) throw Error("--animation: only with --sequence");
@@ -188,8 +218,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                     "' has no run of '#' for the frame number (needed with --sequence)");
     }
   }
-  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
-  return cmd;
+  return finishRender(cmd);
 }
 
 Scene loadScene(const RenderCommand& cmd) {
@@ -237,44 +266,67 @@ void printFrameLine(const RenderCommand& cmd, const Renderer& renderer,
       stats.clipped);
 }
 
+// "quadra sequence frames=N seconds=S fps=F steady_fps=G": the whole run
+// from the first frame's start to the last file written, and the rate after
+// the first frame (which also builds the texture levels its filters read).
+void printSequenceLine(std::size_t frames, std::chrono::steady_clock::time_point start,
+                       std::chrono::steady_clock::time_point firstDone) {
+  const double seconds = millisecondsSince(start) / 1000.0;
+  const double afterFirst = millisecondsSince(firstDone) / 1000.0;
+  const double steady =
+      frames > 1 && afterFirst > 0.0 ? double(frames - 1) / afterFirst : double(frames) / seconds;
+  std::printf("quadra sequence frames=%zu seconds=%.3f fps=%.3f steady_fps=%.3f\n", frames, seconds,
+              double(frames) / seconds, steady);
+}
+
 // --sequence: frame f of the range posed at time f / fps, rendered once and
 // written to each --out with its number in the name. The scene is loaded
 // once and only its instances and cameras move; the renderer keeps its
-// buffers from frame to frame. Each file is written whole under a temporary
+// buffers from frame to frame, and the files of one frame are written
+// (tools/sequence_writer.h) while the next renders. --orbit is a sequence of
+// views of the scene at rest. Each file is written whole under a temporary
 // name and renamed (io/image_io.h), so a stopped sequence leaves only
 // complete frames.
 int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, double loadMs) {
   // Chosen before anything is rendered, so a wrong name writes nothing.
   const int animation = cmd.animation ? findAnimation(scene, "--animation", *cmd.animation)
-                                      : (scene.animations.empty() ? -1 : 0);
+                        : (scene.animations.empty() || cmd.orbit) ? -1
+                                                                  : 0;
   // A scene without a camera is framed once, at its rest pose: a camera that
   // re-framed the animated bounds every frame would move with them.
   const std::optional<Camera> fixedCamera =
       scene.cameras.empty() ? std::optional<Camera>(chooseCamera(scene, cmd.camera)) : std::nullopt;
-  const Executor writer(renderer.threadCount());
+  // Frame k is written on the writer's thread while frame k + 1 renders; two
+  // frames may wait, so a slow disk holds the loop back by at most that.
+  SequenceWriter writer(renderer.threadCount(), 2, [](int, const std::vector<std::string>& paths) {
+    for (const std::string& path : paths) std::cout << "quadra wrote " << path << "\n";
+  });
   std::vector<glm::mat4> worlds;
   std::vector<double> times;
   std::vector<StageTimes> stages;
   FrameStats stats;
   Frame frame;
-  double writeMs = 0.0;
+  const auto sequenceStart = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point firstDone;
   for (int f = cmd.sequence->first; f <= cmd.sequence->last; ++f) {
     const auto start = std::chrono::steady_clock::now();
     poseNodes(scene, animation, double(f) / cmd.fps, worlds);
     placeOnNodes(scene, worlds);
-    const Camera camera = fixedCamera ? *fixedCamera : chooseCamera(scene, cmd.camera);
+    const Camera camera = cmd.orbit
+                              ? applyCameraOverrides(orbitCamera(scene, f, *cmd.orbit), cmd.camera)
+                          : fixedCamera ? *fixedCamera
+                                        : chooseCamera(scene, cmd.camera);
     stats = renderer.render(scene, camera, cmd.settings, frame);
     times.push_back(millisecondsSince(start));
     stages.push_back(stats.stages);
-    const auto writeStart = std::chrono::steady_clock::now();
-    for (const std::string& pattern : cmd.outputs) {
-      const std::string path = framePath(pattern, f);
-      writeFrame(frame, path, &writer);
-      std::cout << "quadra wrote " << path << "\n";
-    }
-    writeMs += millisecondsSince(writeStart);
+    if (f == cmd.sequence->first) firstDone = std::chrono::steady_clock::now();
+    std::vector<std::string> paths;
+    for (const std::string& pattern : cmd.outputs) paths.push_back(framePath(pattern, f));
+    writer.submit(f, frame, std::move(paths));
   }
+  const double writeMs = writer.finish();
   printFrameLine(cmd, renderer, times, stats);
+  printSequenceLine(times.size(), sequenceStart, firstDone);
   if (cmd.stats) printStages(loadMs, times.front(), stages, writeMs);
   return 0;
 }

@@ -102,7 +102,10 @@ void addCameraOptions(CommandOptions& options, CameraOverrides& overrides) {
 }
 
 Camera chooseCamera(const Scene& scene, const CameraOverrides& overrides) {
-  Camera camera = firstCameraOrDefault(scene);
+  return applyCameraOverrides(firstCameraOrDefault(scene), overrides);
+}
+
+Camera applyCameraOverrides(Camera camera, const CameraOverrides& overrides) {
   if (overrides.eye || overrides.target || overrides.up) {
     const glm::vec3 position(camera.world[3]);
     const glm::vec3 forward = -glm::normalize(glm::vec3(camera.world[2]));

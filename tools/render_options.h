@@ -50,6 +50,8 @@ void addCameraOptions(CommandOptions& options, CameraOverrides& overrides);
 // The scene's first camera (or the default framing) with the overrides
 // applied; an Error when they contradict each other.
 Camera chooseCamera(const Scene& scene, const CameraOverrides& overrides);
+// `camera` with the overrides applied (chooseCamera's second half).
+Camera applyCameraOverrides(Camera camera, const CameraOverrides& overrides);
 
 // The key=value pairs of the line of `output` that starts with `prefix`
 // ("quadra frame_ms "), for a caller that reads a render's report back.

@@ -61,7 +61,11 @@ glm::mat4 lookAtWorld(const glm::vec3& eye, const glm::vec3& target, const glm::
   return m;
 }
 
-Camera defaultCamera(const Scene& scene) {
+namespace {
+
+// Looks at the scene's bounds from `direction` (unit length), far enough that
+// the bounding sphere fits a 45-degree view with 10% to spare.
+Camera framingCamera(const Scene& scene, const glm::vec3& direction) {
   glm::vec3 lo, hi;
   scene.bounds(lo, hi);
   if (!(lo.x <= hi.x)) lo = glm::vec3(-1.0f), hi = glm::vec3(1.0f);
@@ -70,11 +74,27 @@ Camera defaultCamera(const Scene& scene) {
   Camera camera;
   camera.yfov = 0.7854f;  // 45 degrees
   const float distance = radius / std::sin(0.5f * camera.yfov) * 1.1f;
-  const glm::vec3 direction = glm::normalize(glm::vec3(0.35f, 0.4f, 1.0f));
   camera.world = lookAtWorld(centre + direction * distance, centre, glm::vec3(0, 1, 0));
   camera.znear = std::max(distance - radius, distance * 0.01f) * 0.5f;
   camera.zfar = distance + 2.0f * radius;
   return camera;
+}
+
+const glm::vec3 kDefaultDirection = glm::normalize(glm::vec3(0.35f, 0.4f, 1.0f));
+
+}  // namespace
+
+Camera defaultCamera(const Scene& scene) {
+  return framingCamera(scene, kDefaultDirection);
+}
+
+Camera orbitCamera(const Scene& scene, int view, int views) {
+  // The angle in double from the view's index, so that view k of N is the
+  // same camera however many views came before; view 0 turns by exactly 0.
+  const double angle = 2.0 * 3.14159265358979323846 * double(view) / double(views);
+  const float c = float(std::cos(angle)), s = float(std::sin(angle));
+  const glm::vec3 d = kDefaultDirection;
+  return framingCamera(scene, glm::vec3(c * d.x + s * d.z, d.y, c * d.z - s * d.x));
 }
 
 Camera firstCameraOrDefault(const Scene& scene) {

@@ -151,6 +151,12 @@ constexpr int kMaxViewportSize = kMaxViewport;
 // for scenes that have none.
 Camera defaultCamera(const Scene& scene);
 
+// View `view` of `views` (0 <= view < views) of a turntable around the scene:
+// defaultCamera's framing turned about the vertical through the bounds'
+// centre by 360 degrees x view / views, counter-clockwise seen from above;
+// view 0 is defaultCamera. The scene's own cameras play no part.
+Camera orbitCamera(const Scene& scene, int view, int views);
+
 // The scene's first camera, or defaultCamera when it has none.
 Camera firstCameraOrDefault(const Scene& scene);
 
