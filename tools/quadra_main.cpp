@@ -17,8 +17,10 @@
 #include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "frame_batch.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
+#include "progress.h"
 #include "render_options.h"
 #include "scene/animation.h"
 #include "sequence_options.h"
@@ -88,6 +90,17 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          renders the same frame each time
   --fps F                frames per second of --sequence (default 24)
   --animation NAME|INDEX the animation --sequence plays (default: the scene's first)
+  --shard I/N            render only shard I of N (0 <= I < N) of the sequence's frames: the
+                         frame at position p of the sequence (p = frame - FIRST) is shard
+                         p mod N's, so N processes with I = 0..N-1 render each frame once
+  --skip-existing        do not render a frame whose every output file exists (files are
+                         written whole under a temporary name, then renamed: a file under
+                         its final name is complete), so a stopped sequence resumes
+  --progress bar|plain|none
+                         sequence progress on stderr: a redrawn bar (default where stderr
+                         is a terminal), one "quadra progress frame=... status=rendered|skipped
+                         ms=... done=... total=... fps=... eta_s=... out=..." line per frame
+                         (for logs), or nothing (default elsewhere)
   --stats                also print where the time went: "quadra stages_ms load=... first_frame=...
                          draws=... vertex=... setup=... bin=... raster=... shade=... resolve=...
                          write=..."
@@ -112,11 +125,28 @@ struct RenderCommand {
   double fps = 24.0;
   bool fpsGiven = false;
   std::optional<std::string> animation;  // --animation as given
+  std::optional<Shard> shard;
+  bool skipExisting = false;
+  std::optional<ProgressMode> progress;  // unset: defaultProgressMode()
   bool stats = false;
   std::vector<std::string> outputs;
   CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
+
+// The options that split a sequence among processes and report on it.
+void addBatchOptions(CommandOptions& options, RenderCommand& cmd) {
+  options.value("--shard", [&cmd](const std::string& option, const std::string& value) {
+    cmd.shard = parseShard(option, value);
+  });
+  options.flag("--skip-existing", [&cmd] { cmd.skipExisting = true; });
+  using Progress = std::optional<ProgressMode>;
+  options.choice("--progress", "progress display",
+                 {{"bar", Progress(ProgressMode::Bar)},
+                  {"plain", Progress(ProgressMode::Plain)},
+                  {"none", Progress(ProgressMode::None)}},
+                 cmd.progress);
+}
 
 // nullopt: --help printed the usage.
 std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
@@ -175,10 +205,14 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   });
   options.value("--animation",
                 [&cmd](const std::string&, const std::string& value) { cmd.animation = value; });
+  addBatchOptions(options, cmd);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (!cmd.sequence) {
     if (cmd.fpsGiven) throw Error("--fps: only with --sequence");
     if (cmd.animation) throw Error("--animation: only with --sequence");
+    if (cmd.shard) throw Error("--shard: only with --sequence");
+    if (cmd.skipExisting) throw Error("--skip-existing: only with --sequence");
+    if (cmd.progress) throw Error("--progress: only with --sequence");
   } else {
     if (cmd.framesGiven)
       throw Error("--frames: not with --sequence (each frame of a sequence is timed once)");
@@ -225,13 +259,14 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 // The frame_ms line (DESIGN.md "Contracts") over the timed frames; the
 // triangle counts are the last frame's.
 void printFrameLine(const RenderCommand& cmd, const Renderer& renderer,
-                    const std::vector<double>& times, const FrameStats& stats) {
+                    const std::vector<double>& times, const FrameStats& stats,
+                    std::size_t frameCount) {
   const FrameTimeSummary summary = summarizeFrameTimes(times);
   std::printf(
       "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
       "isa=%s frames=%zu drawn=%zu culled=%zu clipped=%zu\n",
       summary.median, summary.min, summary.max, stats.trianglesIn, cmd.settings.width,
-      cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), times.size(),
+      cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), frameCount,
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
       stats.clipped);
@@ -242,7 +277,8 @@ void printFrameLine(const RenderCommand& cmd, const Renderer& renderer,
 // once and only its instances and cameras move; the renderer keeps its
 // buffers from frame to frame. Each file is written whole under a temporary
 // name and renamed (io/image_io.h), so a stopped sequence leaves only
-// complete frames.
+// complete frames, which --skip-existing then leaves alone. --shard keeps
+// this process's share of the frames (frame_batch.h).
 int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, double loadMs) {
   // Chosen before anything is rendered, so a wrong name writes nothing.
   const int animation = cmd.animation ? findAnimation(scene, "--animation", *cmd.animation)
@@ -251,6 +287,10 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   // re-framed the animated bounds every frame would move with them.
   const std::optional<Camera> fixedCamera =
       scene.cameras.empty() ? std::optional<Camera>(chooseCamera(scene, cmd.camera)) : std::nullopt;
+  std::vector<int> frames;
+  for (int f = cmd.sequence->first; f <= cmd.sequence->last; ++f) frames.push_back(f);
+  if (cmd.shard) frames = shardFrames(frames, *cmd.shard);
+  SequenceProgress progress(cmd.progress.value_or(defaultProgressMode()), int(frames.size()));
   const Executor writer(renderer.threadCount());
   std::vector<glm::mat4> worlds;
   std::vector<double> times;
@@ -258,7 +298,12 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   FrameStats stats;
   Frame frame;
   double writeMs = 0.0;
-  for (int f = cmd.sequence->first; f <= cmd.sequence->last; ++f) {
+  for (const int f : frames) {
+    const std::vector<std::string> paths = framePaths(cmd.outputs, f);
+    if (cmd.skipExisting && allFilesExist(paths)) {
+      progress.skipped(f, paths);
+      continue;
+    }
     const auto start = std::chrono::steady_clock::now();
     poseNodes(scene, animation, double(f) / cmd.fps, worlds);
     placeOnNodes(scene, worlds);
@@ -267,15 +312,20 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
     times.push_back(millisecondsSince(start));
     stages.push_back(stats.stages);
     const auto writeStart = std::chrono::steady_clock::now();
-    for (const std::string& pattern : cmd.outputs) {
-      const std::string path = framePath(pattern, f);
+    progress.clearBar();
+    for (const std::string& path : paths) {
       writeFrame(frame, path, &writer);
       std::cout << "quadra wrote " << path << "\n";
     }
     writeMs += millisecondsSince(writeStart);
+    progress.rendered(f, paths, millisecondsSince(start));
   }
-  printFrameLine(cmd, renderer, times, stats);
-  if (cmd.stats) printStages(loadMs, times.front(), stages, writeMs);
+  progress.finish();
+  // Nothing rendered (every frame skipped, or a shard past the sequence's
+  // end): the frame line still comes, with frames=0 and zero times.
+  printFrameLine(cmd, renderer, times.empty() ? std::vector<double>{0.0} : times, stats,
+                 times.size());
+  if (cmd.stats && !times.empty()) printStages(loadMs, times.front(), stages, writeMs);
   return 0;
 }
 
@@ -314,7 +364,7 @@ int renderCommand(const std::vector<std::string>& args) {
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);
-  printFrameLine(cmd, renderer, times, stats);
+  printFrameLine(cmd, renderer, times, stats, times.size());
   if (cmd.stats) printStages(loadMs, firstFrameMs, stages, writeMs);
   return 0;
 }
