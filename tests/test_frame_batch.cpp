@@ -175,6 +175,39 @@ TEST(FrameBatchCli, SkipExistingRendersOnlyTheMissingFrames) {
   EXPECT_EQ(progressLines(again.err).size(), 4u);
 }
 
+// The resumption the issue asks for: a sequence killed (SIGKILL, no chance
+// to clean up) while it renders, then rerun with --skip-existing, ends with
+// the same files, byte for byte, as one uninterrupted run.
+TEST(FrameBatchCli, KilledSequenceResumesToTheSameFrames) {
+  const std::string model = modelPath("BoxAnimated");
+  if (!fs::exists(model)) GTEST_SKIP() << "no " << model;
+  const fs::path whole = emptyFolder("unkilled"), killed = emptyFolder("killed");
+  const std::string args = model + " --sequence 0:29 --width 320 --height 180 --threads 2";
+  const RunResult full = run("render " + args + " --out " + (whole / "b_##.exr").string());
+  ASSERT_EQ(full.exitCode, 0) << full.err;
+  // Killed as soon as its third frame is on disk (or when it has ended).
+  const std::string script = std::string(QUADRA_CLI_PATH) + " render " + args + " --out " +
+                             (killed / "b_##.exr").string() +
+                             " >/dev/null & pid=$!; while kill -0 $pid 2>/dev/null && [ ! -e " +
+                             (killed / "b_02.exr").string() +
+                             " ]; do sleep 0.005; done; kill -9 $pid 2>/dev/null; wait $pid; true";
+  ASSERT_EQ(runProgram("bash", "-c '" + script + "'").exitCode, 0);
+  std::size_t before = 0;
+  for (const std::string& name : fileNames(killed)) {
+    if (name.find(".tmp-") != std::string::npos) continue;  // an interrupted write
+    EXPECT_EQ(bytesOf(killed / name), bytesOf(whole / name)) << name << " is not whole";
+    ++before;
+  }
+  EXPECT_GE(before, 3u);
+  const RunResult resumed = run("render " + args + " --skip-existing --progress plain --out " +
+                                (killed / "b_##.exr").string());
+  ASSERT_EQ(resumed.exitCode, 0) << resumed.err;
+  EXPECT_EQ(lineKeyValues(resumed.out, "quadra frame_ms ").at("frames"),
+            std::to_string(30 - before));
+  for (const std::string& name : fileNames(whole))
+    EXPECT_EQ(bytesOf(killed / name), bytesOf(whole / name)) << name;
+}
+
 TEST(FrameBatchCli, PlainProgressCountsFramesAndPaths) {
   const fs::path dir = emptyFolder("plain");
   const RunResult r = render("builtin:showcase --sequence 3:6 --progress plain --out " +
@@ -218,6 +251,20 @@ TEST(FrameBatchCli, BarRedrawsOneLine) {
   EXPECT_NE(last.find("frames/s"), std::string::npos) << r.err;
   EXPECT_NE(last.find("ETA 0:00"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("1/3 frames"), std::string::npos) << r.err;
+}
+
+// Without --progress the bar shows where stderr is a terminal: here a
+// pseudo-terminal from util-linux's `script`, which copies it to stdout.
+TEST(FrameBatchCli, TerminalGetsTheBarByDefault) {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) GTEST_SKIP() << "no script(1)";
+  const fs::path dir = emptyFolder("terminal");
+  const std::string command = std::string(QUADRA_CLI_PATH) +
+                              " render builtin:showcase --width 64 --height 48 --threads 2 "
+                              "--sequence 0:1 --out " +
+                              (dir / "t_#.png").string();
+  const RunResult r = runProgram("script", "-qec '" + command + "' /dev/null");
+  ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("] 2/2 frames"), std::string::npos) << r.out;
 }
 
 TEST(FrameBatchCli, ShardPastTheEndRendersNothing) {
