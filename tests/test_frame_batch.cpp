@@ -58,32 +58,6 @@ TEST(FrameBatch, ParsesShardsAndRejectsTheRest) {
     EXPECT_THROW(parseShard("--shard", bad), Error) << bad;
 }
 
-std::string modelPath(const std::string& model) {
-  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
-}
-
-fs::path emptyFolder(const std::string& name) {
-  const fs::path dir = testDir() / ("batch_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::vector<std::string> fileNames(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const fs::directory_entry& entry : fs::directory_iterator(dir))
-    names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string bytesOf(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
 // The "quadra progress" lines of `err`, each as its key=value pairs (the
 // repeated out= keys joined by spaces), in order.
 std::vector<std::map<std::string, std::string>> progressLines(const std::string& err) {
@@ -277,7 +251,7 @@ TEST(FrameBatchCli, ShardPastTheEndRendersNothing) {
 }
 
 TEST(FrameBatchCli, BadBatchInputIsOneLineAndWritesNothing) {
-  const fs::path dir = emptyFolder("bad");
+  const fs::path dir = emptyFolder("bad_batch");
   const std::string seq = "builtin:showcase --sequence 0:3 --out " + (dir / "f_#.png").string();
   const std::string still = "builtin:showcase --out " + (dir / "f.png").string();
   struct Case {
