@@ -23,6 +23,20 @@ fail() {
 }
 
 [ -f "$scene" ] || fail "no scene $scene (the shared assets beside the checkout)"
+
+# The job script's task numbering, without Slurm: array 1-7:2 has tasks
+# 1, 3, 5, 7, shards 0..3; a task off the range is an error.
+array_script=$source_dir/scripts/slurm/render_array.sbatch
+shard_of() {
+  env SLURM_ARRAY_TASK_ID="$1" SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_STEP=2 \
+    SLURM_ARRAY_TASK_COUNT=4 QUADRA=echo bash "$array_script" s.gltf 0:9 'f_#.exr' 2>&1 |
+    sed -n 's/.*--shard \([^ ]*\) .*/\1/p'
+}
+[ "$(shard_of 5)" = 2/4 ] || fail "array task 5 of 1-7:2 is not shard 2/4: '$(shard_of 5)'"
+[ "$(shard_of 1)" = 0/4 ] || fail "array task 1 of 1-7:2 is not shard 0/4: '$(shard_of 1)'"
+SLURM_ARRAY_TASK_ID=4 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_STEP=2 SLURM_ARRAY_TASK_COUNT=4 \
+  QUADRA=echo bash "$array_script" s.gltf 0:9 'f_#.exr' >/dev/null 2>&1 &&
+  fail "array task 4 of 1-7:2 was accepted"
 bash "$source_dir/scripts/install-deps.sh" --farm ||
   fail "could not install slurm-wlm and munge (scripts/install-deps.sh --farm)"
 
@@ -150,7 +164,10 @@ submitted=$(date +%s)
 export QUADRA=$quadra
 # --wait: sbatch returns when every task has ended, with the highest exit
 # status among them; timeout bounds the wait.
-if ! timeout "$timeout_s" sbatch --wait --quiet --array=0-$((shards - 1)) --chdir="$work" \
+# One core per task: the tasks render with --threads 1, the local run with
+# all cores, and the frames must still be the same bytes.
+if ! timeout "$timeout_s" sbatch --wait --quiet --array=0-$((shards - 1)) --cpus-per-task=1 \
+  --chdir="$work" \
   --output="$work/log/task_%a.out" "$source_dir/scripts/slurm/render_array.sbatch" \
   "$scene" "$range" "$work/farm/box_####.exr" "${size[@]}"; then
   squeue >&2 || true
@@ -178,6 +195,8 @@ for ((k = 0; k < shards; ++k)); do
   expected=$(seq -s ' ' "$k" "$shards" 11)
   [ "$rendered" = "$expected " ] ||
     fail "task $k rendered frames '$rendered', expected '$expected ' ($(cat "$work/log/task_$k.out"))"
+  grep -q '^quadra frame_ms .* threads=1 ' "$work/log/task_$k.out" ||
+    fail "task $k did not render with the 1 thread it was given"
 done
 echo "slurm_farm_test: PASS: 12 frames in $shards shards byte-identical to the local run" \
   "($(($(date +%s) - started)) s in all)"
