@@ -265,6 +265,7 @@ TEST(FrameBatchCli, BadBatchInputIsOneLineAndWritesNothing) {
       {seq + " --shard a/b", "--shard"},
       {seq + " --shard 1/", "must be I/N"},
       {seq + " --progress fancy", "--progress: unknown progress display 'fancy'"},
+      {"builtin:showcase --sequence 0:3 --skip-existing", "--skip-existing: needs an --out"},
       {still + " --shard 0/2", "--shard: only with --sequence"},
       {still + " --skip-existing", "--skip-existing: only with --sequence"},
       {still + " --progress plain", "--progress: only with --sequence"},

@@ -216,6 +216,8 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   } else {
     if (cmd.framesGiven)
       throw Error("--frames: not with --sequence (each frame of a sequence is timed once)");
+    if (cmd.skipExisting && cmd.outputs.empty())
+      throw Error("--skip-existing: needs an --out (it skips the frames whose files exist)");
     for (const std::string& path : cmd.outputs) {
       if (!hasFrameField(path))
         throw Error("--out: '" + path +
