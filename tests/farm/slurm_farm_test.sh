@@ -10,7 +10,7 @@
 # Usage: slurm_farm_test.sh QUADRA_BINARY SOURCE_DIR ASSETS_DIR
 set -euo pipefail
 
-quadra=$1 source_dir=$2 assets=$3
+quadra=$(realpath "$1") source_dir=$(realpath "$2") assets=$3
 scene=$assets/BoxAnimated/glTF/BoxAnimated.gltf
 size=(--width 160 --height 90)
 range=0:11
