@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages quadra builds against, only those missing.
+# With --farm, only the packages of the render-farm test instead
+# (tests/farm/slurm_farm_test.sh): Slurm and MUNGE, which a build never needs
+# and which enable system services where systemd runs.
 set -euo pipefail
 # libosmesa6-dev: Mesa's llvmpipe for comparisons (quadra-llvmpipe, `quadra
 # report frames`); libopenimageio-dev: OpenImageIO's TextureSystem for `quadra
@@ -9,6 +12,12 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config libtbb-dev libxsimd-dev libglm-dev libtinygltf-dev
   libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libjpeg62-turbo-dev libbenchmark-dev
   libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git clang libclang-rt-14-dev)
+if [ "${1:-}" = --farm ]; then
+  packages=(slurm-wlm munge)
+elif (($#)); then
+  echo "install-deps.sh: unknown argument '$1' (--farm or none)" >&2
+  exit 1
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -8,11 +8,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "io/image_io.h"
 #include "render_options.h"
@@ -61,6 +63,36 @@ inline fs::path tempPath(const std::string& name) {
   const fs::path dir = testDir();
   fs::remove(dir / name);
   return dir / name;
+}
+
+// A glTF sample model of the shared assets beside the checkout (tests skip
+// when it is absent).
+inline std::string modelPath(const std::string& model) {
+  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
+}
+
+// An empty scratch folder of its own for each test.
+inline fs::path emptyFolder(const std::string& name) {
+  const fs::path dir = testDir() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// The names of the files in `dir`, sorted.
+inline std::vector<std::string> fileNames(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+inline std::string bytesOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
 }
 
 inline void expectOneLineError(const RunResult& r, const std::string& mentions) {

@@ -15,33 +15,6 @@
 namespace quadra {
 namespace {
 
-std::string modelPath(const std::string& model) {
-  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
-}
-
-// An empty scratch folder of its own for each test.
-fs::path emptyFolder(const std::string& name) {
-  const fs::path dir = testDir() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::vector<std::string> fileNames(const fs::path& dir) {
-  std::vector<std::string> names;
-  for (const fs::directory_entry& entry : fs::directory_iterator(dir))
-    names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string bytesOf(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
 constexpr const char* kSmall = " --width 64 --height 48 --threads 2";
 
 RunResult render(const std::string& arguments) {

@@ -24,24 +24,6 @@
 namespace quadra {
 namespace {
 
-std::string modelPath(const std::string& model) {
-  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
-}
-
-fs::path emptyFolder(const std::string& name) {
-  const fs::path dir = testDir() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string bytesOf(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
 glm::dvec3 positionOf(const glm::mat4& world) {
   return glm::dvec3(glm::vec3(world[3]));
 }
@@ -102,6 +84,16 @@ TEST(Orbit, WritesOneFramePerViewAndViewKOfNIsView2KOf2N) {
   const Image a = readImage((dir / "eight_0.exr").string());
   const Image b = readImage((dir / "eight_1.exr").string());
   EXPECT_NE(a.rgba, b.rgba);
+}
+
+TEST(Orbit, ShardsSplitTheViewsAsTheyDoASequence) {
+  const fs::path dir = emptyFolder("orbit-shard");
+  const RunResult r =
+      run("render builtin:showcase --width 32 --height 32 --orbit 5 --shard 1/2 "
+          "--out " +
+          (dir / "v_#.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_EQ(fileNames(dir), (std::vector<std::string>{"v_1.png", "v_3.png"}));
 }
 
 TEST(Orbit, BadOrbitInputIsOneLineAndWritesNothing) {
@@ -206,9 +198,9 @@ TEST(Flyover, EveryInterpolationMovesItsNodeAsItsKeysSay) {
 TEST(Flyover, SequenceRendersFramesThatDiffer) {
   const fs::path dir = emptyFolder("flyover");
   for (const char* frames : {"0:0", "48:48"}) {
-    const RunResult r = run(std::string("render builtin:flyover --width 64 --height 36 ") +
-                            "--threads 2 --sequence " + frames + " --out " +
-                            (dir / "f_##.png").string());
+    const RunResult r =
+        run(std::string("render builtin:flyover --width 64 --height 36 ") +
+            "--threads 2 --sequence " + frames + " --out " + (dir / "f_##.png").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
   }
   EXPECT_NE(bytesOf(dir / "f_00.png"), bytesOf(dir / "f_48.png"));

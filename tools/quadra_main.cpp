@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,8 +18,10 @@
 #include "commands.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "frame_batch.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
+#include "progress.h"
 #include "render_options.h"
 #include "scene/animation.h"
 #include "sequence_options.h"
@@ -93,6 +96,17 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          turned 360 x k / N degrees about the vertical through the scene's
                          centre (the scene at rest; its own cameras unused); --out as for
                          --sequence
+  --shard I/N            render only shard I of N (0 <= I < N) of the sequence's (or orbit's) frames: the
+                         frame at position p of the sequence (p = frame - FIRST) is shard
+                         p mod N's, so N processes with I = 0..N-1 render each frame once
+  --skip-existing        do not render a frame whose every output file exists (files are
+                         written whole under a temporary name, then renamed: a file under
+                         its final name is complete), so a stopped sequence resumes
+  --progress bar|plain|none
+                         sequence progress on stderr: a redrawn bar (default where stderr
+                         is a terminal), one "quadra progress frame=... status=rendered|skipped
+                         ms=... done=... total=... fps=... eta_s=... out=..." line per frame
+                         (for logs), or nothing (default elsewhere)
   --stats                also print where the time went: "quadra stages_ms load=... first_frame=...
                          draws=... vertex=... setup=... bin=... raster=... shade=... resolve=...
                          write=..."
@@ -118,15 +132,27 @@ struct RenderCommand {
   bool fpsGiven = false;
   std::optional<std::string> animation;  // --animation as given
   std::optional<int> orbit;              // --orbit N: views around the scene, frames 0..N-1
+  std::optional<Shard> shard;
+  bool skipExisting = false;
+  std::optional<ProgressMode> progress;  // unset: defaultProgressMode()
   bool stats = false;
   std::vector<std::string> outputs;
   CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
 
-RenderCommand finishRender(RenderCommand& cmd) {
-  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
-  return cmd;
+// The options that split a sequence among processes and report on it.
+void addBatchOptions(CommandOptions& options, RenderCommand& cmd) {
+  options.value("--shard", [&cmd](const std::string& option, const std::string& value) {
+    cmd.shard = parseShard(option, value);
+  });
+  options.flag("--skip-existing", [&cmd] { cmd.skipExisting = true; });
+  using Progress = std::optional<ProgressMode>;
+  options.choice("--progress", "progress display",
+                 {{"bar", Progress(ProgressMode::Bar)},
+                  {"plain", Progress(ProgressMode::Plain)},
+                  {"none", Progress(ProgressMode::None)}},
+                 cmd.progress);
 }
 
 // nullopt: --help printed the usage.
@@ -189,6 +215,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.value("--orbit", [&cmd](const std::string& option, const std::string& value) {
     cmd.orbit = parseInteger(option, value, 1, 1000000);
   });
+  addBatchOptions(options, cmd);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (cmd.orbit) {
     if (cmd.sequence) throw Error("--orbit: not with --sequence (a turntable poses nothing)");
@@ -198,27 +225,28 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
       throw Error("--orbit: not with --eye, --target or --up (the orbit places the camera)");
     if (cmd.framesGiven)
       throw Error("--frames: not with --orbit (each frame of a turntable is timed once)");
-    for (const std::string& path : cmd.outputs) {
-      if (!hasFrameField(path))
-        throw Error("--out: '" + path +
-                    "' has no run of '#' for the frame number (needed with --orbit)");
-    }
     cmd.sequence = FrameRange{0, *cmd.orbit - 1};
-    return finishRender(cmd);
   }
+  const char* const sequenceOption = cmd.orbit ? "--orbit" : "--sequence";
   if (!cmd.sequence) {
     if (cmd.fpsGiven) throw Error("--fps: only with --sequence");
     if (cmd.animation) throw Error("--animation: only with --sequence");
+    if (cmd.shard) throw Error("--shard: only with --sequence or --orbit");
+    if (cmd.skipExisting) throw Error("--skip-existing: only with --sequence or --orbit");
+    if (cmd.progress) throw Error("--progress: only with --sequence or --orbit");
   } else {
     if (cmd.framesGiven)
       throw Error("--frames: not with --sequence (each frame of a sequence is timed once)");
+    if (cmd.skipExisting && cmd.outputs.empty())
+      throw Error("--skip-existing: needs an --out (it skips the frames whose files exist)");
     for (const std::string& path : cmd.outputs) {
       if (!hasFrameField(path))
-        throw Error("--out: '" + path +
-                    "' has no run of '#' for the frame number (needed with --sequence)");
+        throw Error("--out: '" + path + "' has no run of '#' for the frame number (needed with " +
+                    sequenceOption + ")");
     }
   }
-  return finishRender(cmd);
+  cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  return cmd;
 }
 
 Scene loadScene(const RenderCommand& cmd) {
@@ -254,13 +282,14 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
 // The frame_ms line (DESIGN.md "Contracts") over the timed frames; the
 // triangle counts are the last frame's.
 void printFrameLine(const RenderCommand& cmd, const Renderer& renderer,
-                    const std::vector<double>& times, const FrameStats& stats) {
+                    const std::vector<double>& times, const FrameStats& stats,
+                    std::size_t frameCount) {
   const FrameTimeSummary summary = summarizeFrameTimes(times);
   std::printf(
       "quadra frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d threads=%d "
       "isa=%s frames=%zu drawn=%zu culled=%zu clipped=%zu\n",
       summary.median, summary.min, summary.max, stats.trianglesIn, cmd.settings.width,
-      cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), times.size(),
+      cmd.settings.height, renderer.threadCount(), isaName(renderer.isa()), frameCount,
       stats.trianglesDrawn,
       stats.culledBackFace + stats.culledOutside + stats.droppedDegenerate + stats.droppedInvalid,
       stats.clipped);
@@ -286,7 +315,8 @@ void printSequenceLine(std::size_t frames, std::chrono::steady_clock::time_point
 // (tools/sequence_writer.h) while the next renders. --orbit is a sequence of
 // views of the scene at rest. Each file is written whole under a temporary
 // name and renamed (io/image_io.h), so a stopped sequence leaves only
-// complete frames.
+// complete frames, which --skip-existing then leaves alone. --shard keeps
+// this process's share of the frames (frame_batch.h).
 int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, double loadMs) {
   // Chosen before anything is rendered, so a wrong name writes nothing.
   const int animation = cmd.animation ? findAnimation(scene, "--animation", *cmd.animation)
@@ -296,19 +326,30 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   // re-framed the animated bounds every frame would move with them.
   const std::optional<Camera> fixedCamera =
       scene.cameras.empty() ? std::optional<Camera>(chooseCamera(scene, cmd.camera)) : std::nullopt;
+  std::vector<int> frames;
+  for (int f = cmd.sequence->first; f <= cmd.sequence->last; ++f) frames.push_back(f);
+  if (cmd.shard) frames = shardFrames(frames, *cmd.shard);
+  SequenceProgress progress(cmd.progress.value_or(defaultProgressMode()), int(frames.size()));
+  // The writer's thread reports the frames it wrote, this loop the ones it
+  // skips: one report at a time.
+  std::mutex reporting;
   // Frame k is written on the writer's thread while frame k + 1 renders; two
   // frames may wait, so a slow disk holds the loop back by at most that.
-  SequenceWriter writer(renderer.threadCount(), 2, [](int, const std::vector<std::string>& paths) {
-    for (const std::string& path : paths) std::cout << "quadra wrote " << path << "\n";
-  });
+  SequenceWriter writer(renderer.threadCount(), 2);
   std::vector<glm::mat4> worlds;
   std::vector<double> times;
   std::vector<StageTimes> stages;
   FrameStats stats;
   Frame frame;
   const auto sequenceStart = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point firstDone;
-  for (int f = cmd.sequence->first; f <= cmd.sequence->last; ++f) {
+  std::optional<std::chrono::steady_clock::time_point> firstDone;
+  for (const int f : frames) {
+    std::vector<std::string> paths = framePaths(cmd.outputs, f);
+    if (cmd.skipExisting && allFilesExist(paths)) {
+      const std::lock_guard<std::mutex> lock(reporting);
+      progress.skipped(f, paths);
+      continue;
+    }
     const auto start = std::chrono::steady_clock::now();
     poseNodes(scene, animation, double(f) / cmd.fps, worlds);
     placeOnNodes(scene, worlds);
@@ -319,15 +360,24 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
     stats = renderer.render(scene, camera, cmd.settings, frame);
     times.push_back(millisecondsSince(start));
     stages.push_back(stats.stages);
-    if (f == cmd.sequence->first) firstDone = std::chrono::steady_clock::now();
-    std::vector<std::string> paths;
-    for (const std::string& pattern : cmd.outputs) paths.push_back(framePath(pattern, f));
-    writer.submit(f, frame, std::move(paths));
+    if (!firstDone) firstDone = std::chrono::steady_clock::now();
+    writer.submit(frame, std::move(paths),
+                  [&progress, &reporting, f, start](const std::vector<std::string>& written) {
+                    const std::lock_guard<std::mutex> lock(reporting);
+                    progress.clearBar();
+                    for (const std::string& path : written)
+                      std::cout << "quadra wrote " << path << "\n";
+                    progress.rendered(f, written, millisecondsSince(start));
+                  });
   }
   const double writeMs = writer.finish();
-  printFrameLine(cmd, renderer, times, stats);
-  printSequenceLine(times.size(), sequenceStart, firstDone);
-  if (cmd.stats) printStages(loadMs, times.front(), stages, writeMs);
+  progress.finish();
+  // Nothing rendered (every frame skipped, or a shard past the sequence's
+  // end): the frame line still comes, with frames=0 and zero times.
+  printFrameLine(cmd, renderer, times.empty() ? std::vector<double>{0.0} : times, stats,
+                 times.size());
+  if (firstDone) printSequenceLine(times.size(), sequenceStart, *firstDone);
+  if (cmd.stats && !times.empty()) printStages(loadMs, times.front(), stages, writeMs);
   return 0;
 }
 
@@ -366,7 +416,7 @@ int renderCommand(const std::vector<std::string>& args) {
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);
-  printFrameLine(cmd, renderer, times, stats);
+  printFrameLine(cmd, renderer, times, stats, times.size());
   if (cmd.stats) printStages(loadMs, firstFrameMs, stages, writeMs);
   return 0;
 }

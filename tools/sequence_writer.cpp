@@ -9,10 +9,9 @@
 
 namespace quadra {
 
-SequenceWriter::SequenceWriter(int threads, std::size_t queueDepth, Written written)
+SequenceWriter::SequenceWriter(int threads, std::size_t queueDepth)
     : executor_(threads),
       queueDepth_(queueDepth < 1 ? 1 : queueDepth),
-      written_(std::move(written)),
       thread_([this] { run(); }) {}
 
 SequenceWriter::~SequenceWriter() {
@@ -24,13 +23,13 @@ SequenceWriter::~SequenceWriter() {
   thread_.join();
 }
 
-void SequenceWriter::submit(int number, Frame& frame, std::vector<std::string> paths) {
+void SequenceWriter::submit(Frame& frame, std::vector<std::string> paths, Written written) {
   Frame spare;
   {
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [this] { return error_ || queue_.size() < queueDepth_; });
     if (error_) std::rethrow_exception(error_);
-    queue_.push_back({number, std::move(frame), std::move(paths)});
+    queue_.push_back({std::move(frame), std::move(paths), std::move(written)});
     if (!spares_.empty()) {
       spare = std::move(spares_.back());
       spares_.pop_back();
@@ -61,13 +60,12 @@ void SequenceWriter::run() {
     const auto start = std::chrono::steady_clock::now();
     try {
       for (const std::string& path : job.paths) writeFrame(job.frame, path, &executor_);
-      written_(job.number, job.paths);
+      if (job.written) job.written(job.paths);
     } catch (...) {
       failure = std::current_exception();
     }
     const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-            .count();
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     lock.lock();
     writeMs_ += ms;
     busy_ = false;

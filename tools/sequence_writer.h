@@ -22,13 +22,13 @@ namespace quadra {
 
 class SequenceWriter {
  public:
-  // Called on the writer thread after each frame's files are all written.
-  using Written = std::function<void(int frame, const std::vector<std::string>& paths)>;
+  // Called on the writer thread once a frame's files are all written.
+  using Written = std::function<void(const std::vector<std::string>& paths)>;
 
   // threads: for the writers' own compression (io/image_io.h). queueDepth:
   // how many handed-over frames may wait unwritten before submit blocks, and
   // so how many frame buffers (besides the one rendering) the writer keeps.
-  SequenceWriter(int threads, std::size_t queueDepth, Written written);
+  SequenceWriter(int threads, std::size_t queueDepth);
   // Writes what is still queued (each frame handed over is complete), then
   // stops; errors at this point are dropped, finish() is the way to see them.
   ~SequenceWriter();
@@ -39,7 +39,7 @@ class SequenceWriter {
   // leaving a written frame's buffers (or an empty Frame) in their place.
   // Blocks while queueDepth frames wait. Throws the error of an earlier
   // write that failed.
-  void submit(int number, Frame& frame, std::vector<std::string> paths);
+  void submit(Frame& frame, std::vector<std::string> paths, Written written);
 
   // Waits until every queued frame is written; throws the first write error.
   // Returns the writer thread's total time writing, in ms.
@@ -47,15 +47,14 @@ class SequenceWriter {
 
  private:
   struct Job {
-    int number = 0;
     Frame frame;
     std::vector<std::string> paths;
+    Written written;
   };
   void run();
 
   Executor executor_;
   const std::size_t queueDepth_;
-  Written written_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Job> queue_;
