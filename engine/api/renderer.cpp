@@ -179,7 +179,7 @@ AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSett
   aov.width = settings.width;
   aov.height = settings.height;
   const double aspect = double(settings.width) / settings.height;
-  aov.clipToView = glm::inverse(glm::dmat4(projectionMatrix(camera, aspect, settings.depth)));
+  const glm::dmat4 projection(projectionMatrix(camera, aspect, settings.depth));
   const PreviousPose* previous = settings.previousPose;
   aov.hasPreviousPose = previous != nullptr;
   glm::dmat4 previousViewToClip(1.0);
@@ -197,7 +197,7 @@ AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSett
     const Instance& instance = scene.instances[i];
     AovDraw& a = aov.draws[d];
     a.mesh = draws[d].geometry.mesh;
-    a.modelView = glm::dmat4(draws[d].geometry.modelView);
+    a.objectToClip = projection * glm::dmat4(draws[d].geometry.modelView);
     a.world = glm::dmat4(instance.world);
     a.normalToWorld = glm::transpose(glm::inverse(glm::dmat3(a.world)));
     if (previous)

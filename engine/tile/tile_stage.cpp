@@ -38,6 +38,7 @@ struct TileScratch {
   std::unique_ptr<TileBuffers[]> planes;
   std::vector<TileTriangle> visibleTriangles;  // indexed by TileBuffers::visible
   std::vector<std::uint32_t> visibleSources;   // with AOVs: their mesh triangles
+  std::vector<AovTriangle> aovTriangles;       // with AOVs: writeSurfaceAovs' memory
   std::vector<TileTriangle> forward;           // forward-path triangles, in order
   std::vector<float> shadePlanes;              // kShadePlaneStride per visible triangle
   std::vector<std::uint32_t> runOf;            // per visible triangle: its draw's run
@@ -579,7 +580,7 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
   // Before resolveSamples, which folds the samples' depths into plane 0.
   if (frame.aov)
     writeSurfaceAovs(*frame.aov, s.planes.get(), samples, frame.depthGreater, s.visibleTriangles,
-                     s.visibleSources, out);
+                     s.visibleSources, s.aovTriangles, out);
   resolveSamples(tileIndex, frame, s, out);
   resolveTile(s.planes[0], out);
   times.raster = (visible - start) + (rastered - shaded);
