@@ -8,10 +8,13 @@ set -euo pipefail
 # report frames`); libopenimageio-dev: OpenImageIO's TextureSystem for `quadra
 # report textures` (the module quadra_oiio_peer.so, loaded only by that
 # report). quadra itself links neither. clang and libclang-rt-14-dev (which
-# holds libFuzzer): the fuzz targets (scripts/fuzz.sh).
+# holds libFuzzer): the fuzz targets (scripts/fuzz.sh). openimageio-tools
+# (iinfo) and openexr (exrheader): the test that other tools read quadra's
+# EXR AOVs and header (AovsCli.WritesTheChannelsOtherToolsRead).
 packages=(build-essential cmake pkg-config libtbb-dev libxsimd-dev libglm-dev libtinygltf-dev
   libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libjpeg62-turbo-dev libbenchmark-dev
-  libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git clang libclang-rt-14-dev)
+  libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git clang libclang-rt-14-dev
+  openimageio-tools openexr)
 if [ "${1:-}" = --farm ]; then
   packages=(slurm-wlm munge)
 elif (($#)); then

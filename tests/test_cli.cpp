@@ -84,7 +84,8 @@ TEST(Cli, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(
       run("render builtin:checker-plane --pixel-filter gaussian --out " + out.string()),
       "--pixel-filter");
-  expectOneLineError(run("render builtin:checker-plane --aov mask,N --out " + out.string()), "'N'");
+  expectOneLineError(run("render builtin:checker-plane --aov mask,lod --out " + out.string()),
+                     "'lod'");
   EXPECT_FALSE(fs::exists(out));
 }
 

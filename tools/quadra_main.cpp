@@ -71,9 +71,11 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          (default), or every sample within 2 px of the pixel's centre
                          weighted by a Blackman-Harris window (4 px wide; at 1 sample a
                          blur of the pixel centres)
-  --aov mask             also write the EXR channel "mask": the fraction of the pixel's
-                         samples an opaque or masked triangle covers, filtered as the colour
-                         (PNG outputs ignore it; mask is the only AOV so far)
+  --aov LIST             more EXR channels, comma-separated (repeatable): N (N.X/Y/Z world
+                         normal), P (P.X/Y/Z world position), uv (uv.U/V), motion (motion.X/Y,
+                         pixels since the previous frame of a --sequence), id (id.primitive,
+                         id.node, id.material, uint), mask (coverage, filtered as the colour),
+                         Z (always written); PNG outputs hold none (README "AOVs")
   --shading-rate pixel|sample
                          with --samples: shade once per pixel and visible triangle
                          (default, multisampling) or every sample (supersampling)
@@ -186,13 +188,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--pixel-filter", "pixel filter",
                  {{"box", PixelFilter::Box}, {"blackman-harris", PixelFilter::BlackmanHarris}},
                  cmd.settings.pixelFilter);
-  options.value("--aov", [&cmd](const std::string& option, const std::string& value) {
-    for (const std::string& name : splitList(option, value)) {
-      if (name != kCoverageChannel)
-        throw Error(option + ": '" + name + "' is not an output quadra writes (only: mask)");
-      cmd.settings.frameCoverage = true;
-    }
-  });
+  addAovOption(options, cmd.settings);
   addThreadsOption(options, cmd.config.threads);
   addIsaOption(options, cmd.config.isa);
   options.value("--frames", [&cmd](const std::string& option, const std::string& value) {
@@ -246,6 +242,8 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
     }
   }
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  if (cmd.settings.aovs != 0 && !cmd.outputs.empty() && !cmd.settings.frameDepth)
+    std::cerr << "quadra: note: --aov: only .exr outputs hold AOVs; the PNG files will not\n";
   return cmd;
 }
 
@@ -343,6 +341,13 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   Frame frame;
   const auto sequenceStart = std::chrono::steady_clock::now();
   std::optional<std::chrono::steady_clock::time_point> firstDone;
+  RenderSettings settings = cmd.settings;
+  PreviousPose previous;  // the motion AOV's pose one frame earlier
+  const auto cameraAt = [&](int f) {
+    return cmd.orbit     ? applyCameraOverrides(orbitCamera(scene, f, *cmd.orbit), cmd.camera)
+           : fixedCamera ? *fixedCamera
+                         : chooseCamera(scene, cmd.camera);
+  };
   for (const int f : frames) {
     std::vector<std::string> paths = framePaths(cmd.outputs, f);
     if (cmd.skipExisting && allFilesExist(paths)) {
@@ -351,13 +356,20 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
       continue;
     }
     const auto start = std::chrono::steady_clock::now();
+    if (hasAov(settings.aovs, Aov::Motion)) {
+      poseNodes(scene, animation, double(f - 1) / cmd.fps, worlds);
+      placeOnNodes(scene, worlds);
+      previous.camera = cameraAt(f - 1);
+      previous.instanceWorlds.clear();
+      for (const Instance& instance : scene.instances)
+        previous.instanceWorlds.push_back(instance.world);
+      settings.previousPose = &previous;
+    }
     poseNodes(scene, animation, double(f) / cmd.fps, worlds);
     placeOnNodes(scene, worlds);
-    const Camera camera = cmd.orbit
-                              ? applyCameraOverrides(orbitCamera(scene, f, *cmd.orbit), cmd.camera)
-                          : fixedCamera ? *fixedCamera
-                                        : chooseCamera(scene, cmd.camera);
-    stats = renderer.render(scene, camera, cmd.settings, frame);
+    const Camera camera = cameraAt(f);
+    describeRender(settings, frame.metadata);  // frame may be a spare the writer handed back
+    stats = renderer.render(scene, camera, settings, frame);
     times.push_back(millisecondsSince(start));
     stages.push_back(stats.stages);
     if (!firstDone) firstDone = std::chrono::steady_clock::now();
@@ -398,6 +410,7 @@ int renderCommand(const std::vector<std::string>& args) {
   const Camera camera = chooseCamera(scene, cmd.camera);
 
   Frame frame;
+  describeRender(cmd.settings, frame.metadata);
   const auto firstStart = std::chrono::steady_clock::now();
   FrameStats stats = renderer.render(scene, camera, cmd.settings, frame);  // warm-up
   const double firstFrameMs = millisecondsSince(firstStart);

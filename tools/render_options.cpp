@@ -11,6 +11,7 @@
 #include "api/renderer.h"
 #include "core/error.h"
 #include "core/file_sandbox.h"
+#include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 
 namespace quadra {
@@ -76,6 +77,67 @@ void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs)
 bool outputsNeedDepth(const std::vector<std::string>& outputs) {
   return std::any_of(outputs.begin(), outputs.end(),
                      [](const std::string& path) { return endsWithIgnoringCase(path, ".exr"); });
+}
+
+namespace {
+
+// --aov's names: the surface AOVs' layer names (io/frame.h Aov), Z and mask.
+struct AovName {
+  const char* name;
+  AovSet bits;  // 0: Z or mask, handled apart
+};
+constexpr AovName kAovNames[] = {{"Z", 0},
+                                 {"N", AovSet(Aov::Normal)},
+                                 {"P", AovSet(Aov::Position)},
+                                 {"uv", AovSet(Aov::Uv)},
+                                 {"motion", AovSet(Aov::Motion)},
+                                 {"id", AovSet(Aov::Ids)},
+                                 {kCoverageChannel, 0}};
+
+}  // namespace
+
+std::string aovNames() {
+  std::string list;
+  for (const AovName& aov : kAovNames) list += (list.empty() ? "" : ", ") + std::string(aov.name);
+  return list;
+}
+
+void addAovOption(CommandOptions& options, RenderSettings& settings) {
+  options.value("--aov", [&settings](const std::string& option, const std::string& value) {
+    for (const std::string& name : splitList(option, value)) {
+      const AovName* found = std::find_if(std::begin(kAovNames), std::end(kAovNames),
+                                          [&](const AovName& aov) { return name == aov.name; });
+      if (found == std::end(kAovNames))
+        throw Error(option + ": '" + name + "' is not an AOV quadra writes (valid: " + aovNames() +
+                    ")");
+      settings.aovs |= found->bits;
+      if (name == kCoverageChannel) settings.frameCoverage = true;
+    }
+  });
+}
+
+std::string describeRenderSettings(const RenderSettings& s) {
+  std::ostringstream out;
+  out << "width=" << s.width << " height=" << s.height
+      << " filter=" << (s.filter ? filterName(*s.filter) : "per-sampler") << " aniso=" << s.maxAniso
+      << " lod-bias=" << s.lodBias << " lod=" << (s.lodRule == LodRule::Box ? "box" : "gl")
+      << " shading=" << (s.shading == Shading::Lit ? "lit" : "unlit")
+      << " depth=" << (s.depth == DepthMode::Reversed ? "reversed" : "standard")
+      << " samples=" << s.samples
+      << " shading-rate=" << (s.shadingRate == ShadingRate::Sample ? "sample" : "pixel")
+      << " pixel-filter="
+      << (s.pixelFilter == PixelFilter::BlackmanHarris ? "blackman-harris" : "box")
+      << " alpha-to-coverage=" << (s.alphaToCoverage ? "on" : "off") << " aov=Z";
+  for (const AovName& aov : kAovNames)
+    if ((aov.bits != 0 && (s.aovs & aov.bits) != 0) ||
+        (aov.name == std::string(kCoverageChannel) && s.frameCoverage))
+      out << "," << aov.name;
+  return out.str();
+}
+
+void describeRender(const RenderSettings& settings, FrameMetadata& metadata) {
+  metadata.strings = {{"quadraVersion", QUADRA_VERSION_STRING},
+                      {"quadraRenderSettings", describeRenderSettings(settings)}};
 }
 
 void addCameraOptions(CommandOptions& options, CameraOverrides& overrides) {

@@ -12,7 +12,9 @@
 
 #include <glm/glm.hpp>
 
+#include "api/renderer.h"
 #include "cli_options.h"
+#include "io/frame.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
@@ -39,6 +41,22 @@ void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs)
 // Whether a frame must carry depth for these outputs: an EXR's Z channel
 // does, a PNG does not. Depth is produced only for what reads it.
 bool outputsNeedDepth(const std::vector<std::string>& outputs);
+
+// --aov LIST, repeatable: comma-separated AOV names (README "AOVs"): Z, N,
+// P, uv, motion, id, mask. mask sets frameCoverage, Z is always in an EXR,
+// the others are RenderSettings::aovs bits; any other name is an Error
+// listing the valid ones.
+void addAovOption(CommandOptions& options, RenderSettings& settings);
+// The AOV names --aov accepts, for messages: "Z, N, P, uv, motion, id, mask".
+std::string aovNames();
+
+// The settings that decide a frame's pixels, as "key=value" words for the
+// EXR header (FrameMetadata::strings); nothing that differs between runs
+// of the same frame (threads, kernel path, file names) is in it.
+std::string describeRenderSettings(const RenderSettings& settings);
+// quadra's version and describeRenderSettings, as the EXR header's string
+// attributes quadraVersion and quadraRenderSettings.
+void describeRender(const RenderSettings& settings, FrameMetadata& metadata);
 
 // --eye, --target, --up, --fovy, --near, --far: each set one overrides that
 // part of the scene's first camera.

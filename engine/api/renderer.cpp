@@ -146,23 +146,72 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   return draw;
 }
 
+// The frame's draws, and in `instances` each one's index in scene.instances.
 std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
-                                const RenderSettings& settings, const Executor& executor) {
+                                const RenderSettings& settings, const Executor& executor,
+                                std::vector<std::size_t>& instances) {
   const FrameContext frame{
       scene, settings, executor, viewMatrix(camera),
       projectionMatrix(camera, double(settings.width) / settings.height, settings.depth)};
   std::vector<Draw> draws;
+  instances.clear();
   if (settings.debugView == DebugView::None) {
-    for (const std::size_t i : instanceDrawOrder(scene, frame.view))
-      draws.push_back(makeDraw(frame, scene.instances[i]));
+    instances = instanceDrawOrder(scene, frame.view);
+    for (const std::size_t i : instances) draws.push_back(makeDraw(frame, scene.instances[i]));
     return draws;
   }
   // Debug views never blend: scene order.
-  for (const Instance& instance : scene.instances) {
-    Draw draw = makeDraw(frame, instance);
-    if (!draw.geometry.mesh->indices.empty()) draws.push_back(std::move(draw));
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    Draw draw = makeDraw(frame, scene.instances[i]);
+    if (draw.geometry.mesh->indices.empty()) continue;
+    draws.push_back(std::move(draw));
+    instances.push_back(i);
   }
   return draws;
+}
+
+// What the tile stage's AOV pass reads per draw (tile/surface_aov.h): the
+// ids as README "AOVs" defines them and the matrices, in double.
+AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                      const std::vector<Draw>& draws, const std::vector<std::size_t>& instances) {
+  AovFrame aov;
+  aov.aovs = settings.aovs;
+  aov.width = settings.width;
+  aov.height = settings.height;
+  const double aspect = double(settings.width) / settings.height;
+  const glm::dmat4 projection(projectionMatrix(camera, aspect, settings.depth));
+  const PreviousPose* previous = settings.previousPose;
+  aov.hasPreviousPose = previous != nullptr;
+  glm::dmat4 previousViewToClip(1.0);
+  if (previous) {
+    if (previous->instanceWorlds.size() != scene.instances.size())
+      throw Error("render: the previous pose has " +
+                  std::to_string(previous->instanceWorlds.size()) +
+                  " instance matrices for a scene of " + std::to_string(scene.instances.size()));
+    previousViewToClip = glm::dmat4(projectionMatrix(previous->camera, aspect, settings.depth)) *
+                         glm::dmat4(viewMatrix(previous->camera));
+  }
+  aov.draws.resize(draws.size());
+  for (std::size_t d = 0; d < draws.size(); ++d) {
+    const std::size_t i = instances[d];
+    const Instance& instance = scene.instances[i];
+    AovDraw& a = aov.draws[d];
+    a.mesh = draws[d].geometry.mesh;
+    a.objectToClip = projection * glm::dmat4(draws[d].geometry.modelView);
+    a.world = glm::dmat4(instance.world);
+    a.normalToWorld = glm::transpose(glm::inverse(glm::dmat3(a.world)));
+    if (previous)
+      a.previousObjectToClip = previousViewToClip * glm::dmat4(previous->instanceWorlds[i]);
+    a.node = instance.node >= 0
+                 ? std::uint32_t(scene.nodes.at(std::size_t(instance.node)).fileIndex)
+                 : std::uint32_t(i);
+    const int material = a.mesh->material;
+    if (material >= 0) {
+      const int file = scene.materials.at(std::size_t(material)).fileIndex;
+      a.material = std::uint32_t(file >= 0 ? file : material);
+    }
+  }
+  return aov;
 }
 
 void checkSettings(const RenderSettings& s) {
@@ -177,6 +226,12 @@ void checkSettings(const RenderSettings& s) {
   if (s.maxAniso < 1 || s.maxAniso > 64)
     throw Error("render: max anisotropy " + std::to_string(s.maxAniso) +
                 " is out of range (1..64)");
+  // The AOV pass reads the visibility pass's winners: every depth-writing
+  // draw must go through it (makeDraw's twoPass).
+  if (s.aovs != 0 && (s.debugView != DebugView::None || s.derivatives != DerivativeMode::Analytic ||
+                      s.opaqueShading != OpaqueShading::TwoPass))
+    throw Error(
+        "render: AOVs need analytic derivatives, two-pass opaque shading and no debug view");
 }
 
 // A parallel pass's wall time split between two of its stages in proportion
@@ -231,7 +286,10 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   checkSettings(settings);
   const Executor& executor = impl_->executor;
   const double start = stageClockMs();
-  const std::vector<Draw> draws = buildDrawList(scene, camera, settings, executor);
+  std::vector<std::size_t> drawInstances;
+  const std::vector<Draw> draws = buildDrawList(scene, camera, settings, executor, drawInstances);
+  std::optional<AovFrame> aov;
+  if (settings.aovs != 0) aov = makeAovFrame(scene, camera, settings, draws, drawInstances);
   const double drawsDone = stageClockMs();
 
   // Vertex stage.
@@ -272,6 +330,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
       FrontEndChunk& chunk = chunks[c];
       const double started = stageClockMs();
       chunk.setup.clear();
+      chunk.setup.recordSources = aov.has_value();
       for (std::size_t i = chunkStart[c]; i < chunkStart[c + 1]; ++i) {
         const DrawRange& r = ranges[i];
         setupTriangles(draws[r.draw].geometry, vertices[r.draw], r.draw, r.first, r.last, viewport,
@@ -292,6 +351,21 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   resizeLarge(out.rgba, pixels * 4, 0.0f, &executor);
   resizeLarge(out.depth, settings.frameDepth ? pixels : 0, 0.0f, &executor);
   resizeLarge(out.coverage, settings.frameCoverage ? pixels : 0, 0.0f, &executor);
+  // The AOV pass writes every pixel of the planes asked for, clear values too.
+  const auto aovPixels = [&](Aov a, std::size_t channels) {
+    return hasAov(settings.aovs, a) ? pixels * channels : 0;
+  };
+  resizeLarge(out.normal, aovPixels(Aov::Normal, 3), 0.0f, &executor);
+  resizeLarge(out.position, aovPixels(Aov::Position, 3), 0.0f, &executor);
+  resizeLarge(out.uv, aovPixels(Aov::Uv, 2), 0.0f, &executor);
+  resizeLarge(out.motion, aovPixels(Aov::Motion, 2), 0.0f, &executor);
+  for (std::vector<std::uint32_t>* ids : {&out.primitiveId, &out.nodeId, &out.materialId})
+    resizeLarge(*ids, aovPixels(Aov::Ids, 1), kNoId, &executor);
+  const double aspect = double(settings.width) / settings.height;
+  out.metadata.hasCamera = true;
+  out.metadata.worldToCamera = viewMatrix(camera);
+  out.metadata.worldToNDC =
+      projectionMatrix(camera, aspect, settings.depth) * out.metadata.worldToCamera;
   std::optional<PixelFilterWeights> pixelFilter;
   if (settings.pixelFilter == PixelFilter::BlackmanHarris)
     pixelFilter = PixelFilterWeights::blackmanHarris(samples);
@@ -306,7 +380,8 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                             samples,
                             settings.shadingRate == ShadingRate::Sample,
                             pixelFilter ? &*pixelFilter : nullptr,
-                            settings.frameCoverage};
+                            settings.frameCoverage,
+                            aov ? &*aov : nullptr};
   renderTiles(tileFrame, executor, out, impl_->tileTimes);
   const double tilesDone = stageClockMs();
 

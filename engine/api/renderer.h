@@ -54,6 +54,14 @@ enum class DebugView : std::uint8_t {
 // write the same bits; Forward is there for measurement and tests.
 enum class OpaqueShading : std::uint8_t { TwoPass, Forward };
 
+// Where a sequence's scene stood one frame earlier (t - 1/fps), for the
+// motion AOV: that frame's camera and every instance's world matrix, in
+// Scene::instances order.
+struct PreviousPose {
+  Camera camera;
+  std::vector<glm::mat4> instanceWorlds;
+};
+
 struct RenderSettings {
   int width = 1920;
   int height = 1080;
@@ -92,6 +100,13 @@ struct RenderSettings {
   // one sample, alpha 0.5 is the cutoff), so alpha-tested edges resolve to
   // their alpha instead of a hard step.
   bool alphaToCoverage = false;
+  // The surface AOVs to fill (io/frame.h Aov bits; README "AOVs"): none by
+  // default, and then nothing of their work is done. They need every
+  // depth-writing draw in the visibility pass (analytic derivatives,
+  // two-pass opaque shading, no debug view); render throws otherwise.
+  AovSet aovs = 0;
+  // The motion AOV's previous pose; null: a still, whose motion is 0.
+  const PreviousPose* previousPose = nullptr;
 };
 
 // Where a frame's time went, in ms of wall time. Setup and bin run in one
@@ -132,7 +147,8 @@ class Renderer {
   int threadCount() const;
 
   // Renders one frame; throws Error for settings it cannot honour (size out of
-  // range). out is resized as needed; its previous contents are irrelevant.
+  // range). out is resized as needed; its previous contents are irrelevant,
+  // except out.metadata.strings, which are kept for the writers.
   // One frame at a time per Renderer (it keeps its working buffers between
   // frames); concurrent frames need a Renderer each.
   FrameStats render(const Scene& scene, const Camera& camera, const RenderSettings& settings,

@@ -1,11 +1,48 @@
 // Frame: a rendered image in memory, what the tile stage resolves its tiles
 // into and the writers (io/image_io.h) read: premultiplied linear RGBA float,
-// window-space depth in [0,1] and, when asked for, coverage.
+// window-space depth in [0,1] and, when asked for, coverage and the surface
+// AOVs (README "AOVs"), plus what an EXR header records about the render.
 #pragma once
 
+#include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 namespace quadra {
+
+// The surface AOVs a render can fill besides colour, depth and coverage, as
+// bits of a set (RenderSettings::aovs). Each is taken from the nearest
+// depth-writing surface of the pixel, evaluated at the pixel centre (README
+// "AOVs"); blended draws write none.
+enum class Aov : std::uint32_t {
+  Normal = 1u << 0,    // N.X, N.Y, N.Z: world-space shading normal, unit length
+  Position = 1u << 1,  // P.X, P.Y, P.Z: world-space position
+  Uv = 1u << 2,        // uv.U, uv.V: TEXCOORD_0 as stored
+  Motion = 1u << 3,    // motion.X, motion.Y: window pixels moved since the previous pose
+  Ids = 1u << 4,       // id.primitive, id.node, id.material (uint32)
+};
+using AovSet = std::uint32_t;
+constexpr bool hasAov(AovSet set, Aov aov) {
+  return (set & std::uint32_t(aov)) != 0;
+}
+
+// The id AOVs' value where no surface is (and id.material's for the glTF
+// default material).
+constexpr std::uint32_t kNoId = 0xFFFFFFFFu;
+
+// What an EXR header records about the render besides its pixels: the
+// camera as OpenEXR's standard worldToCamera and worldToNDC attributes (set
+// by the renderer), and string attributes (name, value) a caller adds, such
+// as quadra's version and the render settings.
+struct FrameMetadata {
+  bool hasCamera = false;
+  glm::mat4 worldToCamera{1.0f};  // glTF view matrix: camera looks down -Z
+  glm::mat4 worldToNDC{1.0f};     // projection x view: x, y in [-1, 1] up, depth [0, 1]
+  std::vector<std::pair<std::string, std::string>> strings;
+};
 
 struct Frame {
   int width = 0;
@@ -18,6 +55,15 @@ struct Frame {
   // (RenderSettings::frameCoverage): the fraction of the pixel's samples that
   // a depth-writing (opaque or masked) triangle holds, filtered as the colour is.
   std::vector<float> coverage;
+  // The AOVs of RenderSettings::aovs, row-major like depth, interleaved per
+  // pixel (normal x, y, z; …); each empty when not asked for. Clear values
+  // where no depth-writing surface is: 0 for the floats, kNoId for the ids.
+  std::vector<float> normal;    // 3 per pixel
+  std::vector<float> position;  // 3 per pixel
+  std::vector<float> uv;        // 2 per pixel
+  std::vector<float> motion;    // 2 per pixel: x right, y down, in pixels
+  std::vector<std::uint32_t> primitiveId, nodeId, materialId;  // 1 per pixel each
+  FrameMetadata metadata;
 };
 
 }  // namespace quadra

@@ -16,7 +16,9 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cctype>
@@ -27,10 +29,12 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <new>
 #include <system_error>
 #include <thread>
+#include <vector>
 
 #include "core/error.h"
 #include "core/file_bytes.h"
@@ -98,6 +102,51 @@ class TempFile {
   bool committed_ = false;
 };
 
+// One EXR channel of a surface AOV: its name (layer.channel), the frame
+// plane it is read from and that plane's floats (or uints) per pixel.
+struct ExrPlane {
+  const char* channel;
+  Imf::PixelType type;
+  const char* base;
+  std::size_t size;  // elements in the plane
+  int stride;        // elements per pixel
+};
+
+// The frame's surface AOV channels (README "AOVs"), those it has.
+std::vector<ExrPlane> exrAovPlanes(const Frame& frame) {
+  std::vector<ExrPlane> planes;
+  const auto floats = [&](const std::vector<float>& plane,
+                          std::initializer_list<const char*> names) {
+    int c = 0;
+    if (plane.empty()) return;
+    for (const char* name : names)
+      planes.push_back({name, Imf::FLOAT, reinterpret_cast<const char*>(plane.data() + c++),
+                        plane.size(), int(names.size())});
+  };
+  floats(frame.normal, {"N.X", "N.Y", "N.Z"});
+  floats(frame.position, {"P.X", "P.Y", "P.Z"});
+  floats(frame.uv, {"uv.U", "uv.V"});
+  floats(frame.motion, {"motion.X", "motion.Y"});
+  const auto ids = [&](const std::vector<std::uint32_t>& plane, const char* name) {
+    if (!plane.empty())
+      planes.push_back(
+          {name, Imf::UINT, reinterpret_cast<const char*>(plane.data()), plane.size(), 1});
+  };
+  ids(frame.primitiveId, "id.primitive");
+  ids(frame.nodeId, "id.node");
+  ids(frame.materialId, "id.material");
+  return planes;
+}
+
+Imath::M44f toImath(const glm::mat4& m) {
+  // glm is column-major for column vectors, Imath row-major for row
+  // vectors: the same 16 numbers in the same order.
+  Imath::M44f out;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) out[i][j] = m[i][j];
+  return out;
+}
+
 void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
   if (frame.width <= 0 || frame.height <= 0) throw makeError(path, "cannot write an empty image");
   const std::size_t pixels = std::size_t(frame.width) * std::size_t(frame.height);
@@ -113,6 +162,10 @@ void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
   if (!frame.coverage.empty() && frame.coverage.size() != pixels) {
     throw makeError(path, "frame coverage buffer does not match its size");
   }
+  for (const ExrPlane& plane : exrAovPlanes(frame))
+    if (plane.size != pixels * std::size_t(plane.stride))
+      throw makeError(path,
+                      std::string("frame ") + plane.channel + " buffer does not match its size");
 }
 
 // ---- EXR --------------------------------------------------------------------
@@ -124,6 +177,15 @@ void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string
     header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
   }
   if (!frame.coverage.empty()) header.channels().insert(kCoverageChannel, Imf::Channel(Imf::FLOAT));
+  const std::vector<ExrPlane> aovs = exrAovPlanes(frame);
+  for (const ExrPlane& plane : aovs)
+    header.channels().insert(plane.channel, Imf::Channel(plane.type));
+  if (frame.metadata.hasCamera) {
+    Imf::addWorldToCamera(header, toImath(frame.metadata.worldToCamera));
+    Imf::addWorldToNDC(header, toImath(frame.metadata.worldToNDC));
+  }
+  for (const auto& [name, value] : frame.metadata.strings)
+    header.insert(name, Imf::StringAttribute(value));
   const Imath::V2i origin(0, 0);
   const std::size_t rgbaRow = std::size_t(frame.width) * 4 * sizeof(float);
   Imf::FrameBuffer buffer;
@@ -140,6 +202,13 @@ void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string
     buffer.insert(kCoverageChannel,
                   Imf::Slice::Make(Imf::FLOAT, frame.coverage.data(), origin, frame.width,
                                    frame.height, sizeof(float), planeRow));
+  for (const ExrPlane& plane : aovs) {
+    const std::size_t element = 4;  // FLOAT and UINT
+    const std::size_t pixelBytes = element * std::size_t(plane.stride);
+    buffer.insert(plane.channel,
+                  Imf::Slice::Make(plane.type, plane.base, origin, frame.width, frame.height,
+                                   pixelBytes, pixelBytes * std::size_t(frame.width)));
+  }
   Imf::StdOFStream exrStream(stream, name.c_str());
   // The OutputFile's destructor writes the scanline offset table; it swallows
   // errors there, which the caller detects from the stream's state afterwards.

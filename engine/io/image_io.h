@@ -19,8 +19,11 @@ class Executor;
 constexpr const char* kCoverageChannel = "mask";
 
 // EXR with half-free FLOAT channels R, G, B, A (premultiplied linear) and Z,
-// and the coverage as kCoverageChannel when the frame has it (a PNG has no
-// place for it). Throws Error("<path>: <problem>") on failure.
+// the coverage as kCoverageChannel and the surface AOVs the frame has
+// (FLOAT N.X/Y/Z, P.X/Y/Z, uv.U/V, motion.X/Y; UINT id.primitive, id.node,
+// id.material; a PNG has no place for them), and in the header the
+// metadata's camera (OpenEXR's worldToCamera and worldToNDC) and strings.
+// Throws Error("<path>: <problem>") on failure.
 void writeExr(const Frame& frame, const std::string& path);
 // PNG, 8-bit sRGB RGBA (colour un-premultiplied before encoding), encoded
 // and compressed in bands of rows in parallel on `executor` when one is

@@ -171,6 +171,7 @@ int MaterialTable::sceneMaterial(int gltfMaterial) {
   material.alphaMode = alphaMode(ref_, gltfMaterial, source.alphaMode);
   material.alphaCutoff = float(source.alphaCutoff);
   material.doubleSided = source.doubleSided;
+  material.fileIndex = gltfMaterial;
 
   const tinygltf::TextureInfo& baseColor = source.pbrMetallicRoughness.baseColorTexture;
   if (baseColor.index != -1) {

@@ -48,6 +48,7 @@ struct Material {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
+  int fileIndex = -1;  // the material's index in the glTF file; -1: built in
 };
 
 // One glTF primitive, as a triangle list. Attribute arrays are empty when the

@@ -130,7 +130,7 @@ struct PlaneSolver {
 // centres never touch their attributes.
 template <class CornerOf>
 void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const PixelBox& box,
-              bool negativeArea, const CornerOf& cornerOf) {
+              bool negativeArea, std::uint32_t source, const CornerOf& cornerOf) {
   TriangleRecord t;
   t.minX = std::int16_t(box.minX), t.minY = std::int16_t(box.minY);
   t.maxX = std::int16_t(box.maxX), t.maxY = std::int16_t(box.maxY);
@@ -159,17 +159,19 @@ void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const Pix
     plane(double(v0.attributes[k]) * s0.invW, double(v1.attributes[k]) * s1.invW,
           double(v2.attributes[k]) * s2.invW);
   ctx.out.triangles.push_back(t);
+  if (ctx.out.recordSources) ctx.out.sourceTriangles.push_back(source);
   ++ctx.out.counters.drawn;
 }
 
 // Culls `triangles` triangles, corners[3t .. 3t+2] indexing subpixel and
 // outcode, a group of cullKernel.lanes at a time, and emits what is left in
 // submission order: clipOf(its corners) for a triangle that needs clipping,
-// emitKept with cornerOf(vertex index) for a kept one.
-template <class ClipOf, class CornerOf>
+// emitKept with cornerOf(vertex index) for a kept one; sourceOf(its
+// corners) is the mesh triangle it came from.
+template <class ClipOf, class SourceOf, class CornerOf>
 void cullAndEmit(const SetupContext& ctx, const std::uint32_t* corners, std::size_t triangles,
                  const SubpixelPosition* subpixel, const std::uint8_t* outcode,
-                 const ClipOf& clipOf, const CornerOf& cornerOf) {
+                 const ClipOf& clipOf, const SourceOf& sourceOf, const CornerOf& cornerOf) {
   const CullKernel& kernel = ctx.cullKernel;
   const FaceCulling faces{ctx.geometry.cullBackFaces, ctx.geometry.frontIsClockwise};
   const int reach = ctx.samples.reachSubpixels();
@@ -194,14 +196,15 @@ void cullAndEmit(const SetupContext& ctx, const std::uint32_t* corners, std::siz
           {subpixel[index[0]].x, subpixel[index[1]].x, subpixel[index[2]].x},
           {subpixel[index[0]].y, subpixel[index[1]].y, subpixel[index[2]].y}};
       const PixelBox box{group.minX[t], group.minY[t], group.maxX[t], group.maxY[t]};
-      emitKept(ctx, snapped, box, group.negative >> t & 1,
+      emitKept(ctx, snapped, box, group.negative >> t & 1, sourceOf(index),
                [&](int corner) { return cornerOf(index[corner]); });
     }
   }
 }
 
 // Clips a triangle that leaves near/far or the guard band and emits its fan.
-void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats) {
+void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats,
+                 std::uint32_t source) {
   double guardX, guardY;
   guardBand(ctx.viewport, guardX, guardY);
   ClipPolygon polygon;
@@ -236,6 +239,7 @@ void emitClipped(const SetupContext& ctx, const float* const tri[3], int floats)
   }
   cullAndEmit(
       ctx, corners, std::size_t(pieces), snapped, inside, [](const std::uint32_t*) {},
+      [source](const std::uint32_t*) { return source; },
       [&](std::uint32_t i) {
         return Corner<double>{projected[i], snapped[i], polygon.vertices[i].v + 4};
       });
@@ -266,14 +270,19 @@ void setupTriangles(const DrawGeometry& geometry, const TransformedVertices& ver
   const SetupContext ctx{
       geometry, viewport, samples, cullKernel, drawIndex, geometry.attributes.count, out};
   out.counters.in += lastTriangle - firstTriangle;
+  const std::uint32_t* const meshIndices = geometry.mesh->indices.data();
+  const auto sourceOf = [meshIndices](const std::uint32_t* index) {
+    return std::uint32_t((index - meshIndices) / 3);
+  };
   cullAndEmit(
       ctx, geometry.mesh->indices.data() + 3 * firstTriangle, lastTriangle - firstTriangle,
       vertices.subpixel.data(), vertices.outcode.data(),
       [&](const std::uint32_t* index) {
         const float* tri[3] = {vertices.vertex(index[0]), vertices.vertex(index[1]),
                                vertices.vertex(index[2])};
-        emitClipped(ctx, tri, vertices.stride);
+        emitClipped(ctx, tri, vertices.stride, sourceOf(index));
       },
+      sourceOf,
       [&](std::uint32_t i) {
         return Corner<float>{vertices.screen[i], vertices.subpixel[i], vertices.vertex(i) + 4};
       });

@@ -25,10 +25,16 @@ struct SetupCounters {
 struct SetupOutput {
   std::vector<TriangleRecord> triangles;
   std::vector<Plane> planes;
+  // With recordSources (the renderer sets it when AOVs read ids or the
+  // surface), per record the index of the mesh triangle it came from (a
+  // clipped triangle's pieces share it); else empty.
+  bool recordSources = false;
+  std::vector<std::uint32_t> sourceTriangles;
   SetupCounters counters;
   void clear() {  // keeps the capacity for the next frame
     triangles.clear();
     planes.clear();
+    sourceTriangles.clear();
     counters = {};
   }
 };

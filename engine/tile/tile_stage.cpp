@@ -37,6 +37,8 @@ struct TileScratch {
   // every tile clears what it reads.
   std::unique_ptr<TileBuffers[]> planes;
   std::vector<TileTriangle> visibleTriangles;  // indexed by TileBuffers::visible
+  std::vector<std::uint32_t> visibleSources;   // with AOVs: their mesh triangles
+  std::vector<AovTriangle> aovTriangles;       // with AOVs: writeSurfaceAovs' memory
   std::vector<TileTriangle> forward;           // forward-path triangles, in order
   std::vector<float> shadePlanes;              // kShadePlaneStride per visible triangle
   std::vector<std::uint32_t> runOf;            // per visible triangle: its draw's run
@@ -158,7 +160,8 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
   const int samples = frame.samples.count;
   // Several samples: the two passes shade each pixel's triangles once where
   // forward shading would shade every sample.
-  const bool allForward = samples == 1 && forwardWins(tileIndex, draws, chunks);
+  const bool allForward =
+      samples == 1 && frame.aov == nullptr && forwardWins(tileIndex, draws, chunks);
   for (const FrontEndChunk& chunk : chunks) {
     const std::uint32_t begin = chunk.bins.tileStart[tileIndex];
     const std::uint32_t end = chunk.bins.tileStart[tileIndex + 1];
@@ -186,7 +189,9 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
       const TileKernels& kernel = kernels.forWidth(t.maxX - t.minX + 1);
       const bool won = samples == 1 ? kernel.visibility(t, entry.planes, shade, id, firstPlane)
                                     : visibilityAtSamples(kernel, entry, shade, id, frame, s);
-      if (won) s.visibleTriangles.push_back(entry);
+      if (!won) continue;
+      s.visibleTriangles.push_back(entry);
+      if (frame.aov) s.visibleSources.push_back(chunk.setup.sourceTriangles[index[i]]);
     }
   }
 }
@@ -563,6 +568,7 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
               k == 0 || frame.shadeSamples);  // shadePixels fills the others
   }
   s.visibleTriangles.clear();
+  s.visibleSources.clear();
   s.forward.clear();
   visibilityPass(tileIndex, frame, s);
   const double visible = stageClockMs();
@@ -571,6 +577,10 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
   if (samples > 1 && !s.allMixed && !s.forward.empty()) fillSamplePlanes(frame, s);
   forwardDraws(frame, s);
   const double rastered = stageClockMs();
+  // Before resolveSamples, which folds the samples' depths into plane 0.
+  if (frame.aov)
+    writeSurfaceAovs(*frame.aov, s.planes.get(), samples, frame.depthGreater, s.visibleTriangles,
+                     s.visibleSources, s.aovTriangles, out);
   resolveSamples(tileIndex, frame, s, out);
   resolveTile(s.planes[0], out);
   times.raster = (visible - start) + (rastered - shaded);

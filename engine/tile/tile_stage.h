@@ -11,6 +11,7 @@
 #include "io/frame.h"
 #include "setup/triangle_setup.h"
 #include "tile/pixel_filter.h"
+#include "tile/surface_aov.h"
 #include "tile/tile_kernel.h"
 #include "vertex/draw.h"
 #include "window/sample_pattern.h"
@@ -49,6 +50,10 @@ struct TileFrame {
   // tile/pixel_filter.h's weights for these samples.
   const PixelFilterWeights* pixelFilter = nullptr;
   bool coverage = false;  // fill Frame::coverage
+  // The surface AOVs to fill (tile/surface_aov.h); null for none. With
+  // them, every two-pass triangle goes through the visibility pass (no tile
+  // sends them forward), so every pixel's nearest sample has its triangle.
+  const AovFrame* aov = nullptr;
 };
 
 // times: resized to the tile count, one entry per tile.
