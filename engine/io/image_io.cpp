@@ -172,7 +172,12 @@ void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
 
 void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string& name) {
   Imf::Header header(frame.width, frame.height);
+  // zlib's fastest level: a 1080p frame writes in 125 ms instead of 300 at
+  // OpenEXR's default level 4, for files 10% larger (builtin:flyover,
+  // 2026-11-27), and a sequence's frames/s is its writer's when writing is
+  // the slower half.
   header.compression() = Imf::ZIP_COMPRESSION;
+  header.zipCompressionLevel() = 1;
   for (const char* channel : {"R", "G", "B", "A", "Z"}) {
     header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
   }
