@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "api/camera.h"
@@ -49,6 +50,8 @@ struct FrameContext {
   const RenderSettings& settings;
   const Executor& executor;  // builds mip chains on first use
   glm::mat4 view, projection;
+  MemoryBudget& budget;                       // charged for each texture's levels once
+  std::set<const Texture*>& chargedTextures;  // the texture variants charged so far
 };
 
 const Material& materialOf(const Scene& scene, const Mesh& mesh) {
@@ -90,9 +93,14 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     FilterSettings filtering(settings.filter, settings.maxAniso);
     filtering.lodBias = settings.lodBias;
     filtering.lodRule = settings.lodRule;
-    const Texture& texture = *scene.textures.at(std::size_t(material.baseColorTexture));
-    s.texture =
-        makeTextureView(texture.forAlpha(textureAlphaOf(material)), filtering, &frame.executor);
+    const Texture& texture = scene.textures.at(std::size_t(material.baseColorTexture))
+                                 ->forAlpha(textureAlphaOf(material));
+    if (frame.chargedTextures.insert(&texture).second)
+      frame.budget.charge("texture " + std::to_string(material.baseColorTexture) + " (" +
+                              std::to_string(texture.image().width) + "x" +
+                              std::to_string(texture.image().height) + ") levels",
+                          textureViewBytes(texture, filtering));
+    s.texture = makeTextureView(texture, filtering, &frame.executor);
   }
   s.vertexColor = !mesh.colors.empty();
   s.depthGreater = settings.depth == DepthMode::Reversed;
@@ -147,10 +155,17 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
 }
 
 std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
-                                const RenderSettings& settings, const Executor& executor) {
+                                const RenderSettings& settings, const Executor& executor,
+                                MemoryBudget& budget) {
+  std::set<const Texture*> chargedTextures;
   const FrameContext frame{
-      scene, settings, executor, viewMatrix(camera),
-      projectionMatrix(camera, double(settings.width) / settings.height, settings.depth)};
+      scene,
+      settings,
+      executor,
+      viewMatrix(camera),
+      projectionMatrix(camera, double(settings.width) / settings.height, settings.depth),
+      budget,
+      chargedTextures};
   std::vector<Draw> draws;
   if (settings.debugView == DebugView::None) {
     for (const std::size_t i : instanceDrawOrder(scene, frame.view))
@@ -177,6 +192,24 @@ void checkSettings(const RenderSettings& s) {
   if (s.maxAniso < 1 || s.maxAniso > 64)
     throw Error("render: max anisotropy " + std::to_string(s.maxAniso) +
                 " is out of range (1..64)");
+}
+
+// The frame's buffers and the tile stage's memory, charged after the draw
+// list (whose textures are charged as it is built: the tile memory depends on
+// whether some draw blends) and before any of them is allocated.
+void chargeFrame(const RenderSettings& settings, int threads, const std::vector<Draw>& draws,
+                 MemoryBudget& budget) {
+  const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
+  const std::uint64_t channels =
+      4 + (settings.frameDepth ? 1 : 0) + (settings.frameCoverage ? 1 : 0);
+  const std::string size = std::to_string(settings.width) + "x" + std::to_string(settings.height);
+  budget.charge("the " + size + " frame", pixels * channels * sizeof(float));
+  const int ringChannels =
+      settings.pixelFilter == PixelFilter::Box ? 0 : (settings.frameCoverage ? 5 : 4);
+  budget.charge("tile memory (" + std::to_string(settings.samples) + " samples, " +
+                    std::to_string(threads) + " threads)",
+                tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height),
+                                settings.samples, threads, ringChannels, draws));
 }
 
 // A parallel pass's wall time split between two of its stages in proportion
@@ -231,7 +264,9 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   checkSettings(settings);
   const Executor& executor = impl_->executor;
   const double start = stageClockMs();
-  const std::vector<Draw> draws = buildDrawList(scene, camera, settings, executor);
+  MemoryBudget budget(settings.maxMemory, "render");
+  const std::vector<Draw> draws = buildDrawList(scene, camera, settings, executor, budget);
+  chargeFrame(settings, executor.threadCount(), draws, budget);
   const double drawsDone = stageClockMs();
 
   // Vertex stage.
