@@ -174,6 +174,23 @@ TEST(MemoryBudget, MeshDecodesOverTheDefaultBudgetAreRefusedBeforeAnyIsDecoded) 
       << message;
 }
 
+// An animation's key times and values, decoded before it is posed: zeros
+// without a bufferView (never decreasing, so valid times) claim 2 GiB.
+TEST(MemoryBudget, AnimationSamplersAreChargedBeforeTheyAreDecoded) {
+  const fs::path path =
+      writeText("budget_animation.gltf",
+                "{" + kAsset + R"(,"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{}],)" +
+                    R"("accessors":[{"componentType":5126,"count":134217728,"type":"SCALAR"},)" +
+                    R"({"componentType":5126,"count":134217728,"type":"VEC3"}],)" +
+                    R"("animations":[{"samplers":[{"input":0,"output":1}],)" +
+                    R"("channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}]}]})");
+  LoadOptions options;
+  options.maxMemory = 1 * kGiB;
+  const std::string message = loadError(path, options);
+  expectOver(message, path, "animation 0 sampler 0 decoded");
+  EXPECT_NE(message.find("needs 2.0 GiB"), std::string::npos) << message;
+}
+
 // A PNG header (signature and IHDR; no pixels follow) that claims width x
 // height RGBA8 texels. The CRC is not checked before the size is.
 std::string pngHeader(std::uint32_t width, std::uint32_t height) {
