@@ -117,8 +117,17 @@ struct SandboxedFiles {
   std::string prefix;    // baseDir as tinygltf joins it, ending in '/'
   MemoryBudget& budget;  // each file is charged before it is read
   std::set<std::string> approved;
-  std::string refusal;  // "URI '<reference>' <why>", or the budget's error
+  std::string refusal;     // "URI '<reference>' <why>"
+  std::string overBudget;  // the budget's error for a file too big to read
 };
+
+// Charges the budget for reading the file at `path` whole, by its size on
+// disk, before it is read (a size that cannot be read is the reader's error).
+void chargeFileRead(MemoryBudget& budget, const std::string& path, const std::string& what) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec) budget.charge(what + " (" + std::to_string(size) + " bytes)", size);
+}
 
 std::string expandSandboxed(const std::string& joined, void* user) {
   auto& files = *static_cast<SandboxedFiles*>(user);
@@ -144,13 +153,10 @@ bool readSandboxed(std::vector<unsigned char>* out, std::string* err, const std:
   auto& files = *static_cast<SandboxedFiles*>(user);
   try {
     if (files.approved.count(path) == 0) throw makeError(path, "outside the sandbox");
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
     try {
-      if (!ec)
-        files.budget.charge("file '" + path + "' (" + std::to_string(size) + " bytes)", size);
+      chargeFileRead(files.budget, path, "file '" + path + "'");
     } catch (const Error& e) {
-      if (files.refusal.empty()) files.refusal = e.what();
+      if (files.overBudget.empty()) files.overBudget = e.what();
       throw;
     }
     *out = readWholeFile(path);
@@ -173,7 +179,8 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8
   if (binary) checkGlbLayout(path, bytes);
   const FileSandbox sandbox(std::filesystem::path(path).parent_path(), options.allowedPaths);
   const std::string baseDir = sandbox.home().string();
-  SandboxedFiles files{sandbox, baseDir.back() == '/' ? baseDir : baseDir + "/", budget, {}, {}};
+  SandboxedFiles files{sandbox, baseDir.back() == '/' ? baseDir : baseDir + "/", budget, {}, {},
+                       {}};
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&gltf::stashImageBytes, &stash);
   parser.SetFsCallbacks(
@@ -190,9 +197,8 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8
   } catch (const std::exception& e) {
     throw makeError(path, "invalid glTF (" + firstLine(e.what()) + ")");
   }
-  if (!files.refusal.empty())
-    throw files.refusal.rfind(path + ": ", 0) == 0 ? Error(files.refusal)
-                                                   : makeError(path, files.refusal);
+  if (!files.refusal.empty()) throw makeError(path, files.refusal);
+  if (!files.overBudget.empty()) throw Error(files.overBudget);
   if (!ok) {
     const std::string problem = firstLine(err);
     throw makeError(path, problem.empty() ? "invalid glTF" : problem);
@@ -553,9 +559,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options,
   std::vector<std::string> collected;
   try {
     MemoryBudget budget(options.maxMemory, path);
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    if (!ec) budget.charge("the file (" + std::to_string(size) + " bytes)", size);
+    chargeFileRead(budget, path, "the file");
     const std::vector<std::uint8_t> bytes = readWholeFile(path);
     gltf::ImageStash stash;
     const tinygltf::Model model = parseModel(path, bytes, options, budget, stash);
