@@ -52,9 +52,10 @@ TEST(MemoryBudget, SizesAreBytesOrBinaryMultiples) {
       "' is not a size (bytes, or a number with K, M, G or T, 1024-based: 512M, 4G)";
   for (const char* bad : {"", "G", "12Q", "-1", "1e9", "0x10", "1..5M", ".", "4 G", "4GG", "4Gi"})
     EXPECT_EQ(sizeError(bad), std::string("--max-memory: '") + bad + syntax) << bad;
-  for (const char* outOfRange : {"0", "0.4", "2000000T"})
+  EXPECT_EQ(parseMemorySize("--max-memory", "1024T"), std::uint64_t(1) << 50);
+  for (const char* outOfRange : {"0", "0.4", "1025T", "2000000T"})
     EXPECT_EQ(sizeError(outOfRange),
-              std::string("--max-memory: '") + outOfRange + "' is out of range (1 byte to 1024P)")
+              std::string("--max-memory: '") + outOfRange + "' is out of range (1 byte to 1024T)")
         << outOfRange;
 }
 

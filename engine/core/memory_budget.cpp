@@ -36,8 +36,8 @@ std::uint64_t parseMemorySize(const std::string& option, const std::string& text
     }
   }
   const double bytes = std::floor(value * std::ldexp(1.0, shift));
-  if (!(bytes >= 1.0 && bytes <= std::ldexp(1.0, 60)))
-    throw makeError(option, "'" + text + "' is out of range (1 byte to 1024P)");
+  if (!(bytes >= 1.0 && bytes <= std::ldexp(1.0, 50)))
+    throw makeError(option, "'" + text + "' is out of range (1 byte to 1024T)");
   return std::uint64_t(bytes);
 }
 

@@ -19,7 +19,7 @@ constexpr std::uint64_t kDefaultMaxMemory = std::uint64_t(8) << 30;
 
 // "512M", "4G", "1.5G", "65536": a number of bytes, optionally with a suffix
 // K, M, G or T (1024-based; "KiB", "MB" and the like mean the same), at least
-// 1 byte and at most 2^60; `option` names the flag in the one-line Error.
+// 1 byte and at most 1024T (2^50); `option` names the flag in the one-line Error.
 std::uint64_t parseMemorySize(const std::string& option, const std::string& text);
 
 // A size for messages: "3.0 GiB", "512.0 MiB", "700 bytes", "1 byte".
