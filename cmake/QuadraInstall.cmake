@@ -15,7 +15,7 @@ set(QUADRA_PUBLIC_HEADERS
     texture/texture.h texture/image.h texture/sampler_state.h texture/texel_format.h
     texture/texture_sampler.h texture/texture_view.h
     window/window_space.h window/sample_pattern.h
-    core/error.h
+    core/error.h core/memory_budget.h
     simd/isa.h)
 foreach(header ${QUADRA_PUBLIC_HEADERS})
   get_filename_component(folder ${header} DIRECTORY)

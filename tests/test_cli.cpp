@@ -345,14 +345,18 @@ TEST(Cli, SharedOptionsSayTheSameWhicheverCommandHasThem) {
   for (const char* command : {"render builtin:checker-plane", "sample"})
     expectUsageError(run(std::string(command) + " --lod-bias 33"),
                      "--lod-bias: must lie in -32..32", {});
-  // Every command that loads glTF files takes --allow-path, and checks it
-  // even when its scenes are built in.
+  // Every command that loads glTF files takes --allow-path and --max-memory,
+  // and checks them even when its scenes are built in.
   for (const CommandLineCase& c : everyCommand()) {
     if (c.command != "render" && c.command != "report frames" && c.command != "report samples")
       continue;
     SCOPED_TRACE(c.command);
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --allow-path /nonexistent"),
                      "--allow-path: '/nonexistent' is not an existing folder", c.written);
+    expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --max-memory 12Q"),
+                     "--max-memory: '12Q' is not a size (bytes, or a number with K, M, G or T, "
+                     "1024-based: 512M, 4G)",
+                     c.written);
   }
 }
 

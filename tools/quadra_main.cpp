@@ -44,6 +44,9 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --allow-path DIR       a folder besides the glTF file's own that its buffer and image URIs
                          may read (repeatable; default: its own folder only, by relative
                          URIs; absolute paths and file: URIs only inside a DIR given here)
+  --max-memory SIZE      what the scene may allocate, for loading and again for each frame
+                         (buffers, meshes, decoded images, texture levels, frame and tile
+                         memory): bytes or K, M, G, T (1024-based), e.g. 512M (default 8G)
   --width W --height H   image size, default 1920x1080 (at most 8192 per side)
   --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
                          override the scene's first camera (far 0 = infinite)
@@ -242,6 +245,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
     }
   }
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  cmd.settings.maxMemory = cmd.load.maxMemory;
   if (cmd.settings.aovs != 0 && !cmd.outputs.empty() && !cmd.settings.frameDepth)
     std::cerr << "quadra: note: --aov: only .exr outputs hold AOVs; the PNG files will not\n";
   return cmd;

@@ -11,6 +11,7 @@
 #include "api/renderer.h"
 #include "core/error.h"
 #include "core/file_sandbox.h"
+#include "core/memory_budget.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 
@@ -52,12 +53,19 @@ void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& l
   });
   options.integer("--scene", load.sceneIndex, 0, 1 << 20);
   addAllowPathOption(options, load);
+  addMaxMemoryOption(options, load);
 }
 
 void addAllowPathOption(CommandOptions& options, LoadOptions& load) {
   options.value("--allow-path", [&load](const std::string&, const std::string& folder) {
     canonicalAllowedFolder(folder);  // a missing folder is an error even for builtin scenes
     load.allowedPaths.push_back(folder);
+  });
+}
+
+void addMaxMemoryOption(CommandOptions& options, LoadOptions& load) {
+  options.value("--max-memory", [&load](const std::string& option, const std::string& size) {
+    load.maxMemory = parseMemorySize(option, size);
   });
 }
 

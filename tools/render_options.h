@@ -27,12 +27,16 @@ constexpr const char* kBuiltinScenePrefix = "builtin:";
 Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
                         const std::string& program);
 
-// SCENE, the one positional argument, --scene N (which glTF scene) and
-// --allow-path.
+// SCENE, the one positional argument, --scene N (which glTF scene),
+// --allow-path and --max-memory.
 void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& load);
 // --allow-path DIR, repeatable: a folder besides the scene's own that its URIs
 // may read (LoadOptions::allowedPaths); one that does not exist is an error.
 void addAllowPathOption(CommandOptions& options, LoadOptions& load);
+// --max-memory SIZE (core/memory_budget.h parseMemorySize: 512M, 4G, bytes):
+// the budget of the load (LoadOptions::maxMemory), which a command that
+// renders in-process also gives its RenderSettings::maxMemory.
+void addMaxMemoryOption(CommandOptions& options, LoadOptions& load);
 // --width and --height, each 1..kMaxViewportSize.
 void addSizeOptions(CommandOptions& options, int& width, int& height);
 // --out FILE.exr|FILE.png, repeatable: the files the last frame is written to.

@@ -40,6 +40,7 @@ constexpr const char* kFramesUsage =
     R"(usage: quadra report frames [--width W] [--height H] [--threads N] [--frames K]
                             [--rounds R] [--scenes LIST] [--assets DIR] [--out-dir DIR]
                             [--llvmpipe-framebuffer rgba32f|srgba8] [--allow-path DIR]
+                            [--max-memory SIZE]
   --width W --height H  frame size (default 1920x1080)
   --threads N           threads of both renderers (default: all cores)
   --frames K            timed frames per timing run, after one warm-up (default 5)
@@ -55,6 +56,8 @@ constexpr const char* kFramesUsage =
                         frame holds; srgba8 is llvmpipe's cheapest target
   --allow-path DIR      a folder the glTF files' URIs may read besides their own
                         (repeatable; passed to both renderers)
+  --max-memory SIZE     the memory budget of each load and frame (default 8G; passed to
+                        both renderers)
 Each scene is rendered by `quadra render` and, where it was built beside this
 quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and unlit
 shading), as separate processes with the same options, taking turns at going first.
@@ -74,7 +77,7 @@ struct FramesOptions {
   std::string assets = QUADRA_ASSETS_DIR;
   std::string outDir = "out";
   std::string peerFramebuffer = "rgba32f";  // quadra-llvmpipe --framebuffer
-  LoadOptions load;                         // --allow-path, passed on
+  LoadOptions load;                         // --allow-path and --max-memory, passed on
 };
 
 std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
@@ -91,6 +94,7 @@ std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
                 {{"rgba32f", std::string("rgba32f")}, {"srgba8", std::string("srgba8")}},
                 options.peerFramebuffer);
   addAllowPathOption(parser, options.load);
+  addMaxMemoryOption(parser, options.load);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -192,6 +196,8 @@ std::map<std::string, std::string> runRender(const Contender& contender, const S
   arguments.insert(arguments.end(), {"--out", output.string()});
   for (const std::string& folder : options.load.allowedPaths)
     arguments.insert(arguments.end(), {"--allow-path", folder});
+  if (options.load.maxMemory != kDefaultMaxMemory)
+    arguments.insert(arguments.end(), {"--max-memory", std::to_string(options.load.maxMemory)});
   arguments.insert(arguments.end(), contender.options.begin(), contender.options.end());
   const ProcessResult run = runProcess(contender.program, arguments, scratch);
   if (run.exitCode != 0)

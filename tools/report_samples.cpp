@@ -39,7 +39,7 @@ constexpr const char* kSamplesUsage =
     R"(usage: quadra report samples [--width W] [--height H] [--threads N] [--isa ISA]
                              [--frames K] [--rounds R] [--scenes LIST] [--samples LIST]
                              [--filter F] [--aniso N] [--reference-spp N] [--out-dir DIR]
-                             [--allow-path DIR]
+                             [--allow-path DIR] [--max-memory SIZE]
   --width W --height H  frame size (default 480x270: the reference frames of the
                         default scenes then take 1-8 s each on two threads, ~50 s in
                         all with their checks)
@@ -60,6 +60,8 @@ constexpr const char* kSamplesUsage =
                         flyover, the sequence scene, whose still showcase covers)
   --allow-path DIR      a folder the glTF files' URIs may read besides their own
                         (repeatable; as for quadra render)
+  --max-memory SIZE     the memory budget of each load and frame, as for quadra render
+                        (default 8G)
   --samples LIST        comma-separated sample counts, each 1, 2, 4, 8 or 16
                         (default 1,4,8,16)
   --filter F --aniso N  one texture filter for every texture (nearest|bilinear|
@@ -118,7 +120,7 @@ struct SamplesOptions {
   std::optional<Filter> filter;  // unset: the scenes' samplers decide
   int maxAniso = 16;
   float lodBias = 0.0f;
-  LoadOptions load;  // --allow-path
+  LoadOptions load;  // --allow-path, --max-memory (also each frame's)
 };
 
 std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args) {
@@ -143,6 +145,7 @@ std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args)
   parser.integer("--reference-spp", options.referenceSpp, 1, 256);
   parser.text("--out-dir", options.outDir);
   addAllowPathOption(parser, options.load);
+  addMaxMemoryOption(parser, options.load);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -242,6 +245,7 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
   settings.filter = options.filter;
   settings.maxAniso = options.maxAniso;
   settings.lodBias = options.lodBias;
+  settings.maxMemory = options.load.maxMemory;
   for (const Configuration& c : configurations(options.sampleCounts)) {
     settings.samples = c.samples;
     settings.shadingRate = c.rate;

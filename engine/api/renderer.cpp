@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "api/camera.h"
@@ -49,6 +50,8 @@ struct FrameContext {
   const RenderSettings& settings;
   const Executor& executor;  // builds mip chains on first use
   glm::mat4 view, projection;
+  MemoryBudget& budget;                       // charged for each texture's levels once
+  std::set<const Texture*>& chargedTextures;  // the texture variants charged so far
 };
 
 const Material& materialOf(const Scene& scene, const Mesh& mesh) {
@@ -90,9 +93,14 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
     FilterSettings filtering(settings.filter, settings.maxAniso);
     filtering.lodBias = settings.lodBias;
     filtering.lodRule = settings.lodRule;
-    const Texture& texture = *scene.textures.at(std::size_t(material.baseColorTexture));
-    s.texture =
-        makeTextureView(texture.forAlpha(textureAlphaOf(material)), filtering, &frame.executor);
+    const Texture& texture = scene.textures.at(std::size_t(material.baseColorTexture))
+                                 ->forAlpha(textureAlphaOf(material));
+    if (frame.chargedTextures.insert(&texture).second)
+      frame.budget.charge("texture " + std::to_string(material.baseColorTexture) + " (" +
+                              std::to_string(texture.image().width) + "x" +
+                              std::to_string(texture.image().height) + ") levels",
+                          textureViewBytes(texture, filtering));
+    s.texture = makeTextureView(texture, filtering, &frame.executor);
   }
   s.vertexColor = !mesh.colors.empty();
   s.depthGreater = settings.depth == DepthMode::Reversed;
@@ -149,10 +157,16 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
 // The frame's draws, and in `instances` each one's index in scene.instances.
 std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
                                 const RenderSettings& settings, const Executor& executor,
-                                std::vector<std::size_t>& instances) {
+                                std::vector<std::size_t>& instances, MemoryBudget& budget) {
+  std::set<const Texture*> chargedTextures;
   const FrameContext frame{
-      scene, settings, executor, viewMatrix(camera),
-      projectionMatrix(camera, double(settings.width) / settings.height, settings.depth)};
+      scene,
+      settings,
+      executor,
+      viewMatrix(camera),
+      projectionMatrix(camera, double(settings.width) / settings.height, settings.depth),
+      budget,
+      chargedTextures};
   std::vector<Draw> draws;
   instances.clear();
   if (settings.debugView == DebugView::None) {
@@ -234,6 +248,29 @@ void checkSettings(const RenderSettings& s) {
         "render: AOVs need analytic derivatives, two-pass opaque shading and no debug view");
 }
 
+// The frame's buffers and the tile stage's memory, charged after the draw
+// list (whose textures are charged as it is built: the tile memory depends on
+// whether some draw blends) and before any of them is allocated.
+void chargeFrame(const RenderSettings& settings, int threads, const std::vector<Draw>& draws,
+                 MemoryBudget& budget) {
+  const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
+  // 4-byte channels: colour, depth, coverage and the surface AOVs' planes.
+  const AovSet aovs = settings.aovs;
+  const std::uint64_t channels =
+      4 + (settings.frameDepth ? 1 : 0) + (settings.frameCoverage ? 1 : 0) +
+      (hasAov(aovs, Aov::Normal) ? 3 : 0) + (hasAov(aovs, Aov::Position) ? 3 : 0) +
+      (hasAov(aovs, Aov::Uv) ? 2 : 0) + (hasAov(aovs, Aov::Motion) ? 2 : 0) +
+      (hasAov(aovs, Aov::Ids) ? 3 : 0);
+  const std::string size = std::to_string(settings.width) + "x" + std::to_string(settings.height);
+  budget.charge("the " + size + " frame", pixels * channels * sizeof(float));
+  const int ringChannels =
+      settings.pixelFilter == PixelFilter::Box ? 0 : (settings.frameCoverage ? 5 : 4);
+  budget.charge("tile memory (" + std::to_string(settings.samples) + " samples, " +
+                    std::to_string(threads) + " threads)",
+                tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height),
+                                settings.samples, threads, ringChannels, draws));
+}
+
 // A parallel pass's wall time split between two of its stages in proportion
 // to the thread time each took (StageTimes).
 void splitWallTime(double wall, double threadA, double threadB, double& a, double& b) {
@@ -286,8 +323,11 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   checkSettings(settings);
   const Executor& executor = impl_->executor;
   const double start = stageClockMs();
+  MemoryBudget budget(settings.maxMemory, "render");
   std::vector<std::size_t> drawInstances;
-  const std::vector<Draw> draws = buildDrawList(scene, camera, settings, executor, drawInstances);
+  const std::vector<Draw> draws =
+      buildDrawList(scene, camera, settings, executor, drawInstances, budget);
+  chargeFrame(settings, executor.threadCount(), draws, budget);
   std::optional<AovFrame> aov;
   if (settings.aovs != 0) aov = makeAovFrame(scene, camera, settings, draws, drawInstances);
   const double drawsDone = stageClockMs();

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "api/camera.h"
+#include "core/memory_budget.h"
 #include "io/frame.h"
 #include "scene/scene.h"
 #include "simd/isa.h"
@@ -107,6 +108,13 @@ struct RenderSettings {
   AovSet aovs = 0;
   // The motion AOV's previous pose; null: a still, whose motion is 0.
   const PreviousPose* previousPose = nullptr;
+  // The bytes a frame may hold (--max-memory): the frame's buffers, the tile
+  // stage's working memory for this renderer's threads, and the levels of
+  // every texture drawn as its filter reads them (built yet or not, so the
+  // outcome is the same for the first frame and the thousandth). Checked
+  // before anything is allocated; over it, render throws an Error naming what
+  // and how much. The rules: README, "Memory budget".
+  std::uint64_t maxMemory = kDefaultMaxMemory;
 };
 
 // Where a frame's time went, in ms of wall time. Setup and bin run in one

@@ -195,6 +195,15 @@ std::vector<Out> decode(const ModelRef& ref, const AccessorView& view) {
 
 }  // namespace
 
+std::uint64_t decodedAccessorBytes(const ModelRef& ref, int index) {
+  try {
+    const AccessorView view = viewAccessor(ref, index, "accessor");
+    return view.count * std::uint64_t(view.components) * 4;
+  } catch (const Error&) {
+    return 0;  // its reader reports the problem, in the words of its role
+  }
+}
+
 ByteRange bufferViewBytes(const ModelRef& ref, int index) {
   const auto& views = ref.model.bufferViews;
   if (index < 0 || std::size_t(index) >= views.size()) {

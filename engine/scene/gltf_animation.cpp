@@ -45,6 +45,8 @@ AnimationSampler readSampler(const ModelRef& ref, const tinygltf::AnimationSampl
                              const std::string& who) {
   AnimationSampler sampler;
   sampler.interpolation = interpolationOf(ref, source.interpolation, who);
+  ref.charge(who + " decoded",
+             decodedAccessorBytes(ref, source.input) + decodedAccessorBytes(ref, source.output));
   sampler.times = readTimes(ref, source.input, who);
   const AccessorView output = viewAccessor(ref, source.output, who + " output");
   // Translation and scale are VEC3, rotations VEC4 (float or normalized

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "scene/scene.h"
 
 namespace tinygltf {
@@ -25,8 +26,15 @@ namespace quadra::gltf {
 struct ModelRef {
   const tinygltf::Model& model;
   const std::string& path;
+  MemoryBudget* budget = nullptr;  // the load's (LoadOptions::maxMemory); null: unbounded
 
   Error fail(const std::string& problem) const { return makeError(path, problem); }
+  // Counts `bytes` against the load's budget before they are allocated for
+  // `what`, or throws its one-line error. From the loading thread only, in
+  // file order, so the message does not depend on scheduling.
+  void charge(const std::string& what, std::uint64_t bytes) const {
+    if (budget) budget->charge(what, bytes);
+  }
   std::string note(const std::string& text) const { return path + ": " + text; }
 };
 
@@ -47,6 +55,11 @@ struct AccessorView {
 // Checks accessor `index` (what: the role it plays, for messages, e.g.
 // "mesh 0 primitive 1 NORMAL").
 AccessorView viewAccessor(const ModelRef& ref, int index, const std::string& what);
+
+// The bytes decoding accessor `index` allocates (count * components 32-bit
+// values), for charging the budget before decoding: 0 when the accessor is
+// invalid (its reader reports why, naming the role it plays).
+std::uint64_t decodedAccessorBytes(const ModelRef& ref, int index);
 
 // count * components floats, glTF's normalization rules applied and sparse
 // substitutions made.
@@ -113,6 +126,12 @@ class MaterialTable {
 
  private:
   int sceneTexture(int gltfTexture, const std::string& what);
+  // "image N ('uri')" for messages.
+  std::string imageName(int imageIndex) const;
+  // The image's encoded bytes (a checked bufferView or what tinygltf read).
+  ByteRange encodedImage(int imageIndex) const;
+  // Charges the budget for decoding the image, as its header gives the size.
+  void chargeDecode(int imageIndex) const;
   // Linear float pixels, and the storage format that keeps the source's
   // precision: RGBA16F for 8-bit images, RGBA32F for 16-bit ones.
   std::shared_ptr<const Image> decodeImage(int imageIndex, TexelFormat& storage,

@@ -114,10 +114,20 @@ void checkGlbLayout(const std::string& path, const std::vector<std::uint8_t>& by
 // warns about an image it could not read.
 struct SandboxedFiles {
   const FileSandbox& sandbox;
-  std::string prefix;  // baseDir as tinygltf joins it, ending in '/'
+  std::string prefix;    // baseDir as tinygltf joins it, ending in '/'
+  MemoryBudget& budget;  // each file is charged before it is read
   std::set<std::string> approved;
-  std::string refusal;  // "URI '<reference>' <why>"
+  std::string refusal;     // "URI '<reference>' <why>"
+  std::string overBudget;  // the budget's error for a file too big to read
 };
+
+// Charges the budget for reading the file at `path` whole, by its size on
+// disk, before it is read (a size that cannot be read is the reader's error).
+void chargeFileRead(MemoryBudget& budget, const std::string& path, const std::string& what) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec) budget.charge(what + " (" + std::to_string(size) + " bytes)", size);
+}
 
 std::string expandSandboxed(const std::string& joined, void* user) {
   auto& files = *static_cast<SandboxedFiles*>(user);
@@ -140,9 +150,15 @@ bool existsSandboxed(const std::string& path, void* user) {
 
 bool readSandboxed(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void* user) {
-  const auto& files = *static_cast<SandboxedFiles*>(user);
+  auto& files = *static_cast<SandboxedFiles*>(user);
   try {
     if (files.approved.count(path) == 0) throw makeError(path, "outside the sandbox");
+    try {
+      chargeFileRead(files.budget, path, "file '" + path + "'");
+    } catch (const Error& e) {
+      if (files.overBudget.empty()) files.overBudget = e.what();
+      throw;
+    }
     *out = readWholeFile(path);
     return true;
   } catch (const Error& e) {
@@ -157,12 +173,14 @@ bool writeRefused(std::string* err, const std::string&, const std::vector<unsign
 }
 
 tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8_t>& bytes,
-                           const LoadOptions& options, gltf::ImageStash& stash) {
+                           const LoadOptions& options, MemoryBudget& budget,
+                           gltf::ImageStash& stash) {
   const bool binary = isGlb(path, bytes);
   if (binary) checkGlbLayout(path, bytes);
   const FileSandbox sandbox(std::filesystem::path(path).parent_path(), options.allowedPaths);
   const std::string baseDir = sandbox.home().string();
-  SandboxedFiles files{sandbox, baseDir.back() == '/' ? baseDir : baseDir + "/", {}, {}};
+  SandboxedFiles files{sandbox, baseDir.back() == '/' ? baseDir : baseDir + "/", budget, {}, {},
+                       {}};
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&gltf::stashImageBytes, &stash);
   parser.SetFsCallbacks(
@@ -180,6 +198,7 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8
     throw makeError(path, "invalid glTF (" + firstLine(e.what()) + ")");
   }
   if (!files.refusal.empty()) throw makeError(path, files.refusal);
+  if (!files.overBudget.empty()) throw Error(files.overBudget);
   if (!ok) {
     const std::string problem = firstLine(err);
     throw makeError(path, problem.empty() ? "invalid glTF" : problem);
@@ -431,6 +450,7 @@ class SceneBuilder {
 
   // Decodes every primitive some node draws, then places the drawn ones.
   void finish(std::vector<std::string>& notes) {
+    for (const PrimitiveJob& job : jobs_) chargeDecode(job);
     decodePrimitives(ref_, jobs_);
     std::vector<int> sceneMesh(jobs_.size(), -1);
     for (std::size_t i = 0; i < jobs_.size(); ++i) {
@@ -450,6 +470,29 @@ class SceneBuilder {
   }
 
  private:
+  // The budget is charged here, in job order, before the parallel decode: as
+  // if every accessor the primitive lists were decoded to 32-bit values (an
+  // upper bound on what buildMesh keeps), strips and fans expanded to lists.
+  void chargeDecode(const PrimitiveJob& job) const {
+    const auto& source =
+        ref_.model.meshes[std::size_t(job.mesh)].primitives[std::size_t(job.primitive)];
+    std::uint64_t bytes = 0;
+    for (const auto& attribute : source.attributes)
+      bytes += gltf::decodedAccessorBytes(ref_, attribute.second);
+    const auto position = source.attributes.find("POSITION");
+    const std::uint64_t indices =
+        source.indices != -1 ? gltf::decodedAccessorBytes(ref_, source.indices)
+        : position != source.attributes.end()
+            ? gltf::decodedAccessorBytes(ref_, position->second) / 3  // one index a VEC3
+            : 0;
+    const bool expands =
+        source.mode == TINYGLTF_MODE_TRIANGLE_STRIP || source.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+    bytes += indices * (expands ? 4 : 1);
+    ref_.charge("mesh " + std::to_string(job.mesh) + " primitive " + std::to_string(job.primitive) +
+                    " decoded",
+                bytes);
+  }
+
   int jobFor(int mesh, int primitive) {
     const auto key = std::make_pair(mesh, primitive);
     if (const auto known = jobOf_.find(key); known != jobOf_.end()) return known->second;
@@ -477,10 +520,23 @@ class SceneBuilder {
   std::vector<Placement> placements_;
 };
 
+// What tinygltf made from the file before quadra saw the model: decoded
+// data-URI and GLB buffers and the stashed image bytes. tinygltf allocates
+// them itself, so they are counted after the fact; each is bounded by the
+// bytes of the files charged before they were read (a data URI decodes to
+// 3/4 of its text).
+void chargeParsed(const ModelRef& ref, const gltf::ImageStash& stash) {
+  for (std::size_t i = 0; i < ref.model.buffers.size(); ++i)
+    ref.charge("buffer " + std::to_string(i), ref.model.buffers[i].data.size());
+  for (const auto& [image, bytes] : stash.encoded)
+    ref.charge("image " + std::to_string(image) + " (encoded)", bytes.size());
+}
+
 Scene convertModel(const std::string& path, const tinygltf::Model& model,
-                   const gltf::ImageStash& stash, const LoadOptions& options,
+                   const gltf::ImageStash& stash, const LoadOptions& options, MemoryBudget& budget,
                    std::vector<std::string>& notes) {
-  const ModelRef ref{model, path};
+  const ModelRef ref{model, path, &budget};
+  chargeParsed(ref, stash);
   checkExtensions(ref, notes);
   Scene scene;
   scene.name = path;
@@ -502,10 +558,12 @@ Scene loadGltf(const std::string& path, const LoadOptions& options,
                std::vector<std::string>* notes) {
   std::vector<std::string> collected;
   try {
+    MemoryBudget budget(options.maxMemory, path);
+    chargeFileRead(budget, path, "the file");
     const std::vector<std::uint8_t> bytes = readWholeFile(path);
     gltf::ImageStash stash;
-    const tinygltf::Model model = parseModel(path, bytes, options, stash);
-    Scene scene = convertModel(path, model, stash, options, collected);
+    const tinygltf::Model model = parseModel(path, bytes, options, budget, stash);
+    Scene scene = convertModel(path, model, stash, options, budget, collected);
     if (notes) {
       for (const std::string& note : collected) notes->push_back(oneLine(note));
     }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/memory_budget.h"
 #include "scene/scene.h"
 
 namespace quadra {
@@ -14,12 +15,18 @@ struct LoadOptions {
   // Folders besides the file's own that its buffer and image URIs may read
   // (--allow-path); each must exist. The rules: README, "Scene sandbox".
   std::vector<std::string> allowedPaths = {};
+  // The bytes the load may allocate for what the file controls (the files
+  // read, decoded buffers, meshes and images), each charged before it is
+  // allocated (--max-memory). The rules: README, "Memory budget".
+  std::uint64_t maxMemory = kDefaultMaxMemory;
 };
 
 // Throws Error("<path>: <problem>") for anything malformed or unsupported that
 // cannot be ignored, and for a URI that reads outside the sandbox
 // ("<path>: URI '<uri>' <why>", the URI percent-decoded). Things it can
-// ignore (points, lines) go to notes, one line each.
+// ignore (points, lines) go to notes, one line each. Going over
+// options.maxMemory is an Error naming the file, what was to be allocated and
+// how much, thrown before that allocation.
 Scene loadGltf(const std::string& path, const LoadOptions& options = {},
                std::vector<std::string>* notes = nullptr);
 

@@ -272,20 +272,41 @@ TexelFormat storageFor(int bitsPerChannel) {
 
 }  // namespace
 
+std::string MaterialTable::imageName(int imageIndex) const {
+  const tinygltf::Image& source = ref_.model.images[std::size_t(imageIndex)];
+  return "image " + std::to_string(imageIndex) +
+         (source.uri.empty() ? "" : " ('" + percentDecode(source.uri) + "')");
+}
+
+ByteRange MaterialTable::encodedImage(int imageIndex) const {
+  const tinygltf::Image& source = ref_.model.images[std::size_t(imageIndex)];
+  if (source.bufferView != -1) return bufferViewBytes(ref_, source.bufferView);
+  if (const auto stashed = stash_.encoded.find(imageIndex); stashed != stash_.encoded.end())
+    return {stashed->second.data(), stashed->second.size()};
+  throw ref_.fail(imageName(imageIndex) +
+                  (source.uri.empty() ? " has no data" : ": file cannot be read"));
+}
+
+void MaterialTable::chargeDecode(int imageIndex) const {
+  ByteRange bytes;
+  try {
+    bytes = encodedImage(imageIndex);
+  } catch (const Error&) {
+    return;  // decodeImage reports it, in image order
+  }
+  std::uint32_t width = 0, height = 0;
+  if (!encodedImageSize(bytes.data, bytes.size, width, height) ||
+      std::uint64_t(width) * height > std::uint64_t(kMaxImagePixels))
+    return;  // decodeImage refuses it
+  ref_.charge(imageName(imageIndex) + " decoded to " + std::to_string(width) + "x" +
+                  std::to_string(height) + " linear float",
+              std::uint64_t(width) * height * sizeof(float) * 4);
+}
+
 std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFormat& storage,
                                                         const Executor& executor) const {
-  const tinygltf::Image& source = ref_.model.images[std::size_t(imageIndex)];
-  const std::string what = "image " + std::to_string(imageIndex) +
-                           (source.uri.empty() ? "" : " ('" + percentDecode(source.uri) + "')");
-  ByteRange bytes;
-  if (source.bufferView != -1) {
-    bytes = bufferViewBytes(ref_, source.bufferView);
-  } else if (const auto stashed = stash_.encoded.find(imageIndex);
-             stashed != stash_.encoded.end()) {
-    bytes = {stashed->second.data(), stashed->second.size()};
-  } else {
-    throw ref_.fail(what + (source.uri.empty() ? " has no data" : ": file cannot be read"));
-  }
+  const std::string what = imageName(imageIndex);
+  const ByteRange bytes = encodedImage(imageIndex);
   if (bytes.size == 0 || bytes.size > std::uint64_t(INT_MAX)) {
     throw ref_.fail(what + " has " + std::to_string(bytes.size) + " bytes of data");
   }
@@ -320,6 +341,10 @@ void MaterialTable::finish(Scene& scene) {
   const std::set<int> unique(imageIndices.begin(), imageIndices.end());
   imageIndices.assign(unique.begin(), unique.end());
 
+  // Each image's decoded size, from its header, against the budget before
+  // any is decoded (decoding runs in parallel; charging in image order keeps
+  // the message the same every run).
+  for (const int image : imageIndices) chargeDecode(image);
   // PNG/JPEG decoding dominates load time for textured models: one task per
   // image. Errors are kept per image and the first in index order is thrown,
   // so the message does not depend on scheduling.

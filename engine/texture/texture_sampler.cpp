@@ -51,6 +51,31 @@ TextureView makeTextureView(const Texture& texture, const FilterSettings& settin
   return view;
 }
 
+std::uint64_t textureViewBytes(const Texture& texture, const FilterSettings& settings) {
+  const Filter filter = settings.filter.value_or(texture.sampler().minFilter);
+  const std::uint64_t stored = std::uint64_t(bytesPerTexel(texture.storage()));
+  constexpr std::uint64_t kLinearTexel = 4 * sizeof(float);
+  const std::uint64_t w = std::uint64_t(texture.image().width);
+  const std::uint64_t h = std::uint64_t(texture.image().height);
+  std::uint64_t bytes = (w + 1) * h * stored;  // PaddedLevel rows are width + 1 long
+  if (texture.alpha().premultiplied()) bytes += w * h * kLinearTexel;
+  // Levels 1.. of a chain, max(1, size >> l) per side (mip_chain.h).
+  const auto chain = [](std::uint64_t size, int level) {
+    return std::max<std::uint64_t>(1, size >> level);
+  };
+  if (needsMips(filter)) {
+    for (int l = 1; chain(w, l - 1) > 1 || chain(h, l - 1) > 1; ++l)
+      bytes += chain(h, l) * (chain(w, l) * kLinearTexel + (chain(w, l) + 1) * stored);
+  }
+  if (filter == Filter::SummedArea) bytes += w * h * 32;  // summed_area.h: 32 bytes a texel
+  if (filter == Filter::Ripmap) {
+    for (int i = 0; i == 0 || chain(w, i - 1) > 1; ++i)
+      for (int j = 0; j == 0 || chain(h, j - 1) > 1; ++j)
+        bytes += chain(h, j) * (chain(w, i) * kLinearTexel + (chain(w, i) + 1) * stored);
+  }
+  return bytes;
+}
+
 namespace {
 
 SampleBatchKernel kernelFor(Isa isa) {

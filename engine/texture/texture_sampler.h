@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 
 #include "simd/isa.h"
@@ -45,6 +46,14 @@ struct FilterSettings {
 // the filter needs one (in parallel on `executor` when given).
 TextureView makeTextureView(const Texture& texture, const FilterSettings& settings,
                             const Executor* executor = nullptr);
+
+// The bytes of what makeTextureView reads for this texture and filter, built
+// yet or not (the renderer charges them to its memory budget before the view
+// is made): level 0 in the storage format, the premultiplied copy of level 0
+// for a texture whose alpha is premultiplied, and the mip chain (linear float
+// and storage format), the summed-area table or the ripmap when the filter
+// reads them. From the sizes alone, so opaque images' copies count too.
+std::uint64_t textureViewBytes(const Texture& texture, const FilterSettings& settings);
 
 class TextureSampler {
  public:

@@ -590,6 +590,25 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
 
 }  // namespace
 
+std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
+                              int pixelFilterChannels, const std::vector<Draw>& draws) {
+  const std::uint64_t slots = std::uint64_t(samples) * TileBuffers::kPixels;
+  const bool blended = std::any_of(draws.begin(), draws.end(), [](const Draw& draw) {
+    return composedInDepthOrder(draw.shade);
+  });
+  // The fragment pool may grow to twice its bound (vector doubling); heads,
+  // counts and the order pass take 13 bytes a sample (blended_fragments.h).
+  const std::uint64_t fragments =
+      blended ? slots * (2 * BlendedFragments::kMaxPerSample * sizeof(BlendedFragment) + 13) : 0;
+  const std::uint64_t shading = slots * kShadePlaneStride * sizeof(float);
+  const std::uint64_t perWorker =
+      std::uint64_t(samples) * sizeof(TileBuffers) + fragments + shading;
+  const std::uint64_t rings = std::uint64_t(grid.tileCount()) * kBorderRingPixels *
+                              std::uint64_t(pixelFilterChannels) * sizeof(float);
+  const int workers = std::clamp(grid.tileCount(), 1, std::max(threads, 1));
+  return std::uint64_t(workers) * perWorker + rings;
+}
+
 void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
                  std::vector<TileTimes>& times) {
   const std::size_t tiles = std::size_t(frame.grid.tileCount());

@@ -3,6 +3,7 @@
 // L2-resident buffers, then writes its pixels of the frame once.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -59,5 +60,15 @@ struct TileFrame {
 // times: resized to the tile count, one entry per tile.
 void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
                  std::vector<TileTimes>& times);
+
+// An upper bound on the memory renderTiles holds at once besides the frame,
+// on `threads` threads: each running task's scratch (a TileBuffers per
+// sample plane, the shading planes of as many visible triangles as samples,
+// and when some draw is composited in depth order the blended fragments at
+// their per-sample bound) and, for a wide pixel filter (channels: 4, or 5
+// with coverage; 0 for the box filter), every tile's border ring. The
+// renderer charges it to its memory budget before the frame is allocated.
+std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
+                              int pixelFilterChannels, const std::vector<Draw>& draws);
 
 }  // namespace quadra

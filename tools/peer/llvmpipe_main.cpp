@@ -37,6 +37,7 @@ order and shading.
   --scene N              which glTF scene to render (default: the file's default scene)
   --allow-path DIR       a folder the glTF file's URIs may read besides its own (repeatable,
                          as for quadra render)
+  --max-memory SIZE      what loading the scene may allocate, as for quadra render (default 8G)
   --width W --height H   image size, default 1920x1080
   --eye x,y,z --target x,y,z --up x,y,z --fovy DEG --near N --far F
                          override the scene's first camera (far 0 = infinite)
