@@ -129,11 +129,11 @@ void scalingPixels(benchmark::State& state) {
 void sequenceFrames(benchmark::State& state) {
   Scene scene = loadBenchScene("builtin:flyover");
   WarmRenderer warm(scene, firstCameraOrDefault(scene), 2, kWidth, kHeight);
-  std::vector<glm::mat4> worlds;
+  NodePose pose;
   int frame = 0;
   for (auto _ : state) {
-    poseNodes(scene, 0, double(frame++ % 96) / 24.0, worlds);
-    placeOnNodes(scene, worlds);
+    poseNodes(scene, 0, double(frame++ % 96) / 24.0, pose);
+    placeOnNodes(scene, pose);
     warm.renderer.render(scene, scene.cameras.front(), warm.settings, warm.frame);
     benchmark::DoNotOptimize(warm.frame.rgba.data());
   }

@@ -276,9 +276,10 @@ void expectMatchesReference(const std::string& model) {
       }
     }
     // The whole tree, driven nodes and their subtrees.
-    std::vector<glm::mat4> worlds;
+    NodePose pose;
     for (double t : allTimes) {
-      poseNodes(scene, int(a), t, worlds);
+      poseNodes(scene, int(a), t, pose);
+      const std::vector<glm::mat4>& worlds = pose.worlds;
       const std::vector<DMat> want = referenceWorlds(file, curves, int(a), t);
       ASSERT_EQ(worlds.size(), scene.nodes.size());
       for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
@@ -382,9 +383,9 @@ TEST(Animation, CamerasAndChildrenFollowTheirNodes) {
   move.channels.push_back({0, 0, AnimatedProperty::Translation});
   scene.animations.push_back(move);
 
-  std::vector<glm::mat4> worlds;
-  poseNodes(scene, 0, 0.5, worlds);
-  placeOnNodes(scene, worlds);
+  NodePose pose;
+  poseNodes(scene, 0, 0.5, pose);
+  placeOnNodes(scene, pose);
   // The camera sits at the node's origin, its scale divided out; the child
   // keeps its offset, scaled by its parent.
   EXPECT_EQ(glm::vec3(scene.cameras[0].world[3]), glm::vec3(0.0f, 0.0f, 5.0f));
@@ -405,9 +406,9 @@ TEST(Animation, RestPoseKeepsTheLoadedBits) {
     ++models;
     const Scene loaded = loadGltf(path);
     Scene posed = loaded;
-    std::vector<glm::mat4> worlds;
-    poseNodes(posed, -1, 0.0, worlds);
-    placeOnNodes(posed, worlds);
+    NodePose pose;
+    poseNodes(posed, -1, 0.0, pose);
+    placeOnNodes(posed, pose);
     for (std::size_t i = 0; i < loaded.instances.size(); ++i) {
       EXPECT_EQ(
           std::memcmp(&loaded.instances[i].world, &posed.instances[i].world, sizeof(glm::mat4)), 0)

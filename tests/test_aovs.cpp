@@ -465,9 +465,11 @@ TEST(AovsCli, SequenceMotionMatchesThePosesOfBothFrames) {
   const glm::dmat4 viewToClip =
       glm::dmat4(projectionMatrix(camera, double(kWidth) / kHeight, DepthMode::Standard)) *
       glm::dmat4(viewMatrix(camera));
-  std::vector<glm::mat4> now, before;
-  poseNodes(scene, 0, 6.0 / 24.0, now);
-  poseNodes(scene, 0, 5.0 / 24.0, before);
+  NodePose posedNow, posedBefore;
+  poseNodes(scene, 0, 6.0 / 24.0, posedNow);
+  poseNodes(scene, 0, 5.0 / 24.0, posedBefore);
+  const std::vector<glm::mat4>& now = posedNow.worlds;
+  const std::vector<glm::mat4>& before = posedBefore.worlds;
   const auto nodeOfFile = [&](std::uint32_t fileIndex) {
     for (std::size_t n = 0; n < scene.nodes.size(); ++n)
       if (std::uint32_t(scene.nodes[n].fileIndex) == fileIndex) return n;

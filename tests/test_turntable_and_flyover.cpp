@@ -123,13 +123,13 @@ TEST(Orbit, BadOrbitInputIsOneLineAndWritesNothing) {
 
 struct Posed {
   Scene scene;
-  std::vector<glm::mat4> worlds;
+  NodePose pose;
 };
 
 Posed flyoverAt(double seconds) {
   Posed posed{makeBuiltinScene("flyover"), {}};
-  poseNodes(posed.scene, 0, seconds, posed.worlds);
-  placeOnNodes(posed.scene, posed.worlds);
+  poseNodes(posed.scene, 0, seconds, posed.pose);
+  placeOnNodes(posed.scene, posed.pose);
   return posed;
 }
 
@@ -139,9 +139,9 @@ TEST(Flyover, KeyTimeZeroAndTheRestPoseKeepTheBuiltBits) {
   EXPECT_DOUBLE_EQ(animationDuration(built.animations[0]), 4.0);
   for (const int animation : {-1, 0}) {
     Scene posed = built;
-    std::vector<glm::mat4> worlds;
-    poseNodes(posed, animation, 0.0, worlds);
-    placeOnNodes(posed, worlds);
+    NodePose pose;
+    poseNodes(posed, animation, 0.0, pose);
+    placeOnNodes(posed, pose);
     for (std::size_t i = 0; i < built.instances.size(); ++i)
       EXPECT_EQ(
           std::memcmp(&built.instances[i].world, &posed.instances[i].world, sizeof(glm::mat4)), 0)

@@ -338,7 +338,7 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   // Frame k is written on the writer's thread while frame k + 1 renders; two
   // frames may wait, so a slow disk holds the loop back by at most that.
   SequenceWriter writer(renderer.threadCount(), 2);
-  std::vector<glm::mat4> worlds;
+  NodePose pose;
   std::vector<double> times;
   std::vector<StageTimes> stages;
   FrameStats stats;
@@ -361,16 +361,16 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
     }
     const auto start = std::chrono::steady_clock::now();
     if (hasAov(settings.aovs, Aov::Motion)) {
-      poseNodes(scene, animation, double(f - 1) / cmd.fps, worlds);
-      placeOnNodes(scene, worlds);
+      poseNodes(scene, animation, double(f - 1) / cmd.fps, pose);
+      placeOnNodes(scene, pose);
       previous.camera = cameraAt(f - 1);
       previous.instanceWorlds.clear();
       for (const Instance& instance : scene.instances)
         previous.instanceWorlds.push_back(instance.world);
       settings.previousPose = &previous;
     }
-    poseNodes(scene, animation, double(f) / cmd.fps, worlds);
-    placeOnNodes(scene, worlds);
+    poseNodes(scene, animation, double(f) / cmd.fps, pose);
+    placeOnNodes(scene, pose);
     const Camera camera = cameraAt(f);
     describeRender(settings, frame.metadata);  // frame may be a spare the writer handed back
     stats = renderer.render(scene, camera, settings, frame);

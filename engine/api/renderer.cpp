@@ -77,6 +77,8 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   DrawGeometry& g = draw.geometry;
   ShadeState& s = draw.shade;
   g.mesh = &mesh;
+  g.morphWeights = instance.morphWeights;
+  g.jointMatrices = instance.jointMatrices;
   g.modelView = frame.view * instance.world;
   g.projection = frame.projection;
   g.cullBackFaces = !material.doubleSided;

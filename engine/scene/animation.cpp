@@ -1,5 +1,6 @@
-// Animation evaluation: key lookup, the three glTF interpolations, and the
-// node tree composed parents first into world transforms.
+// Animation evaluation: key lookup, the three glTF interpolations, the node
+// tree composed parents first into world transforms, and skinned and morphed
+// instances posed from it.
 #include "scene/animation.h"
 
 #include <algorithm>
@@ -47,15 +48,30 @@ glm::dvec4 slerp(glm::dvec4 a, glm::dvec4 b, double u) {
   return normalizedQuat(a * (std::sin((1.0 - u) * theta) / s) + b * (std::sin(u * theta) / s));
 }
 
+// The key after `seconds`: the interval [t0, t1) holding the time ends at
+// the first key after it, so t1 > t0 even where keys share a time.
+std::size_t keyAfter(const std::vector<float>& times, double seconds) {
+  QUADRA_CHECK(!times.empty());
+  return std::size_t(std::upper_bound(times.begin(), times.end(), seconds,
+                                      [](double t, float key) { return t < double(key); }) -
+                     times.begin());
+}
+
+// Hermite basis (glTF 2.0 Appendix C) for the interval's u; tangents are per
+// second, so they are scaled by the interval to be per unit of u.
+template <typename Value>
+Value hermite(const Value& p0, const Value& m0, const Value& p1, const Value& m1, double u,
+              double interval) {
+  const double u2 = u * u, u3 = u2 * u;
+  return (2.0 * u3 - 3.0 * u2 + 1.0) * p0 + (u3 - 2.0 * u2 + u) * (interval * m0) +
+         (-2.0 * u3 + 3.0 * u2) * p1 + (u3 - u2) * (interval * m1);
+}
+
 }  // namespace
 
 glm::dvec4 sampleAnimation(const AnimationSampler& sampler, bool rotation, double seconds) {
   const std::vector<float>& times = sampler.times;
-  QUADRA_CHECK(!times.empty());
-  // The interval [t0, t1) holding the time: t1 is the first key after it, so
-  // t1 > t0 even where keys share a time.
-  const auto after = std::upper_bound(times.begin(), times.end(), seconds,
-                                      [](double t, float key) { return t < double(key); });
+  const auto after = times.begin() + std::ptrdiff_t(keyAfter(times, seconds));
   glm::dvec4 value;
   if (after == times.begin()) {
     value = keyValue(sampler, 0);
@@ -74,23 +90,50 @@ glm::dvec4 sampleAnimation(const AnimationSampler& sampler, bool rotation, doubl
         value = rotation ? slerp(keyValue(sampler, k0), keyValue(sampler, k1), u)
                          : glm::mix(keyValue(sampler, k0), keyValue(sampler, k1), u);
         break;
-      case Interpolation::CubicSpline: {
-        // Hermite basis (glTF 2.0 Appendix C); tangents are per second, so
-        // they are scaled by the interval to be per unit of u.
-        const double u2 = u * u, u3 = u2 * u;
-        const glm::dvec4 p0 = keyValue(sampler, k0), p1 = keyValue(sampler, k1);
-        const glm::dvec4 m0 = interval * element(sampler, k0, 2);
-        const glm::dvec4 m1 = interval * element(sampler, k1, 0);
-        value = (2.0 * u3 - 3.0 * u2 + 1.0) * p0 + (u3 - 2.0 * u2 + u) * m0 +
-                (-2.0 * u3 + 3.0 * u2) * p1 + (u3 - u2) * m1;
+      case Interpolation::CubicSpline:
+        value = hermite(keyValue(sampler, k0), element(sampler, k0, 2), keyValue(sampler, k1),
+                        element(sampler, k1, 0), u, interval);
         break;
-      }
     }
   }
   return rotation ? normalizedQuat(value) : value;
 }
 
-void poseNodes(const Scene& scene, int animation, double seconds, std::vector<glm::mat4>& worlds) {
+void sampleWeights(const AnimationSampler& sampler, double seconds, std::vector<float>& weights) {
+  const std::vector<float>& times = sampler.times;
+  const std::size_t n = std::size_t(sampler.components);
+  const bool cubic = sampler.interpolation == Interpolation::CubicSpline;
+  // Component c of key k's part (as element() above).
+  const auto at = [&](std::size_t key, std::size_t part, std::size_t c) {
+    return double(sampler.values[key * n * (cubic ? 3 : 1) + (cubic ? part * n : 0) + c]);
+  };
+  const std::size_t k1 = keyAfter(times, seconds);
+  weights.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    double value = 0.0;
+    if (k1 == 0 || k1 == times.size()) {
+      value = at(k1 == 0 ? 0 : times.size() - 1, 1, c);
+    } else {
+      const std::size_t k0 = k1 - 1;
+      const double interval = double(times[k1]) - double(times[k0]);
+      const double u = (seconds - double(times[k0])) / interval;
+      switch (sampler.interpolation) {
+        case Interpolation::Step:
+          value = at(k0, 1, c);
+          break;
+        case Interpolation::Linear:
+          value = glm::mix(at(k0, 1, c), at(k1, 1, c), u);
+          break;
+        case Interpolation::CubicSpline:
+          value = hermite(at(k0, 1, c), at(k0, 2, c), at(k1, 1, c), at(k1, 0, c), u, interval);
+          break;
+      }
+    }
+    weights[c] = float(value);
+  }
+}
+
+void poseNodes(const Scene& scene, int animation, double seconds, NodePose& pose) {
   const std::size_t count = scene.nodes.size();
   // The TRS of each node some channel drives, starting from its rest values.
   struct Driven {
@@ -100,10 +143,18 @@ void poseNodes(const Scene& scene, int animation, double seconds, std::vector<gl
     glm::vec3 scale{1.0f};
   };
   std::vector<Driven> driven(count);
+  pose.weights.resize(count);
+  for (std::size_t i = 0; i < count; ++i) pose.weights[i] = scene.nodes[i].weights;
   if (animation >= 0) {
     const Animation& a = scene.animations.at(std::size_t(animation));
     for (const AnimationChannel& channel : a.channels) {
       const Node& node = scene.nodes.at(std::size_t(channel.node));
+      if (channel.property == AnimatedProperty::Weights) {
+        // Weights leave the transform alone (and its loaded bits with it).
+        sampleWeights(a.samplers.at(std::size_t(channel.sampler)), seconds,
+                      pose.weights[std::size_t(channel.node)]);
+        continue;
+      }
       Driven& d = driven[std::size_t(channel.node)];
       if (!d.driven) d = {true, node.translation, node.rotation, node.scale};
       const bool rotation = channel.property == AnimatedProperty::Rotation;
@@ -119,9 +170,12 @@ void poseNodes(const Scene& scene, int animation, double seconds, std::vector<gl
         case AnimatedProperty::Scale:
           d.scale = glm::vec3(v);
           break;
+        case AnimatedProperty::Weights:
+          break;  // handled above
       }
     }
   }
+  std::vector<glm::mat4>& worlds = pose.worlds;
   worlds.resize(count);
   for (std::size_t i = 0; i < count; ++i) {
     const Node& node = scene.nodes[i];
@@ -141,9 +195,25 @@ void poseNodes(const Scene& scene, int animation, double seconds, std::vector<gl
   }
 }
 
-void placeOnNodes(Scene& scene, const std::vector<glm::mat4>& worlds) {
+void placeOnNodes(Scene& scene, const NodePose& pose) {
+  const std::vector<glm::mat4>& worlds = pose.worlds;
   for (Instance& instance : scene.instances) {
-    if (instance.node >= 0) instance.world = worlds.at(std::size_t(instance.node));
+    if (instance.node < 0) continue;
+    const std::vector<float>& weights = pose.weights.at(std::size_t(instance.node));
+    if (!weights.empty()) instance.morphWeights = weights;
+    if (instance.skin < 0) {
+      instance.world = worlds.at(std::size_t(instance.node));
+      continue;
+    }
+    // glTF 2.0 §3.7.3: the joints place the vertices; the skinned mesh's own
+    // node transform does not apply.
+    const Skin& skin = scene.skins.at(std::size_t(instance.skin));
+    instance.world = glm::mat4(1.0f);
+    instance.jointMatrices.resize(skin.joints.size());
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      instance.jointMatrices[j] =
+          worlds.at(std::size_t(skin.joints[j])) * skin.inverseBindMatrices[j];
+    }
   }
   for (Camera& camera : scene.cameras) {
     if (camera.node >= 0) camera.world = cameraWorldOf(worlds.at(std::size_t(camera.node)));

@@ -1,6 +1,7 @@
-// Scene + animation + time → the scene's node transforms at that time, and
-// the scene's instances and cameras moved onto them. Pure functions of their
-// inputs: a frame of a sequence poses the scene, then renders it as a still.
+// Scene + animation + time → the scene's node transforms and morph weights
+// at that time, and the scene's instances (their joint matrices and weights
+// too) and cameras moved onto them. Pure functions of their inputs: a frame
+// of a sequence poses the scene, then renders it as a still.
 #pragma once
 
 #include <vector>
@@ -20,16 +21,25 @@ namespace quadra {
 // key values with each key's tangents scaled by the interval's length.
 // Rotations come back normalized. Evaluated in double precision.
 glm::dvec4 sampleAnimation(const AnimationSampler& sampler, bool rotation, double seconds);
+// The same for a sampler of sampler.components morph weights (componentwise,
+// as translations are), rounded to float into `weights`.
+void sampleWeights(const AnimationSampler& sampler, double seconds, std::vector<float>& weights);
 
-// World transforms of every Scene::nodes entry, `seconds` into
-// scene.animations[animation] (-1: the rest pose, as loaded). A node no
-// channel drives keeps its loaded local transform, so the rest pose has the
-// bits the loader placed the instances with.
-void poseNodes(const Scene& scene, int animation, double seconds, std::vector<glm::mat4>& worlds);
+// Every Scene::nodes entry's world transform and morph weights.
+struct NodePose {
+  std::vector<glm::mat4> worlds;
+  std::vector<std::vector<float>> weights;  // empty for nodes without morph targets
+};
+
+// The pose `seconds` into scene.animations[animation] (-1: the rest pose, as
+// loaded). A node no channel drives keeps its loaded local transform and
+// weights, so the rest pose has the bits the loader placed the instances with.
+void poseNodes(const Scene& scene, int animation, double seconds, NodePose& pose);
 
 // Moves every instance and camera that hangs from a node to that node's
-// transform in `worlds` (from poseNodes on the same scene).
-void placeOnNodes(Scene& scene, const std::vector<glm::mat4>& worlds);
+// transform in `pose` (from poseNodes on the same scene); a skinned instance
+// gets its joint matrices instead, and a morphed one its node's weights.
+void placeOnNodes(Scene& scene, const NodePose& pose);
 
 // The last key time over the animation's samplers (0 for none).
 double animationDuration(const Animation& animation);

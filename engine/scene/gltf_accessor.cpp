@@ -45,8 +45,10 @@ int componentsOfType(int type) {
       return 3;
     case TINYGLTF_TYPE_VEC4:
       return 4;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;  // inverse bind matrices, float only (their reader checks)
     default:
-      return 0;  // matrices: no attribute we read uses them
+      return 0;  // MAT2 and MAT3 (whose columns glTF pads for small types): nothing reads them
   }
 }
 
@@ -249,7 +251,7 @@ AccessorView viewAccessor(const ModelRef& ref, int index, const std::string& wha
     throw ref.fail(who + " has unsupported componentType " +
                    std::to_string(accessor.componentType));
   }
-  if (view.components == 0) throw ref.fail(who + " (" + what + ") has a matrix type");
+  if (view.components == 0) throw ref.fail(who + " (" + what + ") has a MAT2 or MAT3 type");
   if (view.count == 0) throw ref.fail(who + " has count 0");
   const std::uint64_t elementSize = std::uint64_t(size) * std::uint64_t(view.components);
 

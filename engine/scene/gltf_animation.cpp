@@ -1,7 +1,8 @@
 // glTF animations → Scene::animations: each sampler's key times and values
 // read through the checked accessor reader, their shapes checked against the
 // interpolation and the property a channel drives, channels pointed at the
-// scene's nodes. Evaluating them at a time is scene/animation.h's job.
+// scene's nodes (weights channels to nodes with morph targets). Evaluating them at a time is
+// scene/animation.h's job.
 #include <tiny_gltf.h>
 
 #include <cmath>
@@ -41,20 +42,29 @@ std::vector<float> readTimes(const ModelRef& ref, int accessor, const std::strin
   return times;
 }
 
+// outputComponents: the output accessor's element size (1 for morph weights,
+// whose count per key only the channel's node tells).
 AnimationSampler readSampler(const ModelRef& ref, const tinygltf::AnimationSampler& source,
-                             const std::string& who) {
+                             const std::string& who, int& outputComponents) {
   AnimationSampler sampler;
   sampler.interpolation = interpolationOf(ref, source.interpolation, who);
   ref.charge(who + " decoded",
              decodedAccessorBytes(ref, source.input) + decodedAccessorBytes(ref, source.output));
   sampler.times = readTimes(ref, source.input, who);
   const AccessorView output = viewAccessor(ref, source.output, who + " output");
-  // Translation and scale are VEC3, rotations VEC4 (float or normalized
-  // integers, which decodeFloats maps to [-1, 1]); morph weights, SCALAR, are
-  // not read (see AnimatedProperty), so their samplers keep no values.
-  if (output.components != 3 && output.components != 4) return sampler;
-  sampler.components = output.components;
+  outputComponents = output.components;
+  // Translation and scale are VEC3, rotations VEC4, morph weights SCALAR
+  // (float or normalized integers, which decodeFloats maps to [0, 1] or
+  // [-1, 1]); no channel takes another type, so such samplers keep no values.
+  if (output.components != 1 && output.components != 3 && output.components != 4) return sampler;
   const std::uint64_t perKey = sampler.interpolation == Interpolation::CubicSpline ? 3 : 1;
+  if (output.components == 1) {
+    // The weights per key: checked against the node a channel drives.
+    sampler.components = 0;
+    sampler.values = decodeFloats(ref, output);
+    return sampler;
+  }
+  sampler.components = output.components;
   if (output.count != sampler.times.size() * perKey) {
     throw ref.fail("accessor " + std::to_string(source.output) + " (" + who + " output) has " +
                    std::to_string(output.count) + " elements for " +
@@ -65,19 +75,44 @@ AnimationSampler readSampler(const ModelRef& ref, const tinygltf::AnimationSampl
   return sampler;
 }
 
+// A weights channel's sampler must have SCALAR output with one value per
+// morph target of the node's mesh per key (glTF 2.0 §3.11); it then holds
+// that many components.
+void checkWeightsChannel(const ModelRef& ref, const std::string& who, int fileNode,
+                         const Node& node, int outputComponents, AnimationSampler& sampler) {
+  const std::uint64_t targets = node.weights.size();
+  if (targets == 0) {
+    throw ref.fail(who + " drives the weights of node " + std::to_string(fileNode) +
+                   ", whose mesh has no morph targets");
+  }
+  if (outputComponents != 1) {
+    throw ref.fail(who + " drives weights with a sampler whose output is not SCALAR");
+  }
+  const std::uint64_t perKey = sampler.interpolation == Interpolation::CubicSpline ? 3 : 1;
+  const std::uint64_t needed = sampler.times.size() * perKey * targets;
+  if (sampler.values.size() != needed) {
+    throw ref.fail(who + " drives " + std::to_string(targets) + " morph weights of node " +
+                   std::to_string(fileNode) + " but its sampler output has " +
+                   std::to_string(sampler.values.size()) + " elements for " +
+                   std::to_string(sampler.times.size()) + " keys (needs " + std::to_string(needed) +
+                   ")");
+  }
+  sampler.components = int(targets);
+}
+
 }  // namespace
 
 void readAnimations(const ModelRef& ref, const std::vector<int>& sceneNodeOf, Scene& scene,
                     std::vector<std::string>& notes) {
   const auto& animations = ref.model.animations;
-  bool notedWeights = false;
   for (std::size_t a = 0; a < animations.size(); ++a) {
     const tinygltf::Animation& source = animations[a];
     Animation animation;
     animation.name = source.name;
+    std::vector<int> outputComponents(source.samplers.size(), 0);
     for (std::size_t s = 0; s < source.samplers.size(); ++s) {
       animation.samplers.push_back(
-          readSampler(ref, source.samplers[s], samplerName(int(a), int(s))));
+          readSampler(ref, source.samplers[s], samplerName(int(a), int(s)), outputComponents[s]));
     }
     for (std::size_t c = 0; c < source.channels.size(); ++c) {
       const tinygltf::AnimationChannel& channel = source.channels[c];
@@ -85,14 +120,6 @@ void readAnimations(const ModelRef& ref, const std::vector<int>& sceneNodeOf, Sc
       if (channel.sampler < 0 || std::size_t(channel.sampler) >= animation.samplers.size()) {
         throw ref.fail(who + " refers to sampler " + std::to_string(channel.sampler) +
                        ", which does not exist");
-      }
-      if (channel.target_path == "weights") {
-        // Morph targets would plug in here: a weights channel driving the
-        // instance's weight vector, blended in the vertex stage.
-        if (!notedWeights)
-          notes.push_back(ref.note("morph target weight animation ignored (not supported)"));
-        notedWeights = true;
-        continue;
       }
       AnimationChannel kept;
       kept.sampler = channel.sampler;
@@ -102,6 +129,8 @@ void readAnimations(const ModelRef& ref, const std::vector<int>& sceneNodeOf, Sc
         kept.property = AnimatedProperty::Rotation;
       } else if (channel.target_path == "scale") {
         kept.property = AnimatedProperty::Scale;
+      } else if (channel.target_path == "weights") {
+        kept.property = AnimatedProperty::Weights;
       } else {
         notes.push_back(ref.note(who + " path '" + channel.target_path + "' ignored"));
         continue;
@@ -113,6 +142,13 @@ void readAnimations(const ModelRef& ref, const std::vector<int>& sceneNodeOf, Sc
       }
       kept.node = sceneNodeOf[std::size_t(channel.target_node)];
       if (kept.node < 0) continue;  // not in the scene drawn
+      if (kept.property == AnimatedProperty::Weights) {
+        checkWeightsChannel(ref, who, channel.target_node, scene.nodes[std::size_t(kept.node)],
+                            outputComponents[std::size_t(kept.sampler)],
+                            animation.samplers[std::size_t(kept.sampler)]);
+        animation.channels.push_back(kept);
+        continue;
+      }
       const int wanted = kept.property == AnimatedProperty::Rotation ? 4 : 3;
       if (animation.samplers[std::size_t(kept.sampler)].components != wanted ||
           animation.samplers[std::size_t(kept.sampler)].values.empty()) {

@@ -45,7 +45,7 @@ struct ModelRef {
 struct AccessorView {
   int index = -1;
   int componentType = 0;  // a glTF componentType code (5120..5126)
-  int components = 0;     // 1 for SCALAR .. 4 for VEC4 (matrices are rejected)
+  int components = 0;     // 1 for SCALAR .. 4 for VEC4, 16 for MAT4 (MAT2, MAT3 are rejected)
   bool normalized = false;
   std::uint64_t count = 0;
   const std::uint8_t* data = nullptr;  // null: no bufferView, the base values are zeros

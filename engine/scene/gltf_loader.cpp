@@ -1,14 +1,17 @@
 // loadGltf: reads the file, validates a GLB container before tinygltf sees it,
 // lets tinygltf parse the JSON (and fetch buffers and images, only inside the
 // sandbox of core/file_sandbox.h), then walks the chosen scene's node tree
-// into instances and cameras. Primitives, accessors and materials are
+// into instances and cameras, with the skins and morph weights they use.
+// Primitives, accessors and materials are
 // converted by the other gltf_*.cpp files; every reference and range is
 // checked there, because tinygltf has had overflows in both.
 #include "scene/gltf_loader.h"
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <new>
@@ -21,6 +24,7 @@
 #include "core/file_bytes.h"
 #include "core/file_sandbox.h"
 #include "core/parallel.h"
+#include "scene/animation.h"
 #include "scene/gltf_internal.h"
 
 namespace quadra {
@@ -422,6 +426,89 @@ void decodePrimitives(const ModelRef& ref, std::vector<PrimitiveJob>& jobs) {
   });
 }
 
+// ---- skins and morph weights ---------------------------------------------------
+
+// Skin `index` with its joints mapped to Scene::nodes (each must be in the
+// scene drawn) and its inverse bind matrices (MAT4 floats, at least one per
+// joint; the identity when the skin gives none).
+Skin readSkin(const ModelRef& ref, int index, const std::vector<int>& sceneNodeOf) {
+  const tinygltf::Skin& source = ref.model.skins[std::size_t(index)];
+  const std::string what = "skin " + std::to_string(index);
+  if (source.joints.empty()) throw ref.fail(what + " has no joints");
+  Skin skin;
+  for (std::size_t k = 0; k < source.joints.size(); ++k) {
+    const int node = source.joints[k];
+    const std::string joint =
+        what + " joint " + std::to_string(k) + " is node " + std::to_string(node);
+    if (node < 0 || std::size_t(node) >= sceneNodeOf.size())
+      throw ref.fail(joint + ", which does not exist");
+    if (sceneNodeOf[std::size_t(node)] < 0)
+      throw ref.fail(joint + ", which is not in the scene drawn");
+    skin.joints.push_back(sceneNodeOf[std::size_t(node)]);
+  }
+  if (source.inverseBindMatrices == -1) {
+    skin.inverseBindMatrices.assign(skin.joints.size(), glm::mat4(1.0f));
+    return skin;
+  }
+  const gltf::AccessorView view =
+      gltf::viewAccessor(ref, source.inverseBindMatrices, what + " inverseBindMatrices");
+  const std::string accessor = "accessor " + std::to_string(source.inverseBindMatrices) + " (" +
+                               what + " inverseBindMatrices)";
+  if (view.components != 16 || view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    throw ref.fail(accessor + " must be MAT4 of FLOAT");
+  if (view.count < skin.joints.size()) {
+    throw ref.fail(accessor + " has " + std::to_string(view.count) + " matrices for " +
+                   std::to_string(skin.joints.size()) + " joints");
+  }
+  const std::vector<float> values = gltf::decodeFloats(ref, view);
+  skin.inverseBindMatrices.resize(skin.joints.size());
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    // glTF and glm both store columns first.
+    std::memcpy(glm::value_ptr(skin.inverseBindMatrices[j]), &values[j * 16], sizeof(glm::mat4));
+  }
+  return skin;
+}
+
+// The rest morph weights of node `index` drawing glTF mesh `meshIndex`: one
+// per morph target, which every primitive of the mesh must have the same
+// number of (glTF 2.0 §3.7.2.2); the node's weights, else the mesh's, else zeros.
+std::vector<float> restWeights(const ModelRef& ref, int index, int meshIndex) {
+  const tinygltf::Node& node = ref.model.nodes[std::size_t(index)];
+  const tinygltf::Mesh& mesh = ref.model.meshes[std::size_t(meshIndex)];
+  const std::string what = "mesh " + std::to_string(meshIndex);
+  const std::size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+  for (std::size_t p = 1; p < mesh.primitives.size(); ++p) {
+    if (mesh.primitives[p].targets.size() != targets) {
+      throw ref.fail(what + " primitive " + std::to_string(p) + " has " +
+                     std::to_string(mesh.primitives[p].targets.size()) +
+                     " morph targets but primitive 0 has " + std::to_string(targets));
+    }
+  }
+  const auto check = [&](const std::vector<double>& weights, const std::string& who) {
+    if (!weights.empty() && weights.size() != targets) {
+      throw ref.fail(who + " has " + std::to_string(weights.size()) + " morph weights but " + what +
+                     " has " + std::to_string(targets) + " morph targets");
+    }
+  };
+  check(node.weights, "node " + std::to_string(index));
+  check(mesh.weights, what);
+  const std::vector<double>& given = !node.weights.empty() ? node.weights : mesh.weights;
+  std::vector<float> weights(targets, 0.0f);
+  for (std::size_t t = 0; t < given.size(); ++t) weights[t] = float(given[t]);
+  return weights;
+}
+
+// The largest JOINTS_n value of a mesh, -1 when it has no influences.
+int largestJoint(const Mesh& mesh) {
+  int largest = -1;
+  for (const auto& set : mesh.joints) {
+    for (const glm::u16vec4& joints : set) {
+      for (int k = 0; k < 4; ++k) largest = std::max(largest, int(joints[k]));
+    }
+  }
+  return largest;
+}
+
 class SceneBuilder {
  public:
   SceneBuilder(const ModelRef& ref, gltf::MaterialTable& materials, Scene& scene)
@@ -433,8 +520,18 @@ class SceneBuilder {
     Node kept = placed.local;
     kept.parent = placed.parent;
     kept.fileIndex = placed.node;
-    scene_.nodes.push_back(kept);
     const tinygltf::Node& node = ref_.model.nodes[std::size_t(placed.node)];
+    const std::string what = "node " + std::to_string(placed.node);
+    if (node.skin < -1 || node.skin >= int(ref_.model.skins.size())) {
+      throw ref_.fail(what + " refers to skin " + std::to_string(node.skin) +
+                      ", which does not exist");
+    }
+    if (node.mesh >= 0 && std::size_t(node.mesh) < ref_.model.meshes.size()) {
+      kept.weights = restWeights(ref_, placed.node, node.mesh);
+    } else if (!node.weights.empty()) {
+      throw ref_.fail(what + " has morph weights but no mesh");
+    }
+    scene_.nodes.push_back(kept);
     if (node.camera != -1)
       scene_.cameras.push_back(makeCamera(ref_, node.camera, placed.world, sceneNode));
     if (node.mesh == -1) return;
@@ -444,12 +541,14 @@ class SceneBuilder {
     }
     const std::size_t primitiveCount = ref_.model.meshes[std::size_t(node.mesh)].primitives.size();
     for (std::size_t p = 0; p < primitiveCount; ++p) {
-      placements_.push_back({jobFor(node.mesh, int(p)), placed.world, sceneNode});
+      placements_.push_back({jobFor(node.mesh, int(p)), placed.world, sceneNode, node.skin});
     }
   }
 
-  // Decodes every primitive some node draws, then places the drawn ones.
-  void finish(std::vector<std::string>& notes) {
+  // Decodes every primitive some node draws, then places the drawn ones,
+  // reading the skins they use (sceneNodeOf: glTF node → Scene::nodes, -1
+  // outside the scene drawn).
+  void finish(const std::vector<int>& sceneNodeOf, std::vector<std::string>& notes) {
     for (const PrimitiveJob& job : jobs_) chargeDecode(job);
     decodePrimitives(ref_, jobs_);
     std::vector<int> sceneMesh(jobs_.size(), -1);
@@ -462,10 +561,19 @@ class SceneBuilder {
       sceneMesh[i] = int(scene_.meshes.size());
       scene_.meshes.push_back(std::move(job.result));
     }
+    std::map<int, int> skinOf;  // glTF skin → Scene::skins
     for (const Placement& placement : placements_) {
-      if (sceneMesh[std::size_t(placement.job)] >= 0)
-        scene_.instances.push_back(
-            {sceneMesh[std::size_t(placement.job)], placement.world, placement.node});
+      const int mesh = sceneMesh[std::size_t(placement.job)];
+      if (mesh < 0) continue;
+      Instance instance{mesh, placement.world, placement.node};
+      if (placement.fileSkin >= 0) {
+        auto [known, added] = skinOf.try_emplace(placement.fileSkin, int(scene_.skins.size()));
+        if (added) scene_.skins.push_back(readSkin(ref_, placement.fileSkin, sceneNodeOf));
+        instance.skin = known->second;
+        checkInfluences(placement, scene_.meshes[std::size_t(mesh)],
+                        scene_.skins[std::size_t(instance.skin)]);
+      }
+      scene_.instances.push_back(std::move(instance));
     }
   }
 
@@ -479,6 +587,10 @@ class SceneBuilder {
     std::uint64_t bytes = 0;
     for (const auto& attribute : source.attributes)
       bytes += gltf::decodedAccessorBytes(ref_, attribute.second);
+    // Morph targets are expanded to one delta a vertex, sparse or not.
+    for (const auto& target : source.targets)
+      for (const auto& attribute : target)
+        bytes += gltf::decodedAccessorBytes(ref_, attribute.second);
     const auto position = source.attributes.find("POSITION");
     const std::uint64_t indices =
         source.indices != -1 ? gltf::decodedAccessorBytes(ref_, source.indices)
@@ -507,16 +619,33 @@ class SceneBuilder {
     return int(jobs_.size()) - 1;
   }
 
+  struct Placement {
+    int job;
+    glm::mat4 world;
+    int node;      // scene node
+    int fileSkin;  // the node's glTF skin, -1 for none
+  };
+
+  // A skinned primitive needs influences, each naming one of the skin's joints.
+  void checkInfluences(const Placement& placement, const Mesh& mesh, const Skin& skin) const {
+    const PrimitiveJob& job = jobs_[std::size_t(placement.job)];
+    const std::string where =
+        "node " + std::to_string(scene_.nodes[std::size_t(placement.node)].fileIndex) + " (skin " +
+        std::to_string(placement.fileSkin) + ") draws mesh " + std::to_string(job.mesh) +
+        " primitive " + std::to_string(job.primitive);
+    if (mesh.joints[0].empty()) throw ref_.fail(where + ", which has no JOINTS_0 and WEIGHTS_0");
+    const int largest = largestJoint(mesh);
+    if (std::size_t(largest) >= skin.joints.size()) {
+      throw ref_.fail(where + ", whose vertices use joint " + std::to_string(largest) +
+                      " of a skin with " + std::to_string(skin.joints.size()) + " joints");
+    }
+  }
+
   const ModelRef& ref_;
   gltf::MaterialTable& materials_;
   Scene& scene_;
   std::vector<PrimitiveJob> jobs_;
   std::map<std::pair<int, int>, int> jobOf_;
-  struct Placement {
-    int job;
-    glm::mat4 world;
-    int node;  // scene node
-  };
   std::vector<Placement> placements_;
 };
 
@@ -532,6 +661,19 @@ void chargeParsed(const ModelRef& ref, const gltf::ImageStash& stash) {
     ref.charge("image " + std::to_string(image) + " (encoded)", bytes.size());
 }
 
+// Skinned and morphed instances at the rest pose: joint matrices from the
+// joints' loaded transforms, the nodes' rest weights. The other instances
+// keep the placement the node walk gave them.
+void poseDeformedInstances(Scene& scene) {
+  const bool deformed =
+      !scene.skins.empty() || std::any_of(scene.nodes.begin(), scene.nodes.end(),
+                                          [](const Node& node) { return !node.weights.empty(); });
+  if (!deformed) return;
+  NodePose pose;
+  poseNodes(scene, -1, 0.0, pose);
+  placeOnNodes(scene, pose);
+}
+
 Scene convertModel(const std::string& path, const tinygltf::Model& model,
                    const gltf::ImageStash& stash, const LoadOptions& options, MemoryBudget& budget,
                    std::vector<std::string>& notes) {
@@ -544,10 +686,11 @@ Scene convertModel(const std::string& path, const tinygltf::Model& model,
   SceneBuilder builder(ref, materials, scene);
   const std::vector<PlacedNode> placed = walkNodes(ref, sceneRoots(ref, options, notes));
   for (const PlacedNode& node : placed) builder.addNode(node);
-  builder.finish(notes);
   std::vector<int> sceneNodeOf(model.nodes.size(), -1);
   for (std::size_t i = 0; i < placed.size(); ++i) sceneNodeOf[std::size_t(placed[i].node)] = int(i);
+  builder.finish(sceneNodeOf, notes);
   gltf::readAnimations(ref, sceneNodeOf, scene, notes);
+  poseDeformedInstances(scene);
   materials.finish(scene);
   return scene;
 }

@@ -1,6 +1,7 @@
 // One glTF mesh primitive → one Mesh: attributes decoded through the checked
 // accessor reader, indices validated against the vertex count, and strips and
-// fans expanded to triangle lists with the winding glTF 2.0 §3.7.2.1 defines.
+// fans expanded to triangle lists with the winding glTF 2.0 §3.7.2.1 defines;
+// skin influences (JOINTS_n, WEIGHTS_n) and morph targets read and checked.
 #include <tiny_gltf.h>
 
 #include <cstring>
@@ -36,7 +37,7 @@ const char* modeName(int mode) {
 
 const char* typeName(int components) {
   static const char* const names[] = {"?", "SCALAR", "VEC2", "VEC3", "VEC4"};
-  return names[components];
+  return components == 16 ? "MAT4" : names[components];
 }
 
 // glm vectors are tightly packed floats, so the decoded array is their storage.
@@ -184,6 +185,100 @@ void readVertexAttributes(const PrimitiveReader& reader, const PrimitiveNeeds& n
   }
 }
 
+// JOINTS_n and WEIGHTS_n for n = 0, 1 (glTF 2.0 §3.7.3.2: VEC4; joints
+// unsigned byte or short, weights float or normalized unsigned byte or
+// short). A set comes whole, set 1 only after set 0.
+void readSkinAttributes(const PrimitiveReader& reader, std::uint64_t vertexCount, Mesh& out) {
+  const ModelRef& ref = reader.ref;
+  for (int set = 0; set < 2; ++set) {
+    const std::string jointsName = "JOINTS_" + std::to_string(set);
+    const std::string weightsName = "WEIGHTS_" + std::to_string(set);
+    const auto joints = reader.attribute(jointsName.c_str());
+    const auto weights = reader.attribute(weightsName.c_str());
+    if (!joints && !weights) continue;
+    if (!joints || !weights) {
+      throw ref.fail(reader.where + ": " + (joints ? jointsName : weightsName) + " without " +
+                     (joints ? weightsName : jointsName));
+    }
+    if (set == 1 && out.joints[0].empty())
+      throw ref.fail(reader.where + ": JOINTS_1 without JOINTS_0");
+    const AccessorView jointsView = viewAccessor(ref, *joints, reader.where + " " + jointsName);
+    if (jointsView.normalized ||
+        (jointsView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+         jointsView.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
+      throw ref.fail(reader.where + ": " + jointsName +
+                     " must be UNSIGNED_BYTE or UNSIGNED_SHORT (not normalized)");
+    }
+    const AccessorView weightsView = viewAccessor(ref, *weights, reader.where + " " + weightsName);
+    if (weightsView.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT &&
+        !(weightsView.normalized &&
+          (weightsView.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+           weightsView.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT))) {
+      throw ref.fail(reader.where + ": " + weightsName +
+                     " must be FLOAT or normalized UNSIGNED_BYTE or UNSIGNED_SHORT");
+    }
+    // Unsigned byte and short are exact in float.
+    const std::vector<float> jointValues =
+        reader.read(jointsName.c_str(), *joints, 4, 4, vertexCount);
+    out.joints[set].resize(vertexCount);
+    for (std::uint64_t i = 0; i < vertexCount; ++i) {
+      for (int k = 0; k < 4; ++k)
+        out.joints[set][i][k] = std::uint16_t(jointValues[i * 4 + std::uint64_t(k)]);
+    }
+    out.weights[set] =
+        toVectors<glm::vec4>(reader.read(weightsName.c_str(), *weights, 4, 4, vertexCount));
+  }
+}
+
+// glTF 2.0 §3.7.2.2: each target's deltas for the attributes the mesh keeps
+// (POSITION, NORMAL, the TEXCOORD_n its material reads, COLOR_0), each of
+// the vertex count. A target may not move an attribute the primitive lacks.
+// TANGENT and other sets are not drawn, so their deltas are not read.
+void readMorphTargets(const PrimitiveReader& reader, const PrimitiveNeeds& needs,
+                      std::uint64_t vertexCount, Mesh& out) {
+  const ModelRef& ref = reader.ref;
+  const auto& targets = reader.primitive.targets;
+  out.targets.resize(targets.size());
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    MorphTarget& target = out.targets[t];
+    const std::string prefix = "target " + std::to_string(t) + " ";
+    for (const auto& [name, accessor] : targets[t]) {
+      const std::string what = prefix + name;
+      const auto deltas = [&](int components) {
+        return reader.read(what.c_str(), accessor, components, components, vertexCount);
+      };
+      const auto needBase = [&](bool present) {
+        if (!present)
+          throw ref.fail(reader.where + ": " + what + " moves an attribute the primitive lacks");
+      };
+      if (name == "POSITION") {
+        target.positions = toVectors<glm::vec3>(deltas(3));
+      } else if (name == "NORMAL") {
+        needBase(!out.normals.empty());
+        target.normals = toVectors<glm::vec3>(deltas(3));
+      } else if (name == "COLOR_0") {
+        needBase(!out.colors.empty());
+        int components = 0;
+        const std::vector<float> flat =
+            reader.read(what.c_str(), accessor, 3, 4, vertexCount, &components);
+        if (components == 3) {
+          target.colors.resize(vertexCount);
+          for (std::uint64_t i = 0; i < vertexCount; ++i)
+            target.colors[i] = glm::vec4(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2], 0.0f);
+        } else {
+          target.colors = toVectors<glm::vec4>(flat);
+        }
+      } else if (needs.texcoordSet >= 0 &&
+                 name == "TEXCOORD_" + std::to_string(needs.texcoordSet)) {
+        target.texcoords[needs.texcoordSet] = toVectors<glm::vec2>(deltas(2));
+      } else {
+        // Checked like any attribute, even where not drawn.
+        viewAccessor(ref, accessor, reader.where + " " + what);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 bool buildMesh(const ModelRef& ref, int meshIndex, int primitiveIndex, const PrimitiveNeeds& needs,
@@ -223,6 +318,8 @@ bool buildMesh(const ModelRef& ref, int meshIndex, int primitiveIndex, const Pri
     return false;
   }
   readVertexAttributes(reader, needs, vertexCount, out, notes);
+  readSkinAttributes(reader, vertexCount, out);
+  readMorphTargets(reader, needs, vertexCount, out);
   return true;
 }
 

@@ -1,9 +1,11 @@
-// Scene members: triangle counts and world-space bounds; re-storing textures;
-// the texture transform's matrix; the camera transform of a node.
+// Scene members: triangle counts and world-space bounds (of the posed vertices); re-storing
+// textures; the texture transform's matrix; the camera transform of a node.
 #include "scene/scene.h"
 
 #include <cmath>
 #include <limits>
+
+#include "scene/deformation.h"
 
 namespace quadra {
 
@@ -59,7 +61,11 @@ void Scene::bounds(glm::vec3& lo, glm::vec3& hi) const {
   lo = glm::vec3(std::numeric_limits<float>::infinity());
   hi = -lo;
   for (const Instance& instance : instances) {
-    for (const glm::vec3& p : meshes[std::size_t(instance.mesh)].positions) {
+    const Mesh& mesh = meshes[std::size_t(instance.mesh)];
+    const VertexDeformer deformer(mesh, instance);
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      const glm::vec3 p =
+          deformer.active() ? deformer.position(i, deformer.skinMatrix(i)) : mesh.positions[i];
       const glm::vec3 world = glm::vec3(instance.world * glm::vec4(p, 1.0f));
       // Vertices with NaN or Inf are dropped by the renderer, so they bound nothing.
       if (!std::isfinite(world.x) || !std::isfinite(world.y) || !std::isfinite(world.z)) continue;

@@ -15,6 +15,7 @@
 
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 #include "texture/texel_format.h"
 #include "texture/texture.h"
@@ -51,6 +52,16 @@ struct Material {
   int fileIndex = -1;  // the material's index in the glTF file; -1: built in
 };
 
+// A morph target's per-vertex deltas (glTF 2.0 §3.7.2.2). Each array is
+// empty when the target does not move that attribute, else has one entry per
+// vertex of its mesh (sparse accessors are expanded at load).
+struct MorphTarget {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> texcoords[2];
+  std::vector<glm::vec4> colors;  // COLOR_0 deltas (vec3 inputs get alpha delta 0)
+};
+
 // One glTF primitive, as a triangle list. Attribute arrays are empty when the
 // primitive does not have them; otherwise they have positions.size() entries.
 struct Mesh {
@@ -60,13 +71,33 @@ struct Mesh {
   std::vector<glm::vec4> colors;        // COLOR_0 (vec3 inputs get alpha 1)
   std::vector<std::uint32_t> indices;   // 3 per triangle, all < positions.size()
   int material = -1;                    // -1: the glTF default material
+  // JOINTS_0/1 and WEIGHTS_0/1: up to 8 skin influences per vertex (indices
+  // into the skin's joints, weights as decoded). Set 1 only with set 0.
+  std::vector<glm::u16vec4> joints[2];
+  std::vector<glm::vec4> weights[2];
+  std::vector<MorphTarget> targets;
+};
+
+// glTF 2.0 §3.7.3: the nodes whose world transforms move a skinned mesh's
+// vertices, and each one's inverse bind matrix (the identity by default).
+struct Skin {
+  std::vector<int> joints;  // Scene::nodes indices
+  std::vector<glm::mat4> inverseBindMatrices;
 };
 
 // A mesh placed in the world: one node's instance of one primitive.
+// A skinned instance (skin >= 0) is placed by its joints: its world is the
+// identity and jointMatrices[j] = world of joint j * its inverse bind
+// matrix, set with the node transforms (scene/animation.h placeOnNodes).
+// morphWeights (one per mesh target) are its node's current weights; both
+// stay empty for instances nothing deforms (scene/deformation.h).
 struct Instance {
   int mesh = 0;
   glm::mat4 world{1.0f};
   int node = -1;  // the Scene::nodes entry it hangs from; -1: placed once (built-in scenes)
+  int skin = -1;  // index into Scene::skins
+  std::vector<glm::mat4> jointMatrices{};
+  std::vector<float> morphWeights{};
 };
 
 // A node of the glTF tree the scene was placed from. Scene::nodes lists them
@@ -82,12 +113,15 @@ struct Node {
   glm::vec3 translation{0.0f};
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z; normalized
   glm::vec3 scale{1.0f};
+  // Rest morph weights of the node's mesh (the node's, else the mesh's, else
+  // zeros); empty when its mesh has no morph targets.
+  std::vector<float> weights;
 };
 
 // glTF 2.0 §3.11 animation samplers: `times` are seconds, non-decreasing;
 // each key has `components` floats (3 for translation and scale, 4 for a
-// rotation quaternion x, y, z, w), and CUBICSPLINE keys three such groups:
-// in-tangent, value, out-tangent.
+// rotation quaternion x, y, z, w, one per morph target for weights), and
+// CUBICSPLINE keys three such groups: in-tangent, value, out-tangent.
 enum class Interpolation : std::uint8_t { Step, Linear, CubicSpline };
 struct AnimationSampler {
   Interpolation interpolation = Interpolation::Linear;
@@ -96,11 +130,9 @@ struct AnimationSampler {
   std::vector<float> values;
 };
 
-// Node properties a channel can drive. Morph target weights (glTF path
-// "weights") would be a fourth, driving a per-instance weight vector that the
-// vertex stage blends; skins would add joint nodes whose world transforms the
-// vertex stage reads. Neither is modelled yet: the loader notes and skips them.
-enum class AnimatedProperty : std::uint8_t { Translation, Rotation, Scale };
+// Node properties a channel can drive. Weights (glTF path "weights") drive
+// the node's morph weights, which its instances' vertices blend.
+enum class AnimatedProperty : std::uint8_t { Translation, Rotation, Scale, Weights };
 struct AnimationChannel {
   int sampler = 0;  // index into Animation::samplers
   int node = 0;     // index into Scene::nodes
@@ -133,10 +165,12 @@ struct Scene {
   std::vector<Instance> instances;
   std::vector<Camera> cameras;
   std::vector<Node> nodes;  // empty for scenes not loaded from a node tree
+  std::vector<Skin> skins;
   std::vector<Animation> animations;
 
   std::size_t triangleCount() const;  // over instances
-  // World-space bounds of all instances; min > max when the scene is empty.
+  // World-space bounds of all instances, skinned and morphed ones as posed;
+  // min > max when the scene is empty.
   void bounds(glm::vec3& lo, glm::vec3& hi) const;
 };
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include <glm/glm.hpp>
 
@@ -38,6 +39,11 @@ struct DrawGeometry {
   bool cullBackFaces = true;
   bool frontIsClockwise = false;  // the world matrix mirrors (negative determinant)
   AttributeLayout attributes;
+  // The instance's morph weights and joint matrices (scene/deformation.h),
+  // owned by the scene; both empty for a draw nothing deforms, which reads
+  // its mesh as stored.
+  std::span<const float> morphWeights;
+  std::span<const glm::mat4> jointMatrices;
 };
 
 enum class BlendMode : std::uint8_t { Replace, Over, Add };

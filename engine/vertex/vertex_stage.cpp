@@ -1,6 +1,8 @@
 // Vertex stage: batched model-view-projection with GLM, in parallel over
 // fixed-size vertex ranges (each vertex is independent, so any split gives the
-// same bits).
+// same bits). Skinned and morphed draws deform each vertex first
+// (scene/deformation.h), in a separate instantiation of the loop so the
+// others pay nothing for it.
 #include "vertex/vertex_stage.h"
 
 #include <algorithm>
@@ -9,6 +11,7 @@
 
 #include "core/large_buffer.h"
 #include "core/parallel.h"
+#include "scene/deformation.h"
 
 namespace quadra {
 
@@ -45,34 +48,60 @@ std::uint8_t outcodeOf(const float* v, int floats, double guardX, double guardY)
   return code;
 }
 
-// Clip-space position, attributes and outcode of vertices [first, last).
-void transformBlock(const DrawGeometry& g, const glm::mat4& modelViewProjection,
-                    const glm::mat3& normalMatrix, const std::vector<glm::vec2>& texcoords,
-                    double guardX, double guardY, std::size_t first, std::size_t last,
-                    TransformedVertices& out) {
+// Clip-space position, attributes and outcode of vertices [first, last),
+// deformed by `deformer` when kDeformed.
+template <bool kDeformed>
+void transformBlock(const DrawGeometry& g, const VertexDeformer& deformer,
+                    const glm::mat4& modelViewProjection, const glm::mat3& normalMatrix,
+                    const std::vector<glm::vec2>& texcoords, double guardX, double guardY,
+                    std::size_t first, std::size_t last, TransformedVertices& out) {
   const Mesh& mesh = *g.mesh;
   const AttributeLayout& a = g.attributes;
   for (std::size_t i = first; i < last; ++i) {
     float* v = &out.data[i * std::size_t(out.stride)];
-    const glm::vec4 clip = modelViewProjection * glm::vec4(mesh.positions[i], 1.0f);
+    glm::mat4 skin(1.0f);
+    glm::vec3 position;
+    if constexpr (kDeformed) {
+      skin = deformer.skinMatrix(i);
+      position = deformer.position(i, skin);
+    } else {
+      position = mesh.positions[i];
+    }
+    const glm::vec4 clip = modelViewProjection * glm::vec4(position, 1.0f);
     v[0] = clip.x;
     v[1] = clip.y;
     v[2] = clip.z;
     v[3] = clip.w;
     float* attr = v + 4;
     if (a.texcoord >= 0) {
-      glm::vec2 uv = texcoords.empty() ? glm::vec2(0.0f) : texcoords[i];
+      glm::vec2 uv;
+      if constexpr (kDeformed) {
+        uv = deformer.texcoord(i, g.texcoordSet);
+      } else {
+        uv = texcoords.empty() ? glm::vec2(0.0f) : texcoords[i];
+      }
       if (g.transformTexcoords) uv = g.texcoordTransform * glm::vec3(uv, 1.0f);
       attr[a.texcoord] = uv.x;
       attr[a.texcoord + 1] = uv.y;
     }
     if (a.color >= 0) {
-      const glm::vec4 c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[i];
+      glm::vec4 c;
+      if constexpr (kDeformed) {
+        c = deformer.color(i);
+      } else {
+        c = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[i];
+      }
       for (int k = 0; k < 4; ++k) attr[a.color + k] = c[k];
     }
     if (a.normal >= 0) {
-      const glm::vec3 n =
-          mesh.normals.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : normalMatrix * mesh.normals[i];
+      glm::vec3 n(0.0f, 0.0f, 1.0f);
+      if (!mesh.normals.empty()) {
+        if constexpr (kDeformed) {
+          n = normalMatrix * deformer.normal(i, skin);
+        } else {
+          n = normalMatrix * mesh.normals[i];
+        }
+      }
       for (int k = 0; k < 3; ++k) attr[a.normal + k] = n[k];
     }
     out.outcode[i] = outcodeOf(v, out.stride, guardX, guardY);
@@ -106,12 +135,18 @@ void transformRange(const DrawGeometry& g, const Viewport& viewport, std::size_t
   // Normals go to view space with the inverse transpose (non-uniform scale).
   const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(g.modelView)));
   const auto& texcoords = g.mesh->texcoords[g.texcoordSet];
+  const VertexDeformer deformer(*g.mesh, g.morphWeights, g.jointMatrices);
   // Blocks small enough to stay in L1 between the two passes.
   constexpr std::size_t kBlock = 256;
   for (std::size_t first = begin; first < end; first += kBlock) {
     const std::size_t last = std::min(end, first + kBlock);
-    transformBlock(g, modelViewProjection, normalMatrix, texcoords, guardX, guardY, first, last,
-                   out);
+    if (deformer.active()) {
+      transformBlock<true>(g, deformer, modelViewProjection, normalMatrix, texcoords, guardX,
+                           guardY, first, last, out);
+    } else {
+      transformBlock<false>(g, deformer, modelViewProjection, normalMatrix, texcoords, guardX,
+                            guardY, first, last, out);
+    }
     projectBlock(viewport, first, last, out);
   }
 }

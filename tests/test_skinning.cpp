@@ -1,0 +1,493 @@
+// Skins and morph targets (scene/deformation.h, the vertex stage, posing in
+// scene/animation.h) against an independent evaluation: the shared skinned
+// and morphed models' accessors read here straight from tinygltf's buffers
+// (sparse and normalized elements decoded here too), their animations
+// sampled, the node tree composed from the file's TRS, and each vertex
+// morphed and skinned by glTF 2.0 §3.7.2.2 and §3.7.3 — all in double
+// precision, none of it through the engine's posing. The engine's side is
+// what the renderer's vertex stage outputs for the posed instance. Also: the
+// loader's one-line errors for bad skin and morph data.
+#include <gtest/gtest.h>
+
+#include <tiny_gltf.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "scene/animation.h"
+#include "scene/gltf_loader.h"
+#include "vertex/vertex_stage.h"
+
+namespace quadra {
+namespace {
+
+namespace fs = std::filesystem;
+
+using DVec = std::vector<double>;
+using DMat = std::array<double, 16>;  // column-major, as glTF
+
+std::string assetPath(const std::string& model) {
+  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
+}
+
+bool noImages(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+              const unsigned char*, int, void*) {
+  return true;  // the reference reads geometry and animation data only
+}
+
+tinygltf::Model parseReference(const std::string& path) {
+  tinygltf::TinyGLTF parser;
+  parser.SetImageLoader(&noImages, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  EXPECT_TRUE(parser.LoadASCIIFromFile(&model, &err, &warn, path)) << err;
+  return model;
+}
+
+// One component of type `type` at `bytes`, as a double (normalized per glTF 2.0 §3.11).
+double component(const unsigned char* bytes, int type, bool normalized) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float f;
+      std::memcpy(&f, bytes, 4);
+      return double(f);
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? bytes[0] / 255.0 : bytes[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t v;
+      std::memcpy(&v, bytes, 2);
+      return normalized ? v / 65535.0 : v;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      std::uint32_t v;
+      std::memcpy(&v, bytes, 4);
+      return double(v);
+    }
+  }
+  ADD_FAILURE() << "component type " << type << " not read by the reference";
+  return 0.0;
+}
+
+// Every element of accessor `index` (dense part, then sparse substitutions).
+std::vector<DVec> readElements(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& accessor = model.accessors.at(std::size_t(index));
+  const int n = tinygltf::GetNumComponentsInType(std::uint32_t(accessor.type));
+  const int size = tinygltf::GetComponentSizeInBytes(std::uint32_t(accessor.componentType));
+  std::vector<DVec> out(accessor.count, DVec(std::size_t(n), 0.0));
+  if (accessor.bufferView >= 0) {
+    const tinygltf::BufferView& view = model.bufferViews.at(std::size_t(accessor.bufferView));
+    const unsigned char* base = model.buffers.at(std::size_t(view.buffer)).data.data() +
+                                view.byteOffset + accessor.byteOffset;
+    const std::size_t stride = view.byteStride ? view.byteStride : std::size_t(size * n);
+    for (std::size_t i = 0; i < accessor.count; ++i)
+      for (int c = 0; c < n; ++c)
+        out[i][std::size_t(c)] = component(base + i * stride + std::size_t(c * size),
+                                           accessor.componentType, accessor.normalized);
+  }
+  if (accessor.sparse.isSparse) {
+    const auto& sparse = accessor.sparse;
+    const auto& indexView = model.bufferViews.at(std::size_t(sparse.indices.bufferView));
+    const auto& valueView = model.bufferViews.at(std::size_t(sparse.values.bufferView));
+    const unsigned char* indices = model.buffers.at(std::size_t(indexView.buffer)).data.data() +
+                                   indexView.byteOffset + sparse.indices.byteOffset;
+    const unsigned char* values = model.buffers.at(std::size_t(valueView.buffer)).data.data() +
+                                  valueView.byteOffset + sparse.values.byteOffset;
+    const int indexSize =
+        tinygltf::GetComponentSizeInBytes(std::uint32_t(sparse.indices.componentType));
+    for (int k = 0; k < sparse.count; ++k) {
+      const auto target =
+          std::size_t(component(indices + k * indexSize, sparse.indices.componentType, false));
+      for (int c = 0; c < n; ++c)
+        out.at(target)[std::size_t(c)] = component(values + std::size_t((k * n + c) * size),
+                                                   accessor.componentType, accessor.normalized);
+    }
+  }
+  return out;
+}
+
+DMat identity() {
+  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+}
+
+DMat multiply(const DMat& a, const DMat& b) {
+  DMat r{};
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row)
+      for (int k = 0; k < 4; ++k)
+        r[std::size_t(col * 4 + row)] += a[std::size_t(k * 4 + row)] * b[std::size_t(col * 4 + k)];
+  return r;
+}
+
+// T * R * S from a translation, an x, y, z, w quaternion and a scale.
+DMat composeTrs(const DVec& t, const DVec& q, const DVec& s) {
+  const double length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  const double x = q[0] / length, y = q[1] / length, z = q[2] / length, w = q[3] / length;
+  const double rotation[9] = {
+      1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+      2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+      2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
+  DMat m = identity();
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row)
+      m[std::size_t(col * 4 + row)] = rotation[col * 3 + row] * s[std::size_t(col)];
+  for (int row = 0; row < 3; ++row) m[std::size_t(12 + row)] = t[std::size_t(row)];
+  return m;
+}
+
+DVec transformPoint(const DMat& m, const DVec& p) {
+  DVec r(3);
+  for (int row = 0; row < 3; ++row)
+    r[std::size_t(row)] = m[std::size_t(row)] * p[0] + m[std::size_t(4 + row)] * p[1] +
+                          m[std::size_t(8 + row)] * p[2] + m[std::size_t(12 + row)];
+  return r;
+}
+
+// Spherical interpolation by the angle's cosine (the engine uses chord
+// lengths), the shorter way round.
+DVec slerp(DVec a, DVec b, double u) {
+  // Exporters round keys off the unit sphere (SimpleSkin's 0.707).
+  for (DVec* q : {&a, &b}) {
+    const double length =
+        std::sqrt((*q)[0] * (*q)[0] + (*q)[1] * (*q)[1] + (*q)[2] * (*q)[2] + (*q)[3] * (*q)[3]);
+    for (double& c : *q) c /= length;
+  }
+  double dot = 0.0;
+  for (int c = 0; c < 4; ++c) dot += a[std::size_t(c)] * b[std::size_t(c)];
+  if (dot < 0.0) {
+    for (double& c : b) c = -c;
+    dot = -dot;
+  }
+  const double theta = std::acos(std::min(1.0, dot));
+  DVec r(4);
+  for (int c = 0; c < 4; ++c) {
+    r[std::size_t(c)] = theta < 1e-12
+                            ? a[std::size_t(c)] + u * (b[std::size_t(c)] - a[std::size_t(c)])
+                            : (std::sin((1 - u) * theta) * a[std::size_t(c)] +
+                               std::sin(u * theta) * b[std::size_t(c)]) /
+                                  std::sin(theta);
+  }
+  return r;
+}
+
+// A sampler's value at t, `n` components per key; LINEAR and STEP (the
+// models checked here use no other interpolation).
+DVec sample(const tinygltf::Model& model, const tinygltf::AnimationSampler& sampler, bool rotation,
+            std::size_t n, double t) {
+  EXPECT_TRUE(sampler.interpolation == "LINEAR" || sampler.interpolation == "STEP")
+      << sampler.interpolation;
+  const std::vector<DVec> times = readElements(model, sampler.input);
+  const std::vector<DVec> flat = readElements(model, sampler.output);
+  DVec values;
+  for (const DVec& e : flat) values.insert(values.end(), e.begin(), e.end());
+  EXPECT_EQ(values.size(), times.size() * n);
+  const auto key = [&](std::size_t k) {
+    return DVec(values.begin() + std::ptrdiff_t(k * n), values.begin() + std::ptrdiff_t(k * n + n));
+  };
+  if (t <= times.front()[0]) return key(0);
+  if (t >= times.back()[0]) return key(times.size() - 1);
+  std::size_t k = 0;
+  while (times[k + 1][0] <= t) ++k;
+  if (sampler.interpolation == "STEP") return key(k);
+  const double u = (t - times[k][0]) / (times[k + 1][0] - times[k][0]);
+  if (rotation) return slerp(key(k), key(k + 1), u);
+  DVec r(n);
+  const DVec a = key(k), b = key(k + 1);
+  for (std::size_t c = 0; c < n; ++c) r[c] = a[c] * (1 - u) + b[c] * u;
+  return r;
+}
+
+// The file's node tree at time t of animation 0: every node's world matrix
+// and morph weights (the node's, else its mesh's, else zeros).
+struct ReferencePose {
+  std::vector<DMat> worlds;
+  std::vector<DVec> weights;
+};
+
+ReferencePose referencePose(const tinygltf::Model& model, double t) {
+  const std::size_t count = model.nodes.size();
+  std::vector<DVec> translation(count, DVec{0, 0, 0}), rotation(count, DVec{0, 0, 0, 1}),
+      scale(count, DVec{1, 1, 1});
+  ReferencePose pose;
+  pose.weights.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const tinygltf::Node& node = model.nodes[i];
+    if (!node.translation.empty()) translation[i] = node.translation;
+    if (!node.rotation.empty()) rotation[i] = node.rotation;
+    if (!node.scale.empty()) scale[i] = node.scale;
+    if (!node.weights.empty()) {
+      pose.weights[i] = node.weights;
+    } else if (node.mesh >= 0) {
+      const tinygltf::Mesh& mesh = model.meshes[std::size_t(node.mesh)];
+      pose.weights[i] =
+          !mesh.weights.empty() ? mesh.weights : DVec(mesh.primitives.at(0).targets.size(), 0.0);
+    }
+  }
+  for (const tinygltf::AnimationChannel& channel : model.animations.at(0).channels) {
+    const auto node = std::size_t(channel.target_node);
+    const auto& sampler = model.animations[0].samplers.at(std::size_t(channel.sampler));
+    const std::string& path = channel.target_path;
+    if (path == "translation") translation[node] = sample(model, sampler, false, 3, t);
+    if (path == "rotation") rotation[node] = sample(model, sampler, true, 4, t);
+    if (path == "scale") scale[node] = sample(model, sampler, false, 3, t);
+    if (path == "weights")
+      pose.weights[node] = sample(model, sampler, false, pose.weights[node].size(), t);
+  }
+  pose.worlds.assign(count, identity());
+  std::vector<int> parent(count, -1);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int child : model.nodes[i].children) parent[std::size_t(child)] = int(i);
+  // Composed by recursion up the parents (no order assumed).
+  std::vector<char> done(count, 0);
+  std::function<void(std::size_t)> compose = [&](std::size_t i) {
+    if (done[i]) return;
+    const tinygltf::Node& node = model.nodes[i];
+    DMat local;
+    if (node.matrix.size() == 16) {
+      std::copy(node.matrix.begin(), node.matrix.end(), local.begin());
+    } else {
+      local = composeTrs(translation[i], rotation[i], scale[i]);
+    }
+    if (parent[i] >= 0) {
+      compose(std::size_t(parent[i]));
+      pose.worlds[i] = multiply(pose.worlds[std::size_t(parent[i])], local);
+    } else {
+      pose.worlds[i] = local;
+    }
+    done[i] = 1;
+  };
+  for (std::size_t i = 0; i < count; ++i) compose(i);
+  return pose;
+}
+
+// World positions of primitive `primitive` of node `node`'s mesh.
+std::vector<DVec> referencePositions(const tinygltf::Model& model, const ReferencePose& pose,
+                                     int node, int primitive) {
+  const tinygltf::Node& source = model.nodes.at(std::size_t(node));
+  const tinygltf::Primitive& p =
+      model.meshes.at(std::size_t(source.mesh)).primitives.at(std::size_t(primitive));
+  std::vector<DVec> positions = readElements(model, p.attributes.at("POSITION"));
+  const DVec& weights = pose.weights[std::size_t(node)];
+  for (std::size_t target = 0; target < p.targets.size(); ++target) {
+    const std::vector<DVec> delta = readElements(model, p.targets[target].at("POSITION"));
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      for (int c = 0; c < 3; ++c)
+        positions[v][std::size_t(c)] += weights.at(target) * delta[v][std::size_t(c)];
+  }
+  if (source.skin < 0) {
+    for (DVec& position : positions)
+      position = transformPoint(pose.worlds[std::size_t(node)], position);
+    return positions;
+  }
+  // §3.7.3: sum over influences of weight * world(joint) * inverseBind(joint) * v;
+  // the skinned node's own transform does not apply.
+  const tinygltf::Skin& skin = model.skins.at(std::size_t(source.skin));
+  std::vector<DMat> jointMatrices;
+  const std::vector<DVec> inverseBind =
+      skin.inverseBindMatrices >= 0
+          ? readElements(model, skin.inverseBindMatrices)
+          : std::vector<DVec>(skin.joints.size(), DVec(identity().begin(), identity().end()));
+  for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+    DMat bind;
+    std::copy(inverseBind[j].begin(), inverseBind[j].end(), bind.begin());
+    jointMatrices.push_back(multiply(pose.worlds[std::size_t(skin.joints[j])], bind));
+  }
+  std::vector<DVec> skinned(positions.size(), DVec(3, 0.0));
+  for (int set = 0; set < 2; ++set) {
+    const std::string suffix = std::to_string(set);
+    if (!p.attributes.count("JOINTS_" + suffix)) continue;
+    const std::vector<DVec> joints = readElements(model, p.attributes.at("JOINTS_" + suffix));
+    const std::vector<DVec> jointWeights =
+        readElements(model, p.attributes.at("WEIGHTS_" + suffix));
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+      for (int k = 0; k < 4; ++k) {
+        const double w = jointWeights[v][std::size_t(k)];
+        const DVec moved =
+            transformPoint(jointMatrices.at(std::size_t(joints[v][std::size_t(k)])), positions[v]);
+        for (int c = 0; c < 3; ++c) skinned[v][std::size_t(c)] += w * moved[std::size_t(c)];
+      }
+    }
+  }
+  return skinned;
+}
+
+// What the vertex stage outputs for the instance with an identity
+// projection: its world positions (w = 1, as the model-view is affine).
+std::vector<glm::dvec3> enginePositions(const Scene& scene, const Instance& instance) {
+  DrawGeometry geometry;
+  geometry.mesh = &scene.meshes.at(std::size_t(instance.mesh));
+  geometry.modelView = instance.world;
+  geometry.projection = glm::mat4(1.0f);
+  geometry.morphWeights = instance.morphWeights;
+  geometry.jointMatrices = instance.jointMatrices;
+  const Executor executor(1);
+  TransformedVertices out;
+  transformVertices(geometry, Viewport{64, 64}, executor, out);
+  std::vector<glm::dvec3> positions;
+  for (std::size_t i = 0; i < geometry.mesh->positions.size(); ++i) {
+    const float* v = out.vertex(std::uint32_t(i));
+    EXPECT_EQ(v[3], 1.0f);
+    positions.emplace_back(v[0], v[1], v[2]);
+  }
+  return positions;
+}
+
+double animationEnd(const tinygltf::Model& model) {
+  double end = 0.0;
+  for (const auto& sampler : model.animations.at(0).samplers)
+    end = std::max(end, readElements(model, sampler.input).back()[0]);
+  return end;
+}
+
+// The largest distance between the engine's posed vertices and the
+// reference's, over instances and the chosen times, relative to the size of
+// the posed model (its largest coordinate).
+void expectPosedPositionsMatch(const std::string& model, double tolerance) {
+  const std::string path = assetPath(model);
+  if (!fs::exists(path)) GTEST_SKIP() << "no " << path;
+  const tinygltf::Model file = parseReference(path);
+  Scene scene = loadGltf(path);
+  ASSERT_FALSE(scene.animations.empty());
+  const double end = animationEnd(file);
+  NodePose pose;
+  std::size_t checked = 0;
+  for (const double t : {0.0, 0.137 * end, 0.5 * end, 0.71 * end, end, end + 1.0}) {
+    poseNodes(scene, 0, t, pose);
+    placeOnNodes(scene, pose);
+    const ReferencePose reference = referencePose(file, t);
+    // Instances of a node follow its primitives in order.
+    int lastNode = -1, primitive = 0;
+    for (const Instance& instance : scene.instances) {
+      const int node = scene.nodes.at(std::size_t(instance.node)).fileIndex;
+      primitive = node == lastNode ? primitive + 1 : 0;
+      lastNode = node;
+      const std::vector<DVec> want = referencePositions(file, reference, node, primitive);
+      const std::vector<glm::dvec3> got = enginePositions(scene, instance);
+      ASSERT_EQ(got.size(), want.size());
+      double extent = 0.0, worst = 0.0;
+      for (const DVec& p : want)
+        for (double c : p) extent = std::max(extent, std::fabs(c));
+      for (std::size_t v = 0; v < want.size(); ++v) {
+        const glm::dvec3 w(want[v][0], want[v][1], want[v][2]);
+        worst = std::max(worst, glm::length(got[v] - w));
+      }
+      EXPECT_LE(worst, tolerance * extent) << model << " t=" << t << " node " << node;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0u);
+}
+
+// Tolerance: the engine poses in float (ulp 6e-8 relative). A vertex goes
+// through its joint's chain of ancestors (up to ~10 matrix products), the
+// inverse bind matrix, the blend of up to 4 joint matrices (or a few weighted
+// morph deltas) and one transform, each rounding a quantity of the model's
+// size. Measured worst, over these models and times: 2.6e-7 of the extent
+// (CesiumMan, AnimatedMorphCube), about 4 ulps. 2e-6 (~33 ulps) leaves room
+// for other compilers' orderings; a wrong joint, weight, matrix order or
+// interpolation moves vertices by a good part of the extent.
+constexpr double kPoseTolerance = 2e-6;
+
+TEST(Skinning, SimpleSkinMatchesADoublePrecisionEvaluation) {
+  expectPosedPositionsMatch("SimpleSkin", kPoseTolerance);
+}
+TEST(Skinning, RiggedSimpleMatchesADoublePrecisionEvaluation) {
+  expectPosedPositionsMatch("RiggedSimple", kPoseTolerance);
+}
+TEST(Skinning, RiggedFigureMatchesADoublePrecisionEvaluation) {
+  expectPosedPositionsMatch("RiggedFigure", kPoseTolerance);
+}
+TEST(Skinning, CesiumManMatchesADoublePrecisionEvaluation) {
+  expectPosedPositionsMatch("CesiumMan", kPoseTolerance);
+}
+TEST(Morphing, SimpleMorphMatchesADoublePrecisionEvaluation) {
+  expectPosedPositionsMatch("SimpleMorph", kPoseTolerance);
+}
+TEST(Morphing, AnimatedMorphCubeMatchesADoublePrecisionEvaluation) {
+  expectPosedPositionsMatch("AnimatedMorphCube", kPoseTolerance);
+}
+
+// ---- bad input ------------------------------------------------------------------------
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// `model` copied to a scratch folder with `from` replaced by `to` in its
+// JSON; the loader's error for it ("" when it loads).
+std::string loadErrorWithEdit(const std::string& model, const std::string& from,
+                              const std::string& to) {
+  const fs::path source = fs::path(assetPath(model)).parent_path();
+  const fs::path dir = fs::temp_directory_path() /
+                       ("quadra_skinning_test_" + std::to_string(getpid()) + "_" + model);
+  fs::create_directories(dir);
+  for (const auto& entry : fs::directory_iterator(source))
+    if (entry.path().extension() == ".bin")
+      fs::copy_file(entry.path(), dir / entry.path().filename(),
+                    fs::copy_options::overwrite_existing);
+  std::string json = readText(source / (model + ".gltf"));
+  const std::size_t at = json.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) json.replace(at, from.size(), to);
+  const fs::path path = dir / "edited.gltf";
+  std::ofstream(path) << json;
+  try {
+    loadGltf(path.string());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+struct BadEdit {
+  const char* model;
+  const char* from;
+  const char* to;
+  const char* mentions;
+};
+
+TEST(Skinning, BadSkinAndMorphDataIsAOneLineErrorNamingTheFile) {
+  if (!fs::exists(assetPath("SimpleSkin")) || !fs::exists(assetPath("SimpleMorph")))
+    GTEST_SKIP() << "no SimpleSkin or SimpleMorph";
+  const BadEdit cases[] = {
+      // Vertices name joint 1 of a skin that now has one joint.
+      {"SimpleSkin", "\"joints\" : [ 1, 2 ]", "\"joints\" : [ 1 ]", "joint 1"},
+      {"SimpleSkin", "\"joints\" : [ 1, 2 ]", "\"joints\" : [ 1, 7 ]", "node 7"},
+      {"SimpleSkin", "\"skin\" : 0,", "\"skin\" : 3,", "skin 3"},
+      // Inverse bind matrices: two needed, the accessor now a VEC4 one.
+      {"SimpleSkin", "\"inverseBindMatrices\" : 4", "\"inverseBindMatrices\" : 3", "MAT4"},
+      // WEIGHTS_0 given by the indices accessor (24 elements for 10 vertices).
+      {"SimpleSkin", "\"WEIGHTS_0\" : 3", "\"WEIGHTS_0\" : 0", "WEIGHTS_0"},
+      {"SimpleSkin", "\"JOINTS_0\" : 2,", "\"JOINTS_0\" : 3,", "JOINTS_0"},
+      // Two targets, one default weight.
+      {"SimpleMorph", "\"weights\":[\n        0.5,\n        0.5\n      ]",
+       "\"weights\":[\n        0.5\n      ]", "weights"},
+      // A target's POSITION of the wrong length (the indices' 3 elements are
+      // SCALAR; the animation's 2 key times have the wrong count).
+      {"SimpleMorph", "\"POSITION\":3", "\"POSITION\":4", "target 1 POSITION"},
+      // Weight keys: 2 keys need 4 values, the times accessor gives 2.
+      {"SimpleMorph", "\"output\":5", "\"output\":4", "weights"},
+  };
+  for (const BadEdit& c : cases) {
+    const std::string message = loadErrorWithEdit(c.model, c.from, c.to);
+    EXPECT_NE(message.find("edited.gltf"), std::string::npos) << c.model << ": " << message;
+    EXPECT_NE(message.find(c.mentions), std::string::npos) << c.model << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace quadra
