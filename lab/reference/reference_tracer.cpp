@@ -97,19 +97,21 @@ ReferenceTracer::ReferenceTracer(const Scene& scene, const Camera& camera, int w
     const glm::dmat4 modelView = view * glm::dmat4(instance.world);
     prepared.boundsLo = glm::dvec3(std::numeric_limits<double>::infinity());
     prepared.boundsHi = -prepared.boundsLo;
-    for (const glm::vec3& p : prepared.mesh->positions) {
-      const glm::dvec3 v(modelView * glm::dvec4(glm::dvec3(p), 1.0));
+    const std::vector<glm::dvec3> modelPositions = posedPositions(*prepared.mesh, instance);
+    for (const glm::dvec3& p : modelPositions) {
+      const glm::dvec3 v(modelView * glm::dvec4(p, 1.0));
       prepared.viewPositions.push_back(v);
       prepared.boundsLo = glm::min(prepared.boundsLo, v);
       prepared.boundsHi = glm::max(prepared.boundsHi, v);
     }
-    const std::vector<glm::vec3>& p = prepared.mesh->positions;
+    const std::vector<glm::dvec3>& p = modelPositions;
     const std::vector<std::uint32_t>& corners = prepared.mesh->indices;
     prepared.degenerate.resize(corners.size() / 3);
     for (std::size_t t = 0; t < prepared.degenerate.size(); ++t) {
       // Differences of floats of like magnitude are exact in double, and the
       // two products of a component round alike when they are equal, so
-      // collinear corners give exactly zero.
+      // collinear corners give exactly zero (for stored positions; posed
+      // ones are doubles, where only exact degeneracy is caught).
       const glm::dvec3 a(p[corners[t * 3]]), b(p[corners[t * 3 + 1]]), c(p[corners[t * 3 + 2]]);
       prepared.degenerate[t] = glm::cross(b - a, c - a) == glm::dvec3(0.0);
     }
@@ -120,6 +122,32 @@ ReferenceTracer::ReferenceTracer(const Scene& scene, const Camera& camera, int w
               ? (camera_.zfar > camera_.znear ? camera_.zfar : HUGE_VAL)
               : (camera_.zfar != 0.0f ? camera_.zfar : HUGE_VAL);
   if (search_ == TracerSearch::ScreenGrid) buildScreenGrid();
+}
+
+std::vector<glm::dvec3> ReferenceTracer::posedPositions(const Mesh& mesh,
+                                                        const Instance& instance) {
+  std::vector<glm::dvec3> positions(mesh.positions.begin(), mesh.positions.end());
+  if (!instance.morphWeights.empty()) {
+    for (std::size_t t = 0; t < mesh.targets.size(); ++t) {
+      const std::vector<glm::vec3>& deltas = mesh.targets[t].positions;
+      for (std::size_t v = 0; v < deltas.size(); ++v)
+        positions[v] += double(instance.morphWeights.at(t)) * glm::dvec3(deltas[v]);
+    }
+  }
+  if (instance.jointMatrices.empty() || mesh.joints[0].empty()) return positions;
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    glm::dvec3 skinned(0.0);
+    for (int set = 0; set < 2; ++set) {
+      if (mesh.joints[set].empty()) continue;
+      for (int k = 0; k < 4; ++k) {
+        const glm::dmat4 joint(instance.jointMatrices.at(mesh.joints[set][v][k]));
+        skinned +=
+            double(mesh.weights[set][v][k]) * glm::dvec3(joint * glm::dvec4(positions[v], 1.0));
+      }
+    }
+    positions[v] = skinned;
+  }
+  return positions;
 }
 
 void ReferenceTracer::buildScreenGrid() {

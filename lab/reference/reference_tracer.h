@@ -17,6 +17,9 @@
 // rasterizer orders whole draws at best. They agree when blended surfaces do
 // not interpenetrate and no blended draw overlaps itself on screen. Coplanar
 // hits of one instance at one distance (a ray through a shared edge) count once.
+//
+// Skinned and morphed instances are traced at their posed positions (the
+// scene's posed weights and joint matrices, applied in double).
 #pragma once
 
 #include <cstdint>
@@ -122,6 +125,13 @@ class ReferenceTracer {
     std::vector<TriangleRef> everywhere;
   };
 
+  // Model-space positions of the instance's mesh, morphed and skinned in
+  // double from the posed instance's weights and joint matrices (glTF 2.0
+  // §3.7.2.2, §3.7.3: each influence's joint transform weighted, not the
+  // engine's blended matrix); the stored positions when nothing deforms it.
+  // Texture coordinates and colours are read as stored (morph targets that
+  // move them are not modelled here).
+  static std::vector<glm::dvec3> posedPositions(const Mesh& mesh, const Instance& instance);
   void buildScreenGrid();
   // allHits for the primary ray through a window point, by the grid where
   // the point lies on the screen.
