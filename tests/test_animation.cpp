@@ -24,6 +24,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "core/error.h"
+#include "gltf_reference.h"
 #include "scene/animation.h"
 #include "scene/gltf_loader.h"
 
@@ -36,24 +37,6 @@ namespace fs = std::filesystem;
 
 using DVec = std::vector<double>;
 using DMat = std::array<double, 16>;  // column-major, as glTF
-
-std::string assetPath(const std::string& model) {
-  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
-}
-
-bool noImages(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-              const unsigned char*, int, void*) {
-  return true;  // the reference reads animation data only
-}
-
-tinygltf::Model parseReference(const std::string& path) {
-  tinygltf::TinyGLTF parser;
-  parser.SetImageLoader(&noImages, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
-  EXPECT_TRUE(parser.LoadASCIIFromFile(&model, &err, &warn, path)) << err;
-  return model;
-}
 
 // Elements of a FLOAT accessor, each `components` doubles.
 std::vector<DVec> readFloats(const tinygltf::Model& model, int index) {
@@ -423,36 +406,6 @@ TEST(Animation, RestPoseKeepsTheLoadedBits) {
   if (models == 0) GTEST_SKIP() << "no sample models under " << QUADRA_ASSETS_DIR;
 }
 
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// AnimatedTriangle copied to a scratch folder with `from` replaced by `to`
-// in its JSON; the loader's error for it.
-std::string loadErrorWithEdit(const std::string& from, const std::string& to) {
-  const fs::path source = fs::path(assetPath("AnimatedTriangle")).parent_path();
-  const fs::path dir =
-      fs::temp_directory_path() / ("quadra_animation_test_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  for (const char* bin : {"simpleTriangle.bin", "animation.bin"})
-    fs::copy_file(source / bin, dir / bin, fs::copy_options::overwrite_existing);
-  std::string json = readText(source / "AnimatedTriangle.gltf");
-  const std::size_t at = json.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  json.replace(at, from.size(), to);
-  const fs::path path = dir / "edited.gltf";
-  std::ofstream(path) << json;
-  try {
-    loadGltf(path.string());
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(Animation, BadAnimationDataIsAOneLineErrorNamingTheFile) {
   if (!fs::exists(assetPath("AnimatedTriangle"))) GTEST_SKIP() << "no AnimatedTriangle";
   struct Case {
@@ -470,7 +423,7 @@ TEST(Animation, BadAnimationDataIsAOneLineErrorNamingTheFile) {
       {"\"path\" : \"rotation\"", "\"path\" : \"translation\"", "not VEC3"},
   };
   for (const Case& c : cases) {
-    const std::string message = loadErrorWithEdit(c.from, c.to);
+    const std::string message = loadErrorWithEdit("AnimatedTriangle", c.from, c.to);
     EXPECT_NE(message.find("edited.gltf"), std::string::npos) << message;
     EXPECT_NE(message.find(c.mentions), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;

@@ -41,6 +41,30 @@ TEST(AnimationCli, SequenceWritesNumberedFramesThatMove) {
   EXPECT_NE(frames[0].rgba, frames[2].rgba);
 }
 
+// The skinned and morphed models play too: four numbered frames each, and
+// their deformation shows between the first and the last (their poses are
+// checked against an independent evaluation in test_skinning.cpp).
+TEST(AnimationCli, SkinnedAndMorphedModelsRenderSequences) {
+  int models = 0;
+  for (const char* name : {"SimpleSkin", "RiggedSimple", "RiggedFigure", "CesiumMan", "SimpleMorph",
+                           "AnimatedMorphCube"}) {
+    const std::string model = modelPath(name);
+    if (!fs::exists(model)) continue;
+    ++models;
+    const fs::path dir = emptyFolder(std::string("deformed_") + name);
+    const RunResult r =
+        render(model + kSmall + " --sequence 0:3 --fps 2 --out " + (dir / "f_####.png").string());
+    ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
+    ASSERT_EQ(fileNames(dir),
+              (std::vector<std::string>{"f_0000.png", "f_0001.png", "f_0002.png", "f_0003.png"}))
+        << name;
+    EXPECT_NE(readImage((dir / "f_0000.png").string()).rgba,
+              readImage((dir / "f_0003.png").string()).rgba)
+        << name;
+  }
+  if (models == 0) GTEST_SKIP() << "no skinned or morphed models";
+}
+
 TEST(AnimationCli, StaticSceneSequenceRepeatsTheStillFrame) {
   const fs::path dir = emptyFolder("static");
   const RunResult still =

@@ -26,6 +26,7 @@
 #include "api/renderer.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "gltf_reference.h"
 #include "lab/image/image_difference.h"
 #include "lab/reference/reference_tracer.h"
 #include "lab/scene/builtin_scenes.h"
@@ -41,24 +42,6 @@ namespace fs = std::filesystem;
 
 using DVec = std::vector<double>;
 using DMat = std::array<double, 16>;  // column-major, as glTF
-
-std::string assetPath(const std::string& model) {
-  return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";
-}
-
-bool noImages(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-              const unsigned char*, int, void*) {
-  return true;  // the reference reads geometry and animation data only
-}
-
-tinygltf::Model parseReference(const std::string& path) {
-  tinygltf::TinyGLTF parser;
-  parser.SetImageLoader(&noImages, nullptr);
-  tinygltf::Model model;
-  std::string err, warn;
-  EXPECT_TRUE(parser.LoadASCIIFromFile(&model, &err, &warn, path)) << err;
-  return model;
-}
 
 // One component of type `type` at `bytes`, as a double (normalized per glTF 2.0 §3.11).
 double component(const unsigned char* bytes, int type, bool normalized) {
@@ -504,39 +487,6 @@ TEST(Skinning, AnimatedFramesMatchTheReferenceTracer) {
 }
 
 // ---- bad input ------------------------------------------------------------------------
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// `model` copied to a scratch folder with `from` replaced by `to` in its
-// JSON; the loader's error for it ("" when it loads).
-std::string loadErrorWithEdit(const std::string& model, const std::string& from,
-                              const std::string& to) {
-  const fs::path source = fs::path(assetPath(model)).parent_path();
-  const fs::path dir = fs::temp_directory_path() /
-                       ("quadra_skinning_test_" + std::to_string(getpid()) + "_" + model);
-  fs::create_directories(dir);
-  for (const auto& entry : fs::directory_iterator(source))
-    if (entry.path().extension() == ".bin")
-      fs::copy_file(entry.path(), dir / entry.path().filename(),
-                    fs::copy_options::overwrite_existing);
-  std::string json = readText(source / (model + ".gltf"));
-  const std::size_t at = json.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) json.replace(at, from.size(), to);
-  const fs::path path = dir / "edited.gltf";
-  std::ofstream(path) << json;
-  try {
-    loadGltf(path.string());
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 struct BadEdit {
   const char* model;
