@@ -406,6 +406,29 @@ TEST(Morphing, AnimatedMorphCubeMatchesADoublePrecisionEvaluation) {
   expectPosedPositionsMatch("AnimatedMorphCube", kPoseTolerance);
 }
 
+// A weights sampler is evaluated as a translation's, componentwise: the
+// same values (rounded to float) for every interpolation, inside and
+// outside the keys.
+TEST(Morphing, WeightsFollowTheSamplerInterpolations) {
+  for (const Interpolation interpolation :
+       {Interpolation::Step, Interpolation::Linear, Interpolation::CubicSpline}) {
+    AnimationSampler sampler;
+    sampler.interpolation = interpolation;
+    sampler.components = 3;
+    sampler.times = {0.5f, 1.0f, 2.5f};
+    const int perKey = interpolation == Interpolation::CubicSpline ? 3 : 1;
+    for (int k = 0; k < 3 * 3 * perKey; ++k) sampler.values.push_back(float(k % 7) * 0.37f - 1.0f);
+    std::vector<float> weights;
+    for (const double t : {0.0, 0.5, 0.7, 1.0, 1.3, 2.49, 2.5, 3.0}) {
+      sampleWeights(sampler, t, weights);
+      const glm::dvec4 want = sampleAnimation(sampler, false, t);
+      ASSERT_EQ(weights.size(), 3u);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(weights[std::size_t(c)], float(want[c])) << int(interpolation) << " t=" << t;
+    }
+  }
+}
+
 // ---- frames against the reference tracer -------------------------------------------
 
 // The posed scene with every instance's vertices replaced by the
@@ -514,6 +537,10 @@ TEST(Skinning, BadSkinAndMorphDataIsAOneLineErrorNamingTheFile) {
       // A target's POSITION of the wrong length (the indices' 3 elements are
       // SCALAR; the animation's 2 key times have the wrong count).
       {"SimpleMorph", "\"POSITION\":3", "\"POSITION\":4", "target 1 POSITION"},
+      // Target 1's POSITION two elements long for three vertices.
+      {"SimpleMorph", "\"byteOffset\":72,\n      \"componentType\":5126,\n      \"count\":3",
+       "\"byteOffset\":72,\n      \"componentType\":5126,\n      \"count\":2",
+       "target 1 POSITION has 2 elements but POSITION has 3"},
       // Weight keys: 2 keys need 4 values, the times accessor gives 2.
       {"SimpleMorph", "\"output\":5", "\"output\":4", "weights"},
   };
