@@ -603,6 +603,49 @@ TEST(Skinning, AnimatedFramesMatchTheReferenceTracer) {
   if (models == 0) GTEST_SKIP() << "no animated models under " << QUADRA_ASSETS_DIR;
 }
 
+// The position AOV of a posed skinned or morphed model lies on the posed
+// surface: at each pixel centre where the engine and the reference tracer
+// see the same triangle, its view depth is the tracer's hit distance (the
+// AOV reads the deformed vertices as the vertex stage drew them).
+TEST(Skinning, PositionAovLiesOnThePosedSurface) {
+  int models = 0;
+  for (const char* model : {"CesiumMan", "SimpleMorph"}) {
+    const std::string path = assetPath(model);
+    if (!fs::exists(path)) continue;
+    ++models;
+    const tinygltf::Model file = parseReference(path);
+    Scene scene = loadGltf(path);
+    NodePose pose;
+    poseNodes(scene, 0, 0.3 * animationEnd(file), pose);
+    placeOnNodes(scene, pose);
+    const Camera camera = firstCameraOrDefault(scene);
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 120;
+    settings.aovs = AovSet(Aov::Position) | AovSet(Aov::Ids);
+    const Frame frame = renderOnce(scene, camera, settings);
+    const ref::ReferenceTracer tracer(scene, camera, settings.width, settings.height);
+    const glm::dmat4 view(viewMatrix(camera));
+    glm::vec3 lo, hi;
+    scene.bounds(lo, hi);
+    const double size = glm::length(glm::dvec3(hi - lo));
+    int compared = 0;
+    for (int y = 0; y < settings.height; ++y)
+      for (int x = 0; x < settings.width; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(settings.width) + std::size_t(x);
+        const std::optional<ref::TracerHit> hit = tracer.nearestHit({x + 0.5, y + 0.5});
+        if (!hit || frame.primitiveId[p] != std::uint32_t(hit->triangle)) continue;
+        const glm::dvec3 position(frame.position[3 * p], frame.position[3 * p + 1],
+                                  frame.position[3 * p + 2]);
+        const glm::dvec4 inView = view * glm::dvec4(position, 1.0);
+        EXPECT_NEAR(-inView.z, hit->viewDistance, 1e-5 * size) << model << " " << x << "," << y;
+        ++compared;
+      }
+    EXPECT_GT(compared, 100) << model;
+  }
+  if (models == 0) GTEST_SKIP() << "no skinned or morphed models";
+}
+
 // ---- bad input ------------------------------------------------------------------------
 
 struct BadEdit {

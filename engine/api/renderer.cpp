@@ -213,6 +213,8 @@ AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSett
     const Instance& instance = scene.instances[i];
     AovDraw& a = aov.draws[d];
     a.mesh = draws[d].geometry.mesh;
+    a.morphWeights = draws[d].geometry.morphWeights;
+    a.jointMatrices = draws[d].geometry.jointMatrices;
     a.objectToClip = projection * glm::dmat4(draws[d].geometry.modelView);
     a.world = glm::dmat4(instance.world);
     a.normalToWorld = glm::transpose(glm::inverse(glm::dmat3(a.world)));

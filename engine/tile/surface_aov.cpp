@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "scene/deformation.h"
+
 namespace quadra {
 
 namespace {
@@ -16,25 +18,40 @@ void prepare(const AovFrame& aov, const TileTriangle& visible, std::uint32_t sou
              AovTriangle& t) {
   const AovDraw& draw = aov.draws[visible.draw];
   const Mesh& mesh = *draw.mesh;
+  const VertexDeformer deformer(mesh, draw.morphWeights, draw.jointMatrices);
   std::uint32_t index[3];
   glm::dvec3 object[3];
+  glm::mat4 skin[3];
   glm::dmat3 corners;  // columns: the corners' clip-space x, y, w
   for (int i = 0; i < 3; ++i) {
     index[i] = mesh.indices[3 * std::size_t(source) + std::size_t(i)];
-    object[i] = glm::dvec3(mesh.positions[index[i]]);
+    if (deformer.active()) {
+      skin[i] = deformer.skinMatrix(index[i]);
+      object[i] = glm::dvec3(deformer.position(index[i], skin[i]));
+    } else {
+      object[i] = glm::dvec3(mesh.positions[index[i]]);
+    }
     const glm::dvec4 clip = draw.objectToClip * glm::dvec4(object[i], 1.0);
     corners[i] = glm::dvec3(clip.x, clip.y, clip.w);
     t.world[i] = glm::dvec3(draw.world * glm::dvec4(object[i], 1.0));
-    t.uv[i] = mesh.texcoords[0].empty() ? glm::dvec2(0.0) : glm::dvec2(mesh.texcoords[0][index[i]]);
+    if (deformer.active())
+      t.uv[i] = glm::dvec2(deformer.texcoord(index[i], 0));
+    else
+      t.uv[i] =
+          mesh.texcoords[0].empty() ? glm::dvec2(0.0) : glm::dvec2(mesh.texcoords[0][index[i]]);
     t.previousClip[i] = draw.previousObjectToClip * glm::dvec4(object[i], 1.0);
   }
   // The vertex normals, or without them the face's, by the winding glTF
   // calls front (the inverse transpose keeps that side under a mirroring
   // world matrix); normalized per pixel.
   const glm::dvec3 face = glm::cross(object[1] - object[0], object[2] - object[0]);
-  for (int i = 0; i < 3; ++i)
-    t.normal[i] =
-        draw.normalToWorld * (mesh.normals.empty() ? face : glm::dvec3(mesh.normals[index[i]]));
+  for (int i = 0; i < 3; ++i) {
+    glm::dvec3 normal = face;
+    if (!mesh.normals.empty())
+      normal = deformer.active() ? glm::dvec3(deformer.normal(index[i], skin[i]))
+                                 : glm::dvec3(mesh.normals[index[i]]);
+    t.normal[i] = draw.normalToWorld * normal;
+  }
   // A triangle whose plane holds the eye (edge-on, yet it won a sample
   // after snapping) has no inverse: it takes its centroid.
   const double det = glm::determinant(corners);

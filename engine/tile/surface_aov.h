@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -32,6 +33,12 @@ struct AovDraw {
   glm::dmat4 previousObjectToClip{1.0};  // object → the previous pose's clip space
   std::uint32_t node = kNoId;            // id.node
   std::uint32_t material = kNoId;        // id.material
+  // A skinned or morphed instance's weights and joint matrices (as the
+  // draw's geometry has them): its vertices are read deformed, as the vertex
+  // stage drew them. Its previous pose is its current deformation seen
+  // through the previous camera (joint and weight motion is not modelled).
+  std::span<const float> morphWeights;
+  std::span<const glm::mat4> jointMatrices;
 };
 
 // What every tile's AOV pass shares.
