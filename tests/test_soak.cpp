@@ -91,10 +91,10 @@ TEST(Soak, ThousandFramesOfAnAnimatedSequenceKeepResidentMemoryFlat) {
   settings.height = 108;
   // Framed once at the rest pose, as renderSequence frames a scene without a camera.
   const Camera camera = firstCameraOrDefault(scene);
-  std::vector<glm::mat4> worlds;
+  NodePose pose;
   expectFlatResidentMemory("CesiumMilkTruck sequence", scene, settings, [&](int f) {
-    poseNodes(scene, 0, double(f) / 24.0, worlds);
-    placeOnNodes(scene, worlds);
+    poseNodes(scene, 0, double(f) / 24.0, pose);
+    placeOnNodes(scene, pose);
     return camera;
   });
 }
