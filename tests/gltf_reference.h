@@ -1,7 +1,7 @@
 // What the tests that evaluate glTF data on their own share: the shared
 // sample models' paths, and a model parsed by tinygltf with its images left
-// undecoded (those tests read accessors, never pixels); and the loader's
-// error for a model with its JSON edited.
+// undecoded (those tests read accessors, never pixels); the loader's error
+// for a model with its JSON edited; and 4x4 matrices in double.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -10,15 +10,50 @@
 
 #include <unistd.h>
 
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "scene/gltf_loader.h"
 
 namespace quadra {
+
+using DVec = std::vector<double>;
+using DMat = std::array<double, 16>;  // column-major, as glTF
+
+inline DMat identity() {
+  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+}
+
+inline DMat multiply(const DMat& a, const DMat& b) {
+  DMat r{};
+  for (int col = 0; col < 4; ++col)
+    for (int row = 0; row < 4; ++row)
+      for (int k = 0; k < 4; ++k)
+        r[std::size_t(col * 4 + row)] += a[std::size_t(k * 4 + row)] * b[std::size_t(col * 4 + k)];
+  return r;
+}
+
+// T * R * S from a translation, an x, y, z, w quaternion and a scale.
+inline DMat composeTrs(const DVec& t, const DVec& q, const DVec& s) {
+  const double length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  const double x = q[0] / length, y = q[1] / length, z = q[2] / length, w = q[3] / length;
+  const double rotation[9] = {
+      1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
+      2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+      2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
+  DMat m = identity();
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 3; ++row)
+      m[std::size_t(col * 4 + row)] = rotation[col * 3 + row] * s[std::size_t(col)];
+  for (int row = 0; row < 3; ++row) m[std::size_t(12 + row)] = t[std::size_t(row)];
+  return m;
+}
 
 inline std::string assetPath(const std::string& model) {
   return std::string(QUADRA_ASSETS_DIR) + "/" + model + "/glTF/" + model + ".gltf";

@@ -35,9 +35,6 @@ namespace fs = std::filesystem;
 
 // ---- the independent evaluation ---------------------------------------------------
 
-using DVec = std::vector<double>;
-using DMat = std::array<double, 16>;  // column-major, as glTF
-
 // Elements of a FLOAT accessor, each `components` doubles.
 std::vector<DVec> readFloats(const tinygltf::Model& model, int index) {
   const tinygltf::Accessor& accessor = model.accessors.at(std::size_t(index));
@@ -68,7 +65,7 @@ DVec normalized(DVec q) {
 }
 
 // Hamilton product of x, y, z, w quaternions.
-DVec multiply(const DVec& a, const DVec& b) {
+DVec quaternionProduct(const DVec& a, const DVec& b) {
   return {a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
           a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
           a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
@@ -79,7 +76,7 @@ DVec multiply(const DVec& a, const DVec& b) {
 DVec powerSlerp(DVec q0, DVec q1, double u) {
   q0 = normalized(q0);
   q1 = normalized(q1);
-  DVec relative = multiply({-q0[0], -q0[1], -q0[2], q0[3]}, q1);
+  DVec relative = quaternionProduct({-q0[0], -q0[1], -q0[2], q0[3]}, q1);
   if (relative[3] < 0.0)
     for (double& c : relative) c = -c;
   const double half = std::acos(std::min(1.0, relative[3]));
@@ -87,8 +84,8 @@ DVec powerSlerp(DVec q0, DVec q1, double u) {
       std::sqrt(relative[0] * relative[0] + relative[1] * relative[1] + relative[2] * relative[2]);
   if (axisLength == 0.0) return q0;
   const double s = std::sin(u * half) / axisLength;
-  return normalized(
-      multiply(q0, {relative[0] * s, relative[1] * s, relative[2] * s, std::cos(u * half)}));
+  return normalized(quaternionProduct(
+      q0, {relative[0] * s, relative[1] * s, relative[2] * s, std::cos(u * half)}));
 }
 
 // One file sampler read back: times and per-key elements (CUBICSPLINE keys
@@ -140,31 +137,6 @@ DVec referenceValue(const ReferenceCurve& curve, bool rotation, double t) {
     }
   }
   return rotation ? normalized(result) : result;
-}
-
-DMat identity() {
-  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-}
-
-DMat multiply(const DMat& a, const DMat& b) {
-  DMat r{};
-  for (int col = 0; col < 4; ++col)
-    for (int row = 0; row < 4; ++row)
-      for (int k = 0; k < 4; ++k) r[col * 4 + row] += a[k * 4 + row] * b[col * 4 + k];
-  return r;
-}
-
-// T * R * S of x, y, z, w rotation.
-DMat composeTrs(const DVec& t, const DVec& q, const DVec& s) {
-  const double x = q[0], y = q[1], z = q[2], w = q[3];
-  const double r[9] = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
-                       2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
-                       2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
-  DMat m = identity();
-  for (int col = 0; col < 3; ++col)
-    for (int row = 0; row < 3; ++row) m[col * 4 + row] = r[col * 3 + row] * s[std::size_t(col)];
-  for (int row = 0; row < 3; ++row) m[12 + row] = t[std::size_t(row)];
-  return m;
 }
 
 // The reference pose of a file at time t for animation `animation`: each

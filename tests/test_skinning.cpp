@@ -40,9 +40,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using DVec = std::vector<double>;
-using DMat = std::array<double, 16>;  // column-major, as glTF
-
 // One component of type `type` at `bytes`, as a double (normalized per glTF 2.0 §3.11).
 double component(const unsigned char* bytes, int type, bool normalized) {
   switch (type) {
@@ -103,35 +100,6 @@ std::vector<DVec> readElements(const tinygltf::Model& model, int index) {
     }
   }
   return out;
-}
-
-DMat identity() {
-  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-}
-
-DMat multiply(const DMat& a, const DMat& b) {
-  DMat r{};
-  for (int col = 0; col < 4; ++col)
-    for (int row = 0; row < 4; ++row)
-      for (int k = 0; k < 4; ++k)
-        r[std::size_t(col * 4 + row)] += a[std::size_t(k * 4 + row)] * b[std::size_t(col * 4 + k)];
-  return r;
-}
-
-// T * R * S from a translation, an x, y, z, w quaternion and a scale.
-DMat composeTrs(const DVec& t, const DVec& q, const DVec& s) {
-  const double length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  const double x = q[0] / length, y = q[1] / length, z = q[2] / length, w = q[3] / length;
-  const double rotation[9] = {
-      1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),
-      2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
-      2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y)};
-  DMat m = identity();
-  for (int col = 0; col < 3; ++col)
-    for (int row = 0; row < 3; ++row)
-      m[std::size_t(col * 4 + row)] = rotation[col * 3 + row] * s[std::size_t(col)];
-  for (int row = 0; row < 3; ++row) m[std::size_t(12 + row)] = t[std::size_t(row)];
-  return m;
 }
 
 DVec transformPoint(const DMat& m, const DVec& p) {

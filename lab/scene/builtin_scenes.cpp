@@ -278,29 +278,46 @@ void paintByNormal(Mesh& mesh) {
   for (const glm::vec3& n : mesh.normals) mesh.colors.push_back(glm::vec4(0.5f + 0.5f * n, 1.0f));
 }
 
-// The default picture: textures at several scales, occlusion, vertex colour,
-// alpha mask and blending, all in one view.
-Scene showcase() {
-  Scene scene;
-  scene.name = "builtin:showcase";
-  Material ground, cube, sphere, mask, glass;
+// The showcase's props, textured as there: a checker ground plane, a
+// gradient-grid cube, a ball coloured by its normal (`stacks` rings, twice
+// as many segments) and an alpha-masked panel with round holes, their
+// textures, materials and meshes added in that order.
+struct ShowcaseMeshes {
+  int ground, cube, ball, mask;
+  int gradientTexture;  // the cube's
+};
+ShowcaseMeshes addShowcaseMeshes(Scene& scene, int stacks) {
+  Material ground, cube, sphere, mask;
   ground.baseColorTexture = addTexture(scene, makeCheckerTexture(256, 256, 32));
   ground.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
   cube.baseColorTexture = addTexture(scene, makeGradientGridImage(256));
   mask.baseColorTexture = addTexture(scene, makeHolesImage(128));
   mask.alphaMode = AlphaMode::Mask;
   mask.doubleSided = true;
+  ShowcaseMeshes meshes{};
+  meshes.gradientTexture = cube.baseColorTexture;
+  meshes.ground = addMesh(scene, makeGroundPlane(20.0f, 4.0f, addMaterial(scene, ground)));
+  meshes.cube = addMesh(scene, makeCube(addMaterial(scene, cube)));
+  Mesh ball = makeSphere(stacks, 2 * stacks, addMaterial(scene, sphere));
+  paintByNormal(ball);
+  meshes.ball = addMesh(scene, std::move(ball));
+  meshes.mask = addMesh(scene, makeQuad(addMaterial(scene, mask)));
+  return meshes;
+}
+
+// The default picture: textures at several scales, occlusion, vertex colour,
+// alpha mask and blending, all in one view.
+Scene showcase() {
+  Scene scene;
+  scene.name = "builtin:showcase";
+  const ShowcaseMeshes meshes = addShowcaseMeshes(scene, 48);
+  Material glass;
   glass.baseColorFactor = glm::vec4(0.4f, 0.7f, 1.0f, 0.4f);
-  glass.baseColorTexture = cube.baseColorTexture;
+  glass.baseColorTexture = meshes.gradientTexture;
   glass.alphaMode = AlphaMode::Blend;
   glass.doubleSided = true;
-
-  const int groundMesh = addMesh(scene, makeGroundPlane(20.0f, 4.0f, addMaterial(scene, ground)));
-  const int cubeMesh = addMesh(scene, makeCube(addMaterial(scene, cube)));
-  Mesh ball = makeSphere(48, 96, addMaterial(scene, sphere));
-  paintByNormal(ball);
-  const int sphereMesh = addMesh(scene, std::move(ball));
-  const int maskMesh = addMesh(scene, makeQuad(addMaterial(scene, mask)));
+  const int groundMesh = meshes.ground, cubeMesh = meshes.cube, sphereMesh = meshes.ball,
+            maskMesh = meshes.mask;
   const int glassMesh = addMesh(scene, makeQuad(addMaterial(scene, glass)));
 
   scene.instances.push_back({groundMesh, glm::mat4(1.0f)});
@@ -422,19 +439,9 @@ void appendQuat(std::vector<float>& values, const glm::quat& q) {
 Scene flyover() {
   Scene scene;
   scene.name = "builtin:flyover";
-  Material ground, cube, sphere, mask;
-  ground.baseColorTexture = addTexture(scene, makeCheckerTexture(256, 256, 32));
-  ground.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-  cube.baseColorTexture = addTexture(scene, makeGradientGridImage(256));
-  mask.baseColorTexture = addTexture(scene, makeHolesImage(128));
-  mask.alphaMode = AlphaMode::Mask;
-  mask.doubleSided = true;
-  const int groundMesh = addMesh(scene, makeGroundPlane(20.0f, 4.0f, addMaterial(scene, ground)));
-  const int cubeMesh = addMesh(scene, makeCube(addMaterial(scene, cube)));
-  Mesh ball = makeSphere(32, 64, addMaterial(scene, sphere));
-  paintByNormal(ball);
-  const int ballMesh = addMesh(scene, std::move(ball));
-  const int maskMesh = addMesh(scene, makeQuad(addMaterial(scene, mask)));
+  const ShowcaseMeshes meshes = addShowcaseMeshes(scene, 32);
+  const int groundMesh = meshes.ground, cubeMesh = meshes.cube, ballMesh = meshes.ball,
+            maskMesh = meshes.mask;
 
   const glm::vec3 up(0.0f, 1.0f, 0.0f);
   const glm::quat none(1.0f, 0.0f, 0.0f, 0.0f);
