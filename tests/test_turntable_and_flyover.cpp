@@ -119,6 +119,33 @@ TEST(Orbit, BadOrbitInputIsOneLineAndWritesNothing) {
   }
 }
 
+// ---- the sequence writer ----------------------------------------------------------
+
+// Frames are written on the writer's thread (tools/sequence_writer.h): a write
+// that fails there still ends the run with one line and exit status 1, and
+// the frames handed over before it are written in order.
+TEST(SequenceWriter, AFailedWriteEndsTheSequenceWithOneLine) {
+  const fs::path dir = emptyFolder("writer");
+  const std::string missing = (dir / "no-such-folder" / "f_#.png").string();
+  const RunResult r =
+      run("render builtin:flyover --width 32 --height 18 --sequence 0:5 --out " + missing);
+  EXPECT_EQ(r.exitCode, 1);
+  expectOneLineError(r, "cannot create file");
+  EXPECT_TRUE(fs::is_empty(dir));
+  const RunResult ordered =
+      run("render builtin:flyover --width 32 --height 18 --sequence 3:7 "
+          "--out " +
+          (dir / "f_#.png").string());
+  ASSERT_EQ(ordered.exitCode, 0) << ordered.err;
+  std::vector<std::string> written;
+  std::istringstream lines(ordered.out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("quadra wrote ", 0) == 0)
+      written.push_back(fs::path(line.substr(13)).filename());
+  EXPECT_EQ(written,
+            (std::vector<std::string>{"f_3.png", "f_4.png", "f_5.png", "f_6.png", "f_7.png"}));
+}
+
 // ---- flyover ----------------------------------------------------------------------
 
 struct Posed {
