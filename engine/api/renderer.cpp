@@ -259,12 +259,9 @@ void chargeFrame(const RenderSettings& settings, int threads, const std::vector<
                  MemoryBudget& budget) {
   const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
   // 4-byte channels: colour, depth, coverage and the surface AOVs' planes.
-  const AovSet aovs = settings.aovs;
-  const std::uint64_t channels =
-      4 + (settings.frameDepth ? 1 : 0) + (settings.frameCoverage ? 1 : 0) +
-      (hasAov(aovs, Aov::Normal) ? 3 : 0) + (hasAov(aovs, Aov::Position) ? 3 : 0) +
-      (hasAov(aovs, Aov::Uv) ? 2 : 0) + (hasAov(aovs, Aov::Motion) ? 2 : 0) +
-      (hasAov(aovs, Aov::Ids) ? 3 : 0);
+  const std::uint64_t channels = 4 + (settings.frameDepth ? 1 : 0) +
+                                 (settings.frameCoverage ? 1 : 0) +
+                                 std::uint64_t(aovChannels(settings.aovs));
   const std::string size = std::to_string(settings.width) + "x" + std::to_string(settings.height);
   budget.charge("the " + size + " frame", pixels * channels * sizeof(float));
   const int ringChannels =
@@ -396,15 +393,15 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   resizeLarge(out.depth, settings.frameDepth ? pixels : 0, 0.0f, &executor);
   resizeLarge(out.coverage, settings.frameCoverage ? pixels : 0, 0.0f, &executor);
   // The AOV pass writes every pixel of the planes asked for, clear values too.
-  const auto aovPixels = [&](Aov a, std::size_t channels) {
-    return hasAov(settings.aovs, a) ? pixels * channels : 0;
+  const auto aovPixels = [&](Aov a) {
+    return hasAov(settings.aovs, a) ? pixels * std::size_t(aovChannels(a)) : 0;
   };
-  resizeLarge(out.normal, aovPixels(Aov::Normal, 3), 0.0f, &executor);
-  resizeLarge(out.position, aovPixels(Aov::Position, 3), 0.0f, &executor);
-  resizeLarge(out.uv, aovPixels(Aov::Uv, 2), 0.0f, &executor);
-  resizeLarge(out.motion, aovPixels(Aov::Motion, 2), 0.0f, &executor);
+  resizeLarge(out.normal, aovPixels(Aov::Normal), 0.0f, &executor);
+  resizeLarge(out.position, aovPixels(Aov::Position), 0.0f, &executor);
+  resizeLarge(out.uv, aovPixels(Aov::Uv), 0.0f, &executor);
+  resizeLarge(out.motion, aovPixels(Aov::Motion), 0.0f, &executor);
   for (std::vector<std::uint32_t>* ids : {&out.primitiveId, &out.nodeId, &out.materialId})
-    resizeLarge(*ids, aovPixels(Aov::Ids, 1), kNoId, &executor);
+    resizeLarge(*ids, hasAov(settings.aovs, Aov::Ids) ? pixels : 0, kNoId, &executor);
   const double aspect = double(settings.width) / settings.height;
   out.metadata.hasCamera = true;
   out.metadata.worldToCamera = viewMatrix(camera);

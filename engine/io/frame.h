@@ -28,6 +28,16 @@ using AovSet = std::uint32_t;
 constexpr bool hasAov(AovSet set, Aov aov) {
   return (set & std::uint32_t(aov)) != 0;
 }
+// 4-byte channels per pixel: each AOV's, and a set's in all (3 ids for Ids).
+constexpr int aovChannels(Aov aov) {
+  return aov == Aov::Uv || aov == Aov::Motion ? 2 : 3;
+}
+constexpr int aovChannels(AovSet set) {
+  int channels = 0;
+  for (const Aov aov : {Aov::Normal, Aov::Position, Aov::Uv, Aov::Motion, Aov::Ids})
+    if (hasAov(set, aov)) channels += aovChannels(aov);
+  return channels;
+}
 
 // The id AOVs' value where no surface is (and id.material's for the glTF
 // default material).
