@@ -242,7 +242,11 @@ void readMorphTargets(const PrimitiveReader& reader, const PrimitiveNeeds& needs
   for (std::size_t t = 0; t < targets.size(); ++t) {
     MorphTarget& target = out.targets[t];
     const std::string prefix = "target " + std::to_string(t) + " ";
-    for (const auto& [name, accessor] : targets[t]) {
+    for (const auto& entry : targets[t]) {
+      // Named, not a structured binding: clang before 16 cannot capture one
+      // in a lambda (the fuzz build is clang's).
+      const std::string& name = entry.first;
+      const int accessor = entry.second;
       const std::string what = prefix + name;
       const auto deltas = [&](int components) {
         return reader.read(what.c_str(), accessor, components, components, vertexCount);
