@@ -21,6 +21,8 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "core/error.h"
+#include "core/file_bytes.h"
+#include "core/file_sandbox.h"
 #include "io/image_io.h"
 #include "scene/gltf_loader.h"
 #include "texture/mip_chain.h"
@@ -1433,6 +1435,57 @@ TEST(GltfSandbox, OtherSchemesSpecialFilesAndMissingAllowedFolders) {
     ADD_FAILURE() << "a missing --allow-path folder was accepted";
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()), "--allow-path: '" + missing + "' is not an existing folder");
+  }
+}
+
+// The race the sandbox closes at read time: a reference approved by
+// resolve() (a canonical path inside the folder) whose file, or a folder on
+// its way, is replaced by a link out of the sandbox before it is read. The
+// read is refused with where it now leads; it never reads the outside file.
+// (In the loader the two steps run back to back inside tinygltf's callbacks;
+// here they are separated to stage the swap deterministically.)
+TEST(GltfSandbox, ALinkSwappedInAfterTheCheckIsNotFollowed) {
+  SandboxFolders folders;
+  fs::create_directories(folders.scene() / "data");
+  fs::copy_file(folders.scene() / "square.bin", folders.scene() / "data" / "square.bin");
+  const FileSandbox sandbox(folders.scene(), {});
+  const FileSandbox::Resolved file = sandbox.resolve("square.bin");
+  const FileSandbox::Resolved inFolder = sandbox.resolve("data/square.bin");
+  ASSERT_EQ(file.refusal, "");
+  ASSERT_EQ(inFolder.refusal, "");
+  const std::vector<std::uint8_t> original = readCanonicalFile(file.path.string());
+  EXPECT_EQ(readCanonicalFile(inFolder.path.string()), original);
+
+  // The file itself becomes a link to the outside copy.
+  fs::remove(file.path);
+  fs::create_symlink(folders.outside() / "square.bin", file.path);
+  try {
+    readCanonicalFile(file.path.string());
+    ADD_FAILURE() << "a link swapped in for the file was followed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is now a symbolic link"), std::string::npos) << e.what();
+  }
+  // A folder on the way becomes a link to the outside folder.
+  fs::remove_all(folders.scene() / "data");
+  fs::create_directory_symlink(folders.outside(), folders.scene() / "data");
+  try {
+    readCanonicalFile(inFolder.path.string());
+    ADD_FAILURE() << "a link swapped in for a folder was followed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "now resolves to " + (fs::canonical(folders.outside()) / "square.bin").string()),
+              std::string::npos)
+        << e.what();
+  }
+  // A FIFO is refused at once, not waited on, by both readers.
+  ASSERT_EQ(mkfifo((folders.scene() / "fifo").c_str(), 0600), 0);
+  for (const auto& read : {&readWholeFile, &readCanonicalFile}) {
+    try {
+      read(fs::canonical(folders.scene() / "fifo").string());
+      ADD_FAILURE() << "a FIFO was read";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos);
+    }
   }
 }
 

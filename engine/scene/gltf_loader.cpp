@@ -163,7 +163,7 @@ bool readSandboxed(std::vector<unsigned char>* out, std::string* err, const std:
       if (files.overBudget.empty()) files.overBudget = e.what();
       throw;
     }
-    *out = readWholeFile(path);
+    *out = readCanonicalFile(path);
     return true;
   } catch (const Error& e) {
     if (err) *err += e.what();
