@@ -20,6 +20,7 @@
 #include "core/memory_budget.h"
 #include "lab/scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "setup/triangle_record.h"
 #include "texture/texture_sampler.h"
 #include "tile/tile_stage.h"
 
@@ -263,11 +264,27 @@ std::uint64_t tileBytes(const RenderSettings& settings, int threads, bool blende
                          threads, 0, oneDraw(blended));
 }
 
-// What a frame of `settings` charges besides its textures; blended: some
-// draw is composited in depth order (its fragments take tile memory).
+// Room for the front end's arrays of the scenes below that have a few
+// dozen triangles (what each takes: FrontEndArraysOfAManyTriangleScene...).
+constexpr std::uint64_t kSmallFrontEnd = 64 * 1024;
+
+// What a frame of `settings` charges besides its textures, with room for a
+// small scene's front end; blended: some draw is composited in depth order
+// (its fragments take tile memory).
 std::uint64_t frameAndTiles(const RenderSettings& settings, int threads, bool blended) {
   const std::uint64_t pixels = std::uint64_t(settings.width) * std::uint64_t(settings.height);
-  return pixels * 5 * sizeof(float) + tileBytes(settings, threads, blended);  // RGBA and depth
+  return pixels * 5 * sizeof(float) + tileBytes(settings, threads, blended) +  // RGBA and depth
+         kSmallFrontEnd;
+}
+
+// The scene's textures as a bilinear filter reads them, with room for a
+// premultiplied copy of each.
+std::uint64_t bilinearTextureBytes(const Scene& scene) {
+  std::uint64_t bytes = 0;
+  for (const auto& texture : scene.textures)
+    bytes += textureViewBytes(*texture, {Filter::Bilinear}) +
+             std::uint64_t(texture->image().width) * std::uint64_t(texture->image().height) * 16;
+  return bytes;
 }
 
 std::string renderError(const Scene& scene, const RenderSettings& settings, Frame& frame) {
@@ -331,11 +348,7 @@ TEST(MemoryBudget, TileMemoryAtSixteenSamplesIsRefusedBeforeTheFrameIsAllocated)
   settings.width = 1024;
   settings.height = 1024;
   settings.filter = Filter::Bilinear;
-  std::uint64_t textures = 0;  // with room for a premultiplied copy of each
-  for (const auto& texture : scene.textures)
-    textures += textureViewBytes(*texture, {Filter::Bilinear}) +
-                std::uint64_t(texture->image().width) * std::uint64_t(texture->image().height) * 16;
-  settings.maxMemory = frameAndTiles(settings, 2, true) + textures;
+  settings.maxMemory = frameAndTiles(settings, 2, true) + bilinearTextureBytes(scene);
   Frame frame;
   EXPECT_EQ(renderError(scene, settings, frame), "rendered");
   settings.samples = 16;
@@ -358,6 +371,37 @@ TEST(MemoryBudget, TileMemoryAtSixteenSamplesIsRefusedBeforeTheFrameIsAllocated)
                        0),
             0u);
   EXPECT_TRUE(untouched.rgba.empty());
+}
+
+// The front end's arrays (transformed vertices, triangle records and
+// their planes, bin entries) grow with the triangle count a file sets, and
+// are charged before they are allocated: at least a TriangleRecord a
+// triangle, and well under 512 bytes a triangle.
+TEST(MemoryBudget, FrontEndArraysOfAManyTriangleSceneAreChargedBeforeTheFrame) {
+  const Scene scene = makeBuiltinScene("dense-mesh:200000");
+  const std::uint64_t triangles = scene.triangleCount();
+  ASSERT_GT(triangles, 150000u);
+  std::uint64_t vertices = 0;
+  for (const Instance& instance : scene.instances)
+    vertices += scene.meshes.at(std::size_t(instance.mesh)).positions.size();
+  RenderSettings settings;
+  settings.width = 64;
+  settings.height = 64;
+  settings.filter = Filter::Bilinear;
+  const std::uint64_t frame =
+      frameAndTiles(settings, 2, false) - kSmallFrontEnd + bilinearTextureBytes(scene);
+  settings.maxMemory = frame + triangles * sizeof(TriangleRecord);
+  Frame untouched;
+  const std::string message = renderError(scene, settings, untouched);
+  EXPECT_EQ(message.rfind("render: the front end (" + std::to_string(vertices) + " vertices, " +
+                              std::to_string(triangles) + " triangles) needs ",
+                          0),
+            0u)
+      << message;
+  EXPECT_TRUE(untouched.rgba.empty());
+  settings.maxMemory = frame + triangles * 512;
+  Frame frameOut;
+  EXPECT_EQ(renderError(scene, settings, frameOut), "rendered");
 }
 
 // ---- the command line ------------------------------------------------------------------

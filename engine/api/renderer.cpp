@@ -270,6 +270,26 @@ void chargeFrame(const RenderSettings& settings, int threads, const std::vector<
                     std::to_string(threads) + " threads)",
                 tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height),
                                 settings.samples, threads, ringChannels, draws));
+  // The front end's arrays grow with the scene's vertices and triangles,
+  // which a file controls through its index count alone (a small vertex
+  // buffer indexed millions of times). Charged at what every triangle takes
+  // if kept whole and binned once; clipping's extra pieces and triangles
+  // spanning several tiles add to it, culled ones take less.
+  std::uint64_t vertices = 0, triangles = 0, bytes = 0;
+  for (const Draw& draw : draws) {
+    const std::uint64_t v = draw.geometry.mesh->positions.size();
+    const std::uint64_t t = draw.geometry.mesh->indices.size() / 3;
+    const std::uint64_t interpolated = std::uint64_t(draw.geometry.attributes.count);
+    vertices += v;
+    triangles += t;
+    bytes += v * ((4 + interpolated) * sizeof(float) + sizeof(ScreenVertex) +
+                  sizeof(SubpixelPosition) + sizeof(std::uint8_t));
+    bytes += t * (sizeof(TriangleRecord) + (2 + interpolated) * sizeof(Plane) +
+                  sizeof(std::uint32_t) * (settings.aovs != 0 ? 2 : 1));
+  }
+  budget.charge("the front end (" + std::to_string(vertices) + " vertices, " +
+                    std::to_string(triangles) + " triangles)",
+                bytes);
 }
 
 // A parallel pass's wall time split between two of its stages in proportion
