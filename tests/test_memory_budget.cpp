@@ -6,6 +6,7 @@
 // much, before the allocation: several of them claim more than this machine
 // has, so only an error raised first lets the test finish at all.
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -84,6 +85,11 @@ fs::path writeText(const std::string& name, const std::string& text) {
   return path;
 }
 
+std::vector<std::uint8_t> fileBytesOf(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 std::string loadError(const fs::path& path, const LoadOptions& options) {
   try {
     loadGltf(path.string(), options);
@@ -127,14 +133,43 @@ TEST(MemoryBudget, ABufferOverTheBudgetIsRefused) {
       "budget_buffer.gltf", "{" + kAsset + R"(,"buffers":[{"byteLength":4096,"uri":")" +
                                 "data:application/octet-stream;base64," + base64(data) + "\"}]}");
   const std::uint64_t fileBytes = fs::file_size(path);
+  const std::uint64_t json = parsedJsonBytes(path.string(), fileBytesOf(path));
   LoadOptions options;
-  options.maxMemory = fileBytes + 4095;
+  options.maxMemory = fileBytes + json + 4095;
   expectOver(loadError(path, options), path, "buffer 0");
-  options.maxMemory = fileBytes + 4096;
+  options.maxMemory = fileBytes + json + 4096;
   EXPECT_EQ(loadError(path, options), "loaded");
   // The file alone over the budget: refused before it is read.
   options.maxMemory = fileBytes - 1;
   expectOver(loadError(path, options), path, "the file (" + std::to_string(fileBytes) + " bytes)");
+}
+
+// A few bytes of JSON can parse to a big structure: each "{}" in a
+// materials array is an empty material of over 2 KiB in tinygltf's model.
+// The parse is charged from the text's structure before it is parsed; braces
+// inside strings are text, not objects.
+TEST(MemoryBudget, JsonThatParsesToMoreThanTheBudgetIsRefusedBeforeParsing) {
+  std::string materials;
+  for (int m = 0; m < 100000; ++m) materials += m == 0 ? "{}" : ",{}";
+  const fs::path path =
+      writeText("budget_json.gltf", "{" + kAsset + R"(,"materials":[)" + materials + "]}");
+  const std::uint64_t text = fs::file_size(path);
+  ASSERT_LT(text, 400 * 1024u);
+  // At least tinygltf's own material struct for each: the bound is not loose
+  // the wrong way.
+  const std::uint64_t charged = parsedJsonBytes(path.string(), fileBytesOf(path));
+  EXPECT_GE(charged, 100000 * sizeof(tinygltf::Material));
+  LoadOptions options;
+  options.maxMemory = 64 * kMiB;
+  ASSERT_LT(text + 64 * kMiB / 2, charged);
+  expectOver(loadError(path, options), path,
+             "the parsed JSON (" + std::to_string(text) + " bytes of text)");
+
+  // The same number of braces inside a string: text, a few hundred KiB.
+  const fs::path quoted = writeText("budget_json_string.gltf",
+                                    "{" + kAsset + R"(,"extras":{"note":")" + materials + "\"}}");
+  EXPECT_LT(parsedJsonBytes(quoted.string(), fileBytesOf(quoted)), 2 * fs::file_size(quoted));
+  EXPECT_EQ(loadError(quoted, options).find("memory budget"), std::string::npos);
 }
 
 // A buffer file of 64 GiB (sparse: no disk used), more than this machine's

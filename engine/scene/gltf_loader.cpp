@@ -16,6 +16,7 @@
 #include <map>
 #include <new>
 #include <set>
+#include <span>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -176,11 +177,60 @@ bool writeRefused(std::string* err, const std::string&, const std::vector<unsign
   return false;
 }
 
+// What parsing a JSON text may allocate, bounded from its structure before
+// it is parsed: a few bytes of JSON can become a big structure ("{}," is an
+// empty material, 2144 bytes as tinygltf holds it, plus the JSON document's
+// own node). Scanned outside strings: each '{' counts as the largest tinygltf
+// object and its document node, each '[', ',' or ':' as one value (a
+// tinygltf::Value, 152 bytes, and its node), and the text once (strings are
+// copied out of it).
+std::uint64_t jsonParseBytes(const std::uint8_t* text, std::size_t size) {
+  constexpr std::uint64_t kObjectBytes = 2560, kValueBytes = 256;
+  std::uint64_t objects = 0, values = 0;
+  bool inString = false, escaped = false;
+  for (std::size_t i = 0; i < size; ++i) {
+    const char c = char(text[i]);
+    if (inString) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        inString = false;
+      continue;
+    }
+    if (c == '"') inString = true;
+    if (c == '{') ++objects;
+    if (c == '[' || c == ',' || c == ':') ++values;
+  }
+  return size + objects * kObjectBytes + values * kValueBytes;
+}
+
+// The JSON text of a .gltf file or of a GLB's JSON chunk (which follows
+// the 12-byte header and the chunk's own 8), the GLB's layout checked first.
+std::span<const std::uint8_t> jsonText(const std::string& path,
+                                       const std::vector<std::uint8_t>& bytes) {
+  if (!isGlb(path, bytes)) return bytes;
+  checkGlbLayout(path, bytes);
+  return std::span(bytes).subspan(20, readU32(bytes, 12));
+}
+
+}  // namespace
+
+std::uint64_t parsedJsonBytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  const std::span<const std::uint8_t> text = jsonText(path, bytes);
+  return jsonParseBytes(text.data(), text.size());
+}
+
+namespace {
+
 tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8_t>& bytes,
                            const LoadOptions& options, MemoryBudget& budget,
                            gltf::ImageStash& stash) {
+  budget.charge(
+      "the parsed JSON (" + std::to_string(jsonText(path, bytes).size()) + " bytes of text)",
+      parsedJsonBytes(path, bytes));
   const bool binary = isGlb(path, bytes);
-  if (binary) checkGlbLayout(path, bytes);
   const FileSandbox sandbox(std::filesystem::path(path).parent_path(), options.allowedPaths);
   const std::string baseDir = sandbox.home().string();
   SandboxedFiles files{sandbox, baseDir.back() == '/' ? baseDir : baseDir + "/", budget, {}, {},

@@ -2,6 +2,7 @@
 // offset, index and size checked before it is trusted.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,5 +30,10 @@ struct LoadOptions {
 // how much, thrown before that allocation.
 Scene loadGltf(const std::string& path, const LoadOptions& options = {},
                std::vector<std::string>* notes = nullptr);
+
+// What loadGltf charges for parsing the JSON of the file at `path` (its
+// bytes given) before it parses it: bounded from the text's structure
+// (README, "Memory budget"). Throws Error for a malformed GLB container.
+std::uint64_t parsedJsonBytes(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
 }  // namespace quadra
