@@ -13,8 +13,10 @@
 #include <tiny_gltf.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -610,6 +612,102 @@ TEST(Skinning, PositionAovLiesOnThePosedSurface) {
         ++compared;
       }
     EXPECT_GT(compared, 100) << model;
+  }
+  if (models == 0) GTEST_SKIP() << "no skinned or morphed models";
+}
+
+// The motion AOV follows skins and morphs: a frame posed at t with the
+// previous pose (t - 1/24) given to the renderer as a sequence gives it, the
+// camera fixed. Expected, per pixel: the engine's P (checked on the posed
+// surface above) as barycentrics of its triangle (id.primitive) among the
+// reference's posed vertices at t, the same barycentrics of the reference's
+// vertices at t - 1/24, projected: the pixel centre minus that is the motion.
+// The reference poses in double from the accessors; none of it is the
+// engine's posing or deformation. Tolerance: P and the deformed vertices
+// are float (about 1e-6 of the model's size, 1e-4 px here); 2e-3 px.
+TEST(Skinning, MotionAovFollowsJointsAndMorphWeights) {
+  int models = 0;
+  for (const char* model : {"CesiumMan", "AnimatedMorphCube"}) {
+    const std::string path = assetPath(model);
+    if (!fs::exists(path)) continue;
+    ++models;
+    const tinygltf::Model file = parseReference(path);
+    Scene scene = loadGltf(path);
+    const Camera camera = firstCameraOrDefault(scene);  // the rest pose's framing, kept
+    const double t = 0.4 * animationEnd(file), before = t - 1.0 / 24.0;
+    NodePose pose;
+    poseNodes(scene, 0, before, pose);
+    placeOnNodes(scene, pose);
+    PreviousPose previous;
+    previous.camera = camera;
+    for (const Instance& instance : scene.instances) {
+      previous.instanceWorlds.push_back(instance.world);
+      previous.instanceJoints.push_back(instance.jointMatrices);
+      previous.instanceMorphWeights.push_back(instance.morphWeights);
+    }
+    poseNodes(scene, 0, t, pose);
+    placeOnNodes(scene, pose);
+    RenderSettings settings;
+    settings.width = 160;
+    settings.height = 120;
+    settings.aovs = AovSet(Aov::Position) | AovSet(Aov::Ids) | AovSet(Aov::Motion);
+    settings.previousPose = &previous;
+    const Frame frame = renderOnce(scene, camera, settings);
+
+    const ReferencePose now = referencePose(file, t), then = referencePose(file, before);
+    const glm::dmat4 viewToClip =
+        glm::dmat4(projectionMatrix(camera, double(settings.width) / settings.height,
+                                    DepthMode::Standard)) *
+        glm::dmat4(viewMatrix(camera));
+    int checked = 0, moving = 0;
+    double worst = 0.0;
+    for (int y = 0; y < settings.height; ++y)
+      for (int x = 0; x < settings.width; ++x) {
+        const std::size_t p = std::size_t(y) * std::size_t(settings.width) + std::size_t(x);
+        if (frame.nodeId[p] == kNoId) continue;
+        const int node = int(frame.nodeId[p]);
+        ASSERT_GE(file.nodes.at(std::size_t(node)).mesh, 0) << model;
+        ASSERT_EQ(file.meshes[std::size_t(file.nodes[std::size_t(node)].mesh)].primitives.size(),
+                  1u);
+        const std::vector<DVec> at = referencePositions(file, now, node, 0);
+        const std::vector<DVec> was = referencePositions(file, then, node, 0);
+        const std::vector<DVec> indices = readElements(
+            file,
+            file.meshes[std::size_t(file.nodes[std::size_t(node)].mesh)].primitives[0].indices);
+        glm::dvec3 corner[3], corner0[3];
+        for (int k = 0; k < 3; ++k) {
+          const auto v =
+              std::size_t(indices.at(3 * std::size_t(frame.primitiveId[p]) + std::size_t(k))[0]);
+          corner[k] = {at[v][0], at[v][1], at[v][2]};
+          corner0[k] = {was[v][0], was[v][1], was[v][2]};
+        }
+        // P = c0 + b1 (c1 - c0) + b2 (c2 - c0), least squares in 3D.
+        const glm::dvec3 e1 = corner[1] - corner[0], e2 = corner[2] - corner[0];
+        const glm::dvec3 d(frame.position[3 * p] - corner[0].x,
+                           frame.position[3 * p + 1] - corner[0].y,
+                           frame.position[3 * p + 2] - corner[0].z);
+        const double a11 = glm::dot(e1, e1), a12 = glm::dot(e1, e2), a22 = glm::dot(e2, e2);
+        const double det = a11 * a22 - a12 * a12;
+        if (!(det > 1e-12 * a11 * a22)) continue;  // a sliver: barycentrics ill-conditioned
+        const double b1 = (a22 * glm::dot(d, e1) - a12 * glm::dot(d, e2)) / det;
+        const double b2 = (a11 * glm::dot(d, e2) - a12 * glm::dot(d, e1)) / det;
+        const glm::dvec3 old =
+            corner0[0] + b1 * (corner0[1] - corner0[0]) + b2 * (corner0[2] - corner0[0]);
+        const glm::dvec4 clip = viewToClip * glm::dvec4(old, 1.0);
+        const double previousX = (clip.x / clip.w + 1.0) * 0.5 * settings.width;
+        const double previousY = (1.0 - clip.y / clip.w) * 0.5 * settings.height;
+        const double errorX = frame.motion[2 * p] - (x + 0.5 - previousX);
+        const double errorY = frame.motion[2 * p + 1] - (y + 0.5 - previousY);
+        worst = std::max({worst, std::fabs(errorX), std::fabs(errorY)});
+        ASSERT_LT(std::max(std::fabs(errorX), std::fabs(errorY)), 2e-3)
+            << model << " pixel " << x << "," << y;
+        moving += std::fabs(frame.motion[2 * p]) + std::fabs(frame.motion[2 * p + 1]) > 0.1f;
+        ++checked;
+      }
+    std::printf("%s: motion of %d pixels within %.3g px of the reference (%d moving)\n", model,
+                checked, worst, moving);
+    EXPECT_GT(checked, 200) << model;
+    EXPECT_GT(moving, 100) << model << ": nothing moved between the poses";
   }
   if (models == 0) GTEST_SKIP() << "no skinned or morphed models";
 }

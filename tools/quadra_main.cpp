@@ -365,8 +365,13 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
       placeOnNodes(scene, pose);
       previous.camera = cameraAt(f - 1);
       previous.instanceWorlds.clear();
-      for (const Instance& instance : scene.instances)
+      previous.instanceJoints.clear();
+      previous.instanceMorphWeights.clear();
+      for (const Instance& instance : scene.instances) {
         previous.instanceWorlds.push_back(instance.world);
+        previous.instanceJoints.push_back(instance.jointMatrices);
+        previous.instanceMorphWeights.push_back(instance.morphWeights);
+      }
       settings.previousPose = &previous;
     }
     poseNodes(scene, animation, double(f) / cmd.fps, pose);

@@ -206,6 +206,13 @@ AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSett
                   " instance matrices for a scene of " + std::to_string(scene.instances.size()));
     previousViewToClip = glm::dmat4(projectionMatrix(previous->camera, aspect, settings.depth)) *
                          glm::dmat4(viewMatrix(previous->camera));
+    const auto checkCount = [&](std::size_t count, const char* what) {
+      if (count != 0 && count != scene.instances.size())
+        throw Error("render: the previous pose has " + std::to_string(count) + " " + what +
+                    " for a scene of " + std::to_string(scene.instances.size()) + " instances");
+    };
+    checkCount(previous->instanceJoints.size(), "joint matrix lists");
+    checkCount(previous->instanceMorphWeights.size(), "morph weight lists");
   }
   aov.draws.resize(draws.size());
   for (std::size_t d = 0; d < draws.size(); ++d) {
@@ -218,8 +225,19 @@ AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSett
     a.objectToClip = projection * glm::dmat4(draws[d].geometry.modelView);
     a.world = glm::dmat4(instance.world);
     a.normalToWorld = glm::transpose(glm::inverse(glm::dmat3(a.world)));
-    if (previous)
+    a.previousMorphWeights = a.morphWeights;
+    a.previousJointMatrices = a.jointMatrices;
+    if (previous) {
       a.previousObjectToClip = previousViewToClip * glm::dmat4(previous->instanceWorlds[i]);
+      // The same deformation with that pose's joints and weights; the
+      // deformer checks them against the mesh like the current ones.
+      if (!previous->instanceJoints.empty() &&
+          previous->instanceJoints[i].size() == a.jointMatrices.size())
+        a.previousJointMatrices = previous->instanceJoints[i];
+      if (!previous->instanceMorphWeights.empty() &&
+          previous->instanceMorphWeights[i].size() == a.morphWeights.size())
+        a.previousMorphWeights = previous->instanceMorphWeights[i];
+    }
     a.node = instance.node >= 0
                  ? std::uint32_t(scene.nodes.at(std::size_t(instance.node)).fileIndex)
                  : std::uint32_t(i);

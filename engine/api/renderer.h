@@ -57,10 +57,15 @@ enum class OpaqueShading : std::uint8_t { TwoPass, Forward };
 
 // Where a sequence's scene stood one frame earlier (t - 1/fps), for the
 // motion AOV: that frame's camera and every instance's world matrix, in
-// Scene::instances order.
+// Scene::instances order, and, for skinned and morphed instances, their
+// joint matrices and morph weights then (as Instance holds them). Left
+// empty, the deformations are taken as they are now: only the camera and
+// the world matrices move.
 struct PreviousPose {
   Camera camera;
   std::vector<glm::mat4> instanceWorlds;
+  std::vector<std::vector<glm::mat4>> instanceJoints;
+  std::vector<std::vector<float>> instanceMorphWeights;
 };
 
 struct RenderSettings {

@@ -19,6 +19,11 @@ void prepare(const AovFrame& aov, const TileTriangle& visible, std::uint32_t sou
   const AovDraw& draw = aov.draws[visible.draw];
   const Mesh& mesh = *draw.mesh;
   const VertexDeformer deformer(mesh, draw.morphWeights, draw.jointMatrices);
+  // The previous pose's deformation, where it differs from this one's.
+  const bool deformedBefore = aov.hasPreviousPose && hasAov(aov.aovs, Aov::Motion) &&
+                              (draw.previousMorphWeights.data() != draw.morphWeights.data() ||
+                               draw.previousJointMatrices.data() != draw.jointMatrices.data());
+  const VertexDeformer before(mesh, draw.previousMorphWeights, draw.previousJointMatrices);
   std::uint32_t index[3];
   glm::dvec3 object[3];
   glm::mat4 skin[3];
@@ -39,7 +44,10 @@ void prepare(const AovFrame& aov, const TileTriangle& visible, std::uint32_t sou
     else
       t.uv[i] =
           mesh.texcoords[0].empty() ? glm::dvec2(0.0) : glm::dvec2(mesh.texcoords[0][index[i]]);
-    t.previousClip[i] = draw.previousObjectToClip * glm::dvec4(object[i], 1.0);
+    const glm::dvec3 previousObject =
+        deformedBefore ? glm::dvec3(before.position(index[i], before.skinMatrix(index[i])))
+                       : object[i];
+    t.previousClip[i] = draw.previousObjectToClip * glm::dvec4(previousObject, 1.0);
   }
   // The vertex normals, or without them the face's, by the winding glTF
   // calls front (the inverse transpose keeps that side under a mirroring

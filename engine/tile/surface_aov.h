@@ -35,10 +35,12 @@ struct AovDraw {
   std::uint32_t material = kNoId;        // id.material
   // A skinned or morphed instance's weights and joint matrices (as the
   // draw's geometry has them): its vertices are read deformed, as the vertex
-  // stage drew them. Its previous pose is its current deformation seen
-  // through the previous camera (joint and weight motion is not modelled).
+  // stage drew them; and those of the previous pose, for motion (the same
+  // spans when the previous pose did not say).
   std::span<const float> morphWeights;
   std::span<const glm::mat4> jointMatrices;
+  std::span<const float> previousMorphWeights;
+  std::span<const glm::mat4> previousJointMatrices;
 };
 
 // What every tile's AOV pass shares.
