@@ -8,9 +8,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "quadra/export.h"
+
 namespace quadra::api {
 
-class Error : public std::runtime_error {
+class QUADRA_API Error : public std::runtime_error {
  public:
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };

@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "quadra/export.h"
 #include "quadra/version.h"
 
 #ifdef __cplusplus
@@ -33,9 +34,9 @@ typedef struct quadra_scene quadra_scene;
 typedef struct quadra_renderer quadra_renderer;
 
 /* The library's version, "MAJOR.MINOR.PATCH". */
-const char* quadra_version(void);
+QUADRA_API const char* quadra_version(void);
 /* The calling thread's last error message; "" when none. */
-const char* quadra_last_error(void);
+QUADRA_API const char* quadra_last_error(void);
 
 /* Counts are the caller's statement of each array's length: positions,
  * normals (optional) and colors (optional) hold vertex_count x 3, 3 and 4
@@ -134,32 +135,37 @@ typedef struct quadra_depth_target {
   size_t row_stride;
 } quadra_depth_target;
 
-quadra_status quadra_scene_create(quadra_scene** out);
-quadra_status quadra_scene_load(const char* path, quadra_scene** out);
-void quadra_scene_destroy(quadra_scene* scene);
-quadra_status quadra_scene_add_mesh(quadra_scene* scene, const quadra_mesh_data* mesh,
-                                    uint32_t* out_mesh);
-quadra_status quadra_scene_update_mesh(quadra_scene* scene, uint32_t mesh,
-                                       const quadra_mesh_data* data);
-quadra_status quadra_scene_add_texture(quadra_scene* scene, const quadra_texture_data* texture,
-                                       uint32_t* out_texture);
-quadra_status quadra_scene_update_texture(quadra_scene* scene, uint32_t texture,
-                                          const quadra_texture_data* data);
-quadra_status quadra_scene_add_material(quadra_scene* scene, const quadra_material_data* material,
-                                        uint32_t* out_material);
+QUADRA_API quadra_status quadra_scene_create(quadra_scene** out);
+QUADRA_API quadra_status quadra_scene_load(const char* path, quadra_scene** out);
+QUADRA_API void quadra_scene_destroy(quadra_scene* scene);
+QUADRA_API quadra_status quadra_scene_add_mesh(quadra_scene* scene, const quadra_mesh_data* mesh,
+                                               uint32_t* out_mesh);
+QUADRA_API quadra_status quadra_scene_update_mesh(quadra_scene* scene, uint32_t mesh,
+                                                  const quadra_mesh_data* data);
+QUADRA_API quadra_status quadra_scene_add_texture(quadra_scene* scene,
+                                                  const quadra_texture_data* texture,
+                                                  uint32_t* out_texture);
+QUADRA_API quadra_status quadra_scene_update_texture(quadra_scene* scene, uint32_t texture,
+                                                     const quadra_texture_data* data);
+QUADRA_API quadra_status quadra_scene_add_material(quadra_scene* scene,
+                                                   const quadra_material_data* material,
+                                                   uint32_t* out_material);
 /* transform: 16 floats, column-major; NULL: the identity. */
-quadra_status quadra_scene_add_instance(quadra_scene* scene, uint32_t mesh, uint32_t material,
-                                        const float* transform, uint32_t* out_instance);
-quadra_status quadra_scene_set_transform(quadra_scene* scene, uint32_t instance,
-                                         const float* transform);
-quadra_status quadra_scene_set_camera(quadra_scene* scene, const quadra_camera_data* camera);
+QUADRA_API quadra_status quadra_scene_add_instance(quadra_scene* scene, uint32_t mesh,
+                                                   uint32_t material, const float* transform,
+                                                   uint32_t* out_instance);
+QUADRA_API quadra_status quadra_scene_set_transform(quadra_scene* scene, uint32_t instance,
+                                                    const float* transform);
+QUADRA_API quadra_status quadra_scene_set_camera(quadra_scene* scene,
+                                                 const quadra_camera_data* camera);
 
 /* threads <= 0: all cores. */
-quadra_status quadra_renderer_create(int threads, quadra_renderer** out);
-void quadra_renderer_destroy(quadra_renderer* renderer);
+QUADRA_API quadra_status quadra_renderer_create(int threads, quadra_renderer** out);
+QUADRA_API void quadra_renderer_destroy(quadra_renderer* renderer);
 /* depth may be NULL. Unlit shading, 1 sample, transparent black clear. */
-quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
-                            const quadra_target* target, const quadra_depth_target* depth);
+QUADRA_API quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
+                                       const quadra_target* target,
+                                       const quadra_depth_target* depth);
 
 #ifdef __cplusplus
 }

@@ -16,6 +16,7 @@
 #pragma once
 
 #include "quadra/error.hpp"
+#include "quadra/export.h"
 #include "quadra/renderer.hpp"
 #include "quadra/scene.hpp"
 #include "quadra/version.h"
@@ -24,6 +25,6 @@ namespace quadra {
 
 // The library's version, "MAJOR.MINOR.PATCH"; equals QUADRA_VERSION_STRING
 // when the headers and the library come from one install.
-const char* version();
+QUADRA_API const char* version();
 
 }  // namespace quadra

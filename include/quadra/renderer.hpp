@@ -17,6 +17,7 @@
 #include <span>
 
 #include "quadra/error.hpp"
+#include "quadra/export.h"
 #include "quadra/scene.hpp"
 
 namespace quadra::api {
@@ -68,7 +69,7 @@ struct RendererOptions {
   int threads = 0;  // <= 0: all cores
 };
 
-class Renderer {
+class QUADRA_API Renderer {
  public:
   explicit Renderer(const RendererOptions& options = {});
   ~Renderer();

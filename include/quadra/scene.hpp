@@ -23,6 +23,7 @@
 #include <string>
 
 #include "quadra/error.hpp"
+#include "quadra/export.h"
 
 namespace quadra::api {
 
@@ -110,14 +111,14 @@ struct CameraData {
 };
 
 // Camera-to-world matrix of a camera at eye looking at target.
-Matrix4 lookAt(const std::array<float, 3>& eye, const std::array<float, 3>& target,
-               const std::array<float, 3>& up);
+QUADRA_API Matrix4 lookAt(const std::array<float, 3>& eye, const std::array<float, 3>& target,
+                          const std::array<float, 3>& up);
 
 namespace detail {
 struct SceneAccess;
 }
 
-class Scene {
+class QUADRA_API Scene {
  public:
   Scene();  // empty: no meshes, no camera
   ~Scene();
@@ -160,6 +161,6 @@ class Scene {
 // Loads a .gltf or .glb file, its buffers and images (which must lie in the
 // file's folder). Meshes and textures can be added to the result; the file's
 // own meshes have no handles.
-Scene load(const std::string& path);
+QUADRA_API Scene load(const std::string& path);
 
 }  // namespace quadra::api
