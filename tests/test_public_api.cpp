@@ -374,6 +374,43 @@ TEST_F(PublicApi, UpdatingOneMeshOrTextureLeavesTheRestAlone) {
   EXPECT_EQ(after, fresh);
 }
 
+// RenderOptions reach the engine's settings, and a loaded file renders as the
+// engine renders it through its first camera or the default one.
+TEST(PublicApiLoad, LoadedFileWithOptionsIsTheEngineFrame) {
+  const std::string path = QUADRA_FUZZ_DIR "/corpus/glb/BoxTextured.glb";
+  const api::Scene scene = api::load(path);
+  const api::RenderOptions options{
+      .shading = api::Shading::Lit, .samples = 4, .clearColor = {0.1f, 0.2f, 0.3f, 1.0f}};
+  std::vector<float> pixels(std::size_t(kWidth) * kHeight * 4);
+  api::Renderer renderer({.threads = 2});
+  renderer.render(scene,
+                  {.pixels = std::as_writable_bytes(std::span(pixels)),
+                   .width = kWidth,
+                   .height = kHeight,
+                   .rowStride = kWidth * 16,
+                   .format = api::PixelFormat::Rgba32F},
+                  nullptr, options);
+
+  const quadra::Scene inside = quadra::loadGltf(path);
+  quadra::RendererConfig config;
+  config.threads = 1;  // another thread count: the same bits
+  quadra::Renderer engine(config);
+  quadra::RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  settings.shading = quadra::Shading::Lit;
+  settings.samples = 4;
+  settings.clearColor = {0.1f, 0.2f, 0.3f, 1.0f};
+  quadra::Frame frame;
+  engine.render(inside, quadra::firstCameraOrDefault(inside), settings, frame);
+  ASSERT_EQ(frame.rgba.size(), pixels.size());
+  EXPECT_EQ(std::memcmp(frame.rgba.data(), pixels.data(), pixels.size() * 4), 0);
+  std::size_t background = 0;
+  for (std::size_t i = 0; i < pixels.size(); i += 4) background += pixels[i + 2] == 0.3f;
+  EXPECT_GT(background, 0u);                                      // the clear colour
+  EXPECT_LT(background, std::size_t(kWidth) * kHeight * 9 / 10);  // and the box
+}
+
 TEST(PublicApiVersion, RuntimeVersionIsTheHeadersAndProjects) {
   EXPECT_STREQ(quadra::version(), QUADRA_VERSION_STRING);
   const std::string composed = std::to_string(QUADRA_VERSION_MAJOR) + "." +
