@@ -1,9 +1,11 @@
 // The public C++ API (include/quadra): each target format against the
 // engine's own frame of the same scene built with the internal records, row
 // strides with guard bytes, the depth target, every misuse error, and that an
-// update replaces only what it names.
+// update replaces only what it names; rendering in the embedder's arena.
 #include <gtest/gtest.h>
+#include <oneapi/tbb/task_scheduler_observer.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -12,6 +14,7 @@
 #include "api/renderer.h"
 #include "io/srgb8.h"
 #include "quadra/quadra.hpp"
+#include "quadra/tbb.hpp"
 #include "scene/gltf_loader.h"
 #include "texture/image.h"
 #include "texture/texel_format.h"
@@ -372,6 +375,40 @@ TEST_F(PublicApi, UpdatingOneMeshOrTextureLeavesTheRestAlone) {
   rebuilt = publicScene(moved);
   renderer.render(rebuilt.scene, target(fresh, kWidth * 16, api::PixelFormat::Rgba32F));
   EXPECT_EQ(after, fresh);
+}
+
+// rendererIn: the frames run in the embedder's arena (its observer sees a
+// thread enter it during the render), with its concurrency as the thread
+// count, and are the same bits as a renderer of quadra's own arena.
+TEST_F(PublicApi, RendererInTheEmbeddersArenaRunsThereWithTheSameBits) {
+  struct EntryCounter : tbb::task_scheduler_observer {
+    std::atomic<int> entries{0};
+    explicit EntryCounter(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) {
+      observe(true);
+    }
+    ~EntryCounter() override { observe(false); }
+    void on_scheduler_entry(bool) override { ++entries; }
+  };
+  tbb::task_arena arena(2);
+  arena.initialize();
+  EntryCounter counter(arena);
+  api::Renderer inArena = api::rendererIn(arena);
+  EXPECT_EQ(inArena.threadCount(), 2);
+  PublicScene s = publicScene(arrays);
+  // Large enough that its loops are split into tasks, not run inline.
+  const int size = 512;
+  std::vector<std::byte> ours(std::size_t(size) * size * 16), theirs(ours.size());
+  auto big = [&](std::vector<std::byte>& buffer) {
+    return api::Target{.pixels = buffer,
+                       .width = size,
+                       .height = size,
+                       .rowStride = std::size_t(size) * 16,
+                       .format = api::PixelFormat::Rgba32F};
+  };
+  inArena.render(s.scene, big(theirs));
+  EXPECT_GT(counter.entries.load(), 0);
+  renderer.render(s.scene, big(ours));
+  EXPECT_EQ(ours, theirs);
 }
 
 // RenderOptions reach the engine's settings, and a loaded file renders as the

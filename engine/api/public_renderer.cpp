@@ -4,12 +4,14 @@
 // rows' padding alone; and quadra::version().
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include "api/public_scene.h"
 #include "api/renderer.h"
 #include "core/error.h"
 #include "io/srgb8.h"
 #include "quadra/quadra.hpp"
+#include "quadra/tbb.hpp"
 #include "texture/texel_format.h"
 
 namespace quadra {
@@ -76,15 +78,34 @@ void writeColor(const Frame& frame, const Target& target) {
 struct Renderer::Impl {
   quadra::Renderer renderer;
   Frame frame;  // kept between frames: its buffers are reused
-  explicit Impl(const RendererOptions& options) : renderer(configOf(options)) {}
-  static RendererConfig configOf(const RendererOptions& options) {
-    RendererConfig config;
-    config.threads = options.threads;
-    return config;
-  }
+  explicit Impl(const RendererConfig& config) : renderer(config) {}
 };
 
-Renderer::Renderer(const RendererOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+namespace detail {
+struct RendererAccess {
+  static Renderer make(const RendererConfig& config) {
+    return Renderer(std::make_unique<Renderer::Impl>(config));
+  }
+};
+}  // namespace detail
+
+namespace {
+RendererConfig configOf(const RendererOptions& options) {
+  RendererConfig config;
+  config.threads = options.threads;
+  return config;
+}
+}  // namespace
+
+Renderer::Renderer(const RendererOptions& options)
+    : impl_(std::make_unique<Impl>(configOf(options))) {}
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+Renderer rendererIn(tbb::task_arena& arena) {
+  RendererConfig config;
+  config.arena = &arena;
+  return detail::RendererAccess::make(config);
+}
 Renderer::~Renderer() = default;
 Renderer::Renderer(Renderer&&) noexcept = default;
 Renderer& Renderer::operator=(Renderer&&) noexcept = default;

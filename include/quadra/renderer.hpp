@@ -3,7 +3,8 @@
 // Thread safety: one frame at a time per Renderer (it keeps its working
 // buffers between frames); for concurrent frames use one Renderer per
 // thread. Renderers share no global state. A Renderer uses its own worker
-// threads (`threads`), which render() waits for.
+// threads (`threads`), which render() waits for, or those of the embedder's
+// oneTBB task_arena (quadra/tbb.hpp rendererIn).
 // Ownership: render() only writes into the target's and depth target's
 // bytes during the call and keeps no pointer to them.
 // Errors: quadra::api::Error with a one-line message; a target that fails
@@ -21,6 +22,10 @@
 #include "quadra/scene.hpp"
 
 namespace quadra::api {
+
+namespace detail {
+struct RendererAccess;
+}
 
 // The target's pixel layout, 4 channels r, g, b, a per pixel, row 0 the top:
 // Rgba32F: premultiplied linear floats, the renderer's own values bit for bit;
@@ -86,7 +91,9 @@ class QUADRA_API Renderer {
               const RenderOptions& options = {});
 
  private:
+  friend struct detail::RendererAccess;
   struct Impl;
+  explicit Renderer(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 
