@@ -9,6 +9,7 @@
 #include "api/public_scene.h"
 #include "api/renderer.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "io/srgb8.h"
 #include "quadra/quadra.hpp"
 #include "quadra/tbb.hpp"
@@ -51,34 +52,45 @@ void checkBuffer(const char* what, std::span<std::byte> bytes, int width, int he
                 " bytes, the buffer has " + str(bytes.size()));
 }
 
-void writeColor(const Frame& frame, const Target& target) {
+// Rows in parallel (each row's bytes depend on that row alone, so the
+// split changes nothing): the sRGB and half conversions cost more than a
+// 1080p frame's render when done on one thread.
+constexpr std::size_t kRowsPerTask = 16;
+
+void writeColor(const Frame& frame, const Target& target, const Executor& executor) {
   const std::size_t floatsPerRow = std::size_t(frame.width) * 4;
-  for (int y = 0; y < frame.height; ++y) {
-    const float* in = &frame.rgba[std::size_t(y) * floatsPerRow];
-    std::byte* out = target.pixels.data() + std::size_t(y) * target.rowStride;
-    switch (target.format) {
-      case PixelFormat::Rgba32F:
-        std::memcpy(out, in, floatsPerRow * sizeof(float));
-        break;
-      case PixelFormat::Rgba16F:
-        for (std::size_t i = 0; i < floatsPerRow; ++i) {
-          const std::uint16_t half = floatToHalf(in[i]);
-          std::memcpy(out + 2 * i, &half, 2);
+  executor.parallelFor(
+      std::size_t(frame.height), kRowsPerTask, [&](std::size_t first, std::size_t end) {
+        for (std::size_t y = first; y < end; ++y) {
+          const float* in = &frame.rgba[y * floatsPerRow];
+          std::byte* out = target.pixels.data() + y * target.rowStride;
+          switch (target.format) {
+            case PixelFormat::Rgba32F:
+              std::memcpy(out, in, floatsPerRow * sizeof(float));
+              break;
+            case PixelFormat::Rgba16F:
+              for (std::size_t i = 0; i < floatsPerRow; ++i) {
+                const std::uint16_t half = floatToHalf(in[i]);
+                std::memcpy(out + 2 * i, &half, 2);
+              }
+              break;
+            case PixelFormat::Rgba8Srgb:
+              encodeSrgb8Row(in, frame.width, reinterpret_cast<std::uint8_t*>(out));
+              break;
+          }
         }
-        break;
-      case PixelFormat::Rgba8Srgb:
-        encodeSrgb8Row(in, frame.width, reinterpret_cast<std::uint8_t*>(out));
-        break;
-    }
-  }
+      });
 }
 
 }  // namespace
 
 struct Renderer::Impl {
   quadra::Renderer renderer;
-  Frame frame;  // kept between frames: its buffers are reused
-  explicit Impl(const RendererConfig& config) : renderer(config) {}
+  Frame frame;        // kept between frames: its buffers are reused
+  Executor executor;  // for the conversion into the target, on the same threads or arena
+  explicit Impl(const RendererConfig& config)
+      : renderer(config),
+        executor(config.arena ? Executor(*config.arena) : Executor(config.threads)) {}
 };
 
 namespace detail {
@@ -148,7 +160,7 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
     throw Error(error.what());
   }
 
-  writeColor(impl_->frame, target);
+  writeColor(impl_->frame, target, impl_->executor);
   if (depth)
     for (int y = 0; y < target.height; ++y)
       std::memcpy(depth->bytes.data() + std::size_t(y) * depth->rowStride,
