@@ -4,7 +4,8 @@
 # engine headers, no lab, no tests), that every installed header compiles on
 # its own and that quadra.pc works; then build the consumer against it with
 # find_package(quadra), render its in-memory quad from C++ and from C, and
-# check the pixels and depths equal bit for bit the installed CLI's EXR of the same quad as glTF. With --oiio-peer (the
+# check the pixels and depths equal bit for bit the installed CLI's EXR of the same quad as glTF;
+# then build and run the README's example (examples/) the same way. With --oiio-peer (the
 # build made quadra_oiio_peer.so), also check that the installed quadra finds
 # the installed module: its `report textures` has OpenImageIO's rows.
 set -euo pipefail
@@ -54,6 +55,11 @@ mkdir "$work/quad"
 "$work/build/read_reference" "$work/reference.exr" "$work/consumer.raw"
 "$work/build/consumer_c" "$work/consumer_c.raw"
 "$work/build/read_reference" "$work/reference.exr" "$work/consumer_c.raw"
+# The README's example (examples/), as a newcomer builds it.
+cmake -S "$source_dir/../../examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/examples" >/dev/null
+"$work/examples/triangle"
 if [[ $oiio_peer == --oiio-peer ]]; then
   "$work/prefix/bin/quadra" report textures --size 8 --lookups 36 --threads 2 \
     --out-dir "$work/report" >"$work/report.txt"
