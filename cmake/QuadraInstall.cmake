@@ -1,34 +1,23 @@
 # `cmake --install` puts the library, the headers an embedder includes and a
-# package config in place, so an embedder writes find_package(quadra) and links
-# quadra::quadra. The lab (references, ground truth, test scenes), the kernels
-# and the stages' internals are not installed.
+# package config (and quadra.pc) in place, so an embedder writes
+# find_package(quadra) and links quadra::quadra, including only <quadra/...>.
+# The lab (references, ground truth, test scenes), the kernels and the
+# engine's internal headers are not installed.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-# The API and the records it takes and returns, with everything they include
-# (the InstallAndFindPackage test compiles each installed header on its own,
-# so one missing here fails there).
-set(QUADRA_PUBLIC_HEADERS
-    api/renderer.h api/camera.h
-    scene/scene.h scene/gltf_loader.h scene/animation.h
-    io/frame.h io/image_io.h
-    texture/texture.h texture/image.h texture/sampler_state.h texture/texel_format.h
-    texture/texture_sampler.h texture/texture_view.h
-    window/window_space.h window/sample_pattern.h
-    core/error.h core/memory_budget.h
-    simd/isa.h)
-foreach(header ${QUADRA_PUBLIC_HEADERS})
-  get_filename_component(folder ${header} DIRECTORY)
-  if(EXISTS ${PROJECT_SOURCE_DIR}/engine/${header})
-    install(FILES ${PROJECT_SOURCE_DIR}/engine/${header}
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/quadra/${folder})
-  else()
-    install(FILES ${PROJECT_SOURCE_DIR}/${header}
-            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/quadra/${folder})
-  endif()
-endforeach()
-
-install(TARGETS quadra_engine EXPORT quadraTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# The public headers only (include/quadra and the generated version.h); the
+# engine's own headers stay in the tree. libquadra.so is the facade over the
+# engine (engine/CMakeLists.txt): its dependencies are private, so the
+# package config finds none of them.
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/quadra ${PROJECT_BINARY_DIR}/include/quadra
+        DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS quadra_shared EXPORT quadraTargets
+        LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# pkg-config, relocatable: paths relative to where quadra.pc is installed.
+configure_file(${PROJECT_SOURCE_DIR}/cmake/quadra.pc.in ${PROJECT_BINARY_DIR}/quadra.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/quadra.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 # The command-line tool, for offline users of the installed package.
 install(TARGETS quadra RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # And the OpenImageIO module its `report textures` loads, where it was built

@@ -33,8 +33,10 @@ struct Renderer::Impl {
   std::vector<TransformedVertices> vertices;
   std::vector<FrontEndChunk> chunks;
   std::vector<TileTimes> tileTimes;
-  explicit Impl(int threads, Isa isa)
-      : executor(threads), kernels(selectTileKernels(isa)), cull(cullKernel(isa)) {}
+  Impl(const RendererConfig& config, Isa isa)
+      : executor(config.arena ? Executor(*config.arena) : Executor(config.threads)),
+        kernels(selectTileKernels(isa)),
+        cull(cullKernel(isa)) {}
 };
 
 namespace {
@@ -345,7 +347,7 @@ Renderer::Renderer(const RendererConfig& config) {
   if (!isaSupported(isa))
     throw Error(std::string("--isa ") + isaName(isa) +
                 ": this CPU does not support it (best: " + isaName(detectBestIsa()) + ")");
-  impl_ = std::make_unique<Impl>(config.threads, isa);
+  impl_ = std::make_unique<Impl>(config, isa);
 }
 
 Renderer::~Renderer() = default;

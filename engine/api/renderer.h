@@ -17,6 +17,7 @@
 
 #include "api/camera.h"
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 #include "io/frame.h"
 #include "scene/scene.h"
 #include "simd/isa.h"
@@ -29,6 +30,9 @@ namespace quadra {
 struct RendererConfig {
   int threads = 0;         // <= 0: all cores
   std::optional<Isa> isa;  // unset: the best the CPU has; set: must be supported
+  // Set: frames run inside this arena of the embedder's (which must outlive
+  // the renderer), with its concurrency as the thread count; threads is unused.
+  TaskArena* arena = nullptr;
 };
 
 enum class Shading : std::uint8_t {

@@ -1,4 +1,5 @@
-// Executor on a private tbb::task_arena sized to the requested thread count.
+// Executor on a private tbb::task_arena sized to the requested thread count,
+// or on one the embedder passes.
 #include "core/parallel.h"
 
 #include <tbb/blocked_range.h>
@@ -8,11 +9,16 @@
 #include <tbb/task_arena.h>
 
 #include <optional>
+#include <type_traits>
 
 namespace quadra {
 
+static_assert(std::is_same_v<TaskArena, tbb::task_arena>,
+              "core/parallel.h's declaration of tbb::task_arena is not oneTBB's");
+
+// A private arena of `threads` threads, or the embedder's.
 struct Executor::Arena {
-  explicit Arena(int threads) : arena(threads) {
+  explicit Arena(int threads) : own(std::in_place, threads), arena(*own) {
     // TBB caps its worker pool at the machine's cores (and warns when an arena
     // asks for more); a caller asking for more threads than cores, e.g. to
     // show that results do not depend on the split, gets them while this
@@ -20,13 +26,18 @@ struct Executor::Arena {
     if (threads > tbb::info::default_concurrency())
       allowThreads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   }
+  explicit Arena(tbb::task_arena& external) : arena(external) {}
   std::optional<tbb::global_control> allowThreads;  // outlives the arena
-  tbb::task_arena arena;
+  std::optional<tbb::task_arena> own;
+  tbb::task_arena& arena;
 };
 
 Executor::Executor(int threads)
     : threads_(threads > 0 ? threads : tbb::this_task_arena::max_concurrency()),
       arena_(std::make_unique<Arena>(threads_)) {}
+
+Executor::Executor(TaskArena& external)
+    : threads_(external.max_concurrency()), arena_(std::make_unique<Arena>(external)) {}
 
 Executor::~Executor() = default;
 

@@ -6,12 +6,23 @@
 #include <functional>
 #include <memory>
 
+// oneTBB's task_arena, declared where oneTBB 2021 declares it so this
+// header need not include oneTBB (parallel.cpp checks it is the same class).
+namespace tbb::detail::d1 {
+class task_arena;
+}
+
 namespace quadra {
+
+using TaskArena = tbb::detail::d1::task_arena;
 
 class Executor {
  public:
   // threads <= 0: all cores.
   explicit Executor(int threads = 0);
+  // Runs every parallel loop inside the embedder's arena, which must outlive
+  // the executor; its concurrency is the thread count.
+  explicit Executor(TaskArena& external);
   ~Executor();
   Executor(const Executor&) = delete;
   Executor& operator=(const Executor&) = delete;

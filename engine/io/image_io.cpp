@@ -247,20 +247,6 @@ void writeExr(const Frame& frame, const std::string& path) {
 
 namespace {
 
-// Premultiplied linear RGBA float -> straight sRGB 8-bit RGBA, one row.
-void encodeSrgb8Row(const float* rgba, int width, std::uint8_t* out) {
-  static const Srgb8Encoder srgb8;
-  for (int x = 0; x < width; ++x, rgba += 4, out += 4) {
-    const float alpha = rgba[3];
-    for (int c = 0; c < 3; ++c) {
-      const float straight = alpha > 0.0f ? rgba[c] / alpha : rgba[c];
-      out[c] = srgb8(straight);
-    }
-    const float clamped = alpha > 0.0f ? std::min(alpha, 1.0f) : 0.0f;  // NaN -> 0
-    out[3] = roundToUnorm8(clamped);
-  }
-}
-
 // The PNG's pixel data is one zlib stream; quadra cuts it into bands of rows,
 // each encoded and deflated on its own (a sync flush ends each band, so the
 // bands concatenate into one valid stream, as pigz does) and written as IDAT

@@ -1,6 +1,7 @@
 // The 8-bit sRGB code of a linear value, and its pow-free encoder.
 #include "io/srgb8.h"
 
+#include <algorithm>
 #include <bit>
 
 #include "texture/image.h"
@@ -23,6 +24,19 @@ Srgb8Encoder::Srgb8Encoder() {
       (srgb8Code(std::bit_cast<float>(middle)) >= code ? at : below) = middle;
     }
     steps_[code] = std::bit_cast<float>(at);
+  }
+}
+
+void encodeSrgb8Row(const float* rgba, int width, std::uint8_t* out) {
+  static const Srgb8Encoder srgb8;
+  for (int x = 0; x < width; ++x, rgba += 4, out += 4) {
+    const float alpha = rgba[3];
+    for (int c = 0; c < 3; ++c) {
+      const float straight = alpha > 0.0f ? rgba[c] / alpha : rgba[c];
+      out[c] = srgb8(straight);
+    }
+    const float clamped = alpha > 0.0f ? std::min(alpha, 1.0f) : 0.0f;  // NaN -> 0
+    out[3] = roundToUnorm8(clamped);
   }
 }
 

@@ -38,4 +38,9 @@ class Srgb8Encoder {
   float steps_[256];
 };
 
+// Premultiplied linear RGBA floats -> straight (alpha divided out) 8-bit
+// sRGB r, g, b and UNORM8 a, `width` pixels: what PNG output and the public
+// API's Rgba8Srgb targets hold.
+void encodeSrgb8Row(const float* rgba, int width, std::uint8_t* out);
+
 }  // namespace quadra

@@ -1,82 +1,103 @@
-// An embedder's program, built against the installed package only: it builds
-// a scene in code (one quad filling an orthographic view, textured with a 2x2
-// image of four colours, nearest filtering), renders it, writes and reads back
-// an EXR, and checks every pixel against the texel it must show.
+// An embedder's program, built against the installed package only (the
+// public header quadra/quadra.hpp): one vertex-coloured quad built from its
+// own arrays, rendered into its own padded float buffer and depth buffer.
+//   consumer gltf DIR        write the same quad as DIR/quad.gltf + quad.bin,
+//                            for the quadra CLI to render
+//   consumer render OUT.raw  render it; write the pixels and depths, tightly
+//                            packed, for read_reference to compare
 #include <cstdio>
-#include <memory>
+#include <cstring>
+#include <fstream>
 #include <string>
+#include <vector>
 
-#include "api/camera.h"
-#include "api/renderer.h"
-#include "core/error.h"
-#include "io/image_io.h"
-#include "scene/scene.h"
+#include <quadra/quadra.hpp>
 
 namespace {
 
-quadra::Scene quadScene() {
-  quadra::Scene scene;
-  scene.name = "consumer-quad";
-  auto image = std::make_shared<quadra::Image>(2, 2);
-  const float colors[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
-  for (int t = 0; t < 4; ++t)
-    for (int c = 0; c < 4; ++c) image->texel(t % 2, t / 2)[c] = colors[t][c];
-  quadra::SamplerState sampler;
-  sampler.magLinear = false;
-  sampler.minFilter = quadra::Filter::Nearest;
-  scene.textures.push_back(std::make_shared<const quadra::Texture>(image, sampler));
+constexpr int kWidth = 64;
+constexpr int kHeight = 48;
 
-  quadra::Material material;
-  material.baseColorTexture = 0;
-  scene.materials.push_back(material);
+const float kPositions[] = {-0.7f, -0.6f, 0, 0.8f, -0.7f, 0, 0.6f, 0.7f, 0, -0.8f, 0.5f, 0};
+const float kColors[] = {1, 0, 0, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 1, 1, 0.5f};
+const std::uint16_t kIndices[] = {0, 1, 2, 0, 2, 3};
 
-  quadra::Mesh quad;  // counter-clockwise seen from +Z; v = 0 at the top (glTF)
-  quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-  quad.texcoords[0] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-  quad.indices = {0, 1, 2, 0, 2, 3};
-  quad.material = 0;
-  scene.meshes.push_back(quad);
-  scene.instances.push_back({0, glm::mat4(1.0f)});
-
-  quadra::Camera camera;
-  camera.type = quadra::Camera::Type::Orthographic;
-  camera.xmag = camera.ymag = 1.0f;
-  camera.znear = 0.5f;
-  camera.zfar = 2.0f;
-  camera.world = quadra::lookAtWorld({0, 0, 1}, {0, 0, 0}, {0, 1, 0});
-  scene.cameras.push_back(camera);
-  return scene;
+void writeGltf(const std::string& dir) {
+  std::ofstream bin(dir + "/quad.bin", std::ios::binary);
+  bin.write(reinterpret_cast<const char*>(kPositions), sizeof(kPositions));
+  bin.write(reinterpret_cast<const char*>(kColors), sizeof(kColors));
+  bin.write(reinterpret_cast<const char*>(kIndices), sizeof(kIndices));
+  std::ofstream gltf(dir + "/quad.gltf");
+  gltf << R"({"asset": {"version": "2.0"}, "scene": 0,
+  "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 1]}],
+  "cameras": [{"type": "orthographic",
+               "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.5, "zfar": 2}}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.8, 1, 1]},
+                 "doubleSided": true}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "COLOR_0": 1},
+                              "indices": 2, "material": 0}]}],
+  "buffers": [{"uri": "quad.bin", "byteLength": )"
+       << sizeof(kPositions) + sizeof(kColors) + sizeof(kIndices) << R"(}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 64},
+                  {"buffer": 0, "byteOffset": 112, "byteLength": 12}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                 "min": [-0.8, -0.7, 0], "max": [0.8, 0.7, 0]},
+                {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC4"},
+                {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]}
+)";
 }
 
-int check(const quadra::Frame& frame, const char* what) {
-  int wrong = 0;
-  for (int y = 0; y < frame.height; ++y)
-    for (int x = 0; x < frame.width; ++x) {
-      const int texel = (y * 2 / frame.height) * 2 + x * 2 / frame.width;
-      const float expected[4][4] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 1, 1}};
-      for (int c = 0; c < 4; ++c)
-        wrong += frame.rgba[(std::size_t(y) * frame.width + x) * 4 + c] != expected[texel][c];
-    }
-  std::printf("consumer: %s %dx%d, %d wrong values\n", what, frame.width, frame.height, wrong);
-  return wrong;
+int render(const std::string& outPath) {
+  namespace api = quadra::api;
+  api::Scene scene;
+  const auto mesh =
+      scene.addMesh({.positions = kPositions, .colors = kColors, .indices16 = kIndices});
+  const auto material =
+      scene.addMaterial({.baseColor = {0.9f, 0.8f, 1.0f, 1.0f}, .doubleSided = true});
+  scene.addInstance(mesh, material);
+  api::Matrix4 cameraWorld = api::kIdentity;
+  cameraWorld[14] = 1.0f;  // at z = 1, as the glTF camera node's translation
+  scene.setCamera({.projection = api::CameraData::Projection::Orthographic,
+                   .ymag = 1.0f,
+                   .znear = 0.5f,
+                   .zfar = 2.0f,
+                   .world = cameraWorld});
+
+  // The embedder's own memory: rows padded to 1 KiB, depth rows to 300 bytes.
+  const std::size_t stride = 1024, depthStride = 300;
+  std::vector<float> pixels(stride / 4 * kHeight), depth(depthStride / 4 * kHeight);
+  api::Renderer renderer({.threads = 2});
+  const api::DepthTarget depthTarget{.bytes = std::as_writable_bytes(std::span(depth)),
+                                     .rowStride = depthStride};
+  renderer.render(scene,
+                  {.pixels = std::as_writable_bytes(std::span(pixels)),
+                   .width = kWidth,
+                   .height = kHeight,
+                   .rowStride = stride,
+                   .format = api::PixelFormat::Rgba32F},
+                  &depthTarget);
+  std::ofstream out(outPath, std::ios::binary);
+  for (int y = 0; y < kHeight; ++y)
+    out.write(reinterpret_cast<const char*>(&pixels[y * stride / 4]), kWidth * 16);
+  for (int y = 0; y < kHeight; ++y)
+    out.write(reinterpret_cast<const char*>(&depth[y * depthStride / 4]), kWidth * 4);
+  std::printf("consumer: quadra %s (headers %s), rendered %dx%d\n", quadra::version(),
+              QUADRA_VERSION_STRING, kWidth, kHeight);
+  return std::strcmp(quadra::version(), QUADRA_VERSION_STRING) == 0 && out ? 0 : 1;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string exrPath = argc > 1 ? argv[1] : "consumer.exr";
+  const std::string mode = argc == 3 ? argv[1] : "";
   try {
-    const quadra::Scene scene = quadScene();
-    quadra::Renderer renderer({.threads = 2});
-    quadra::Frame frame;
-    renderer.render(scene, scene.cameras.at(0), {.width = 64, .height = 64}, frame);
-    int wrong = check(frame, "rendered");
-    quadra::writeFrame(frame, exrPath);
-    const quadra::Image read = quadra::readImage(exrPath);
-    quadra::Frame reread{read.width, read.height, read.rgba, {}};
-    wrong += check(reread, "read back");
-    return wrong == 0 ? 0 : 1;
-  } catch (const quadra::Error& e) {
+    if (mode == "gltf") return writeGltf(argv[2]), 0;
+    if (mode == "render") return render(argv[2]);
+    std::fprintf(stderr, "usage: consumer gltf DIR | consumer render OUT.raw\n");
+    return 1;
+  } catch (const quadra::api::Error& e) {
     std::fprintf(stderr, "consumer: %s\n", e.what());
     return 1;
   }

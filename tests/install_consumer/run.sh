@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # InstallAndFindPackage: install the build tree to a temporary prefix; check
-# that it holds only what an embedder needs (no lab, no kernels, no tests) and
-# that every installed header compiles on its own; then build the consumer
-# against it with find_package(quadra) and run it. With --oiio-peer (the
+# that it holds only what an embedder needs (the public headers quadra/*, no
+# engine headers, no lab, no tests), that every installed header compiles on
+# its own and that quadra.pc works; then build the consumer against it with
+# find_package(quadra), render its in-memory quad from C++ and from C, and
+# check the pixels and depths equal bit for bit the installed CLI's EXR of the same quad as glTF;
+# then build and run the README's example (examples/) the same way. With --oiio-peer (the
 # build made quadra_oiio_peer.so), also check that the installed quadra finds
 # the installed module: its `report textures` has OpenImageIO's rows.
 set -euo pipefail
@@ -12,26 +15,51 @@ source_dir=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
-include="$work/prefix/include/quadra"
+include="$work/prefix/include"
 mapfile -t headers < <(cd "$include" && find . -type f | sed 's#^\./##' | sort)
 echo "installed headers (${#headers[@]}): ${headers[*]}"
 for h in "${headers[@]}"; do
   case "$h" in
-    lab/* | *_impl.h | *_lanes.h | */tile_* | */kernel_*)
-      echo "not for embedders, but installed: $h"
+    quadra/*.hpp | quadra/*.h) ;;
+    *)
+      echo "not a public header, but installed: $h"
       exit 1
       ;;
   esac
-  echo "#include \"$h\"" | c++ -std=c++20 -fsyntax-only -I"$include" -x c++ - ||
+  echo "#include <$h>" | c++ -std=c++20 -fsyntax-only -I"$include" -x c++ - ||
     { echo "installed header does not compile on its own: $h"; exit 1; }
 done
+if grep -rlE '#include "(api|scene|core|io|texture|window|simd)/' "$include"; then
+  echo "an installed header includes the engine's internals"
+  exit 1
+fi
+# pkg-config alone (no CMake): compile and link a version query.
+printf '#include <quadra/quadra.hpp>\n#include <cstdio>\nint main() { std::puts(quadra::version()); }\n' >"$work/pc.cpp"
+PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --exists quadra ||
+  { echo "pkg-config does not find quadra.pc"; exit 1; }
+# shellcheck disable=SC2046
+c++ -std=c++20 "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags --libs quadra)
+[[ $(LD_LIBRARY_PATH="$work/prefix/lib" "$work/pc") == $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --modversion quadra) ]] ||
+  { echo "the pkg-config build reports another version"; exit 1; }
 if find "$work/prefix" -name '*lab*' | grep .; then
   echo "the lab library was installed"
   exit 1
 fi
 cmake -S "$source_dir" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" >/dev/null
-"$work/build/consumer" "$work/consumer.exr"
+mkdir "$work/quad"
+"$work/build/consumer" gltf "$work/quad"
+"$work/prefix/bin/quadra" render "$work/quad/quad.gltf" --width 64 --height 48 --threads 2 \
+  --out "$work/reference.exr" >/dev/null
+"$work/build/consumer" render "$work/consumer.raw"
+"$work/build/read_reference" "$work/reference.exr" "$work/consumer.raw"
+"$work/build/consumer_c" "$work/consumer_c.raw"
+"$work/build/read_reference" "$work/reference.exr" "$work/consumer_c.raw"
+# The README's example (examples/), as a newcomer builds it.
+cmake -S "$source_dir/../../examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/examples" >/dev/null
+"$work/examples/triangle"
 if [[ $oiio_peer == --oiio-peer ]]; then
   "$work/prefix/bin/quadra" report textures --size 8 --lookups 36 --threads 2 \
     --out-dir "$work/report" >"$work/report.txt"

@@ -1,0 +1,171 @@
+// The public Renderer (include/quadra/renderer.hpp): checks the embedder's
+// buffers, renders through the engine's Renderer into its own float Frame,
+// and converts that frame into the target's format row by row, leaving the
+// rows' padding alone; and quadra::version().
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "api/public_scene.h"
+#include "api/renderer.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "io/srgb8.h"
+#include "quadra/quadra.hpp"
+#include "quadra/tbb.hpp"
+#include "texture/texel_format.h"
+
+namespace quadra {
+
+const char* version() {
+  return QUADRA_VERSION_STRING;
+}
+
+}  // namespace quadra
+
+namespace quadra::api {
+
+namespace {
+
+std::string str(std::size_t n) {
+  return std::to_string(n);
+}
+
+// Size, stride and alignment of one embedder buffer of width x height
+// pixels of pixelBytes, channels of channelBytes each.
+void checkBuffer(const char* what, std::span<std::byte> bytes, int width, int height,
+                 std::size_t rowStride, std::size_t pixelBytes, std::size_t channelBytes) {
+  const std::size_t rowBytes = std::size_t(width) * pixelBytes;
+  if (rowStride < rowBytes)
+    throw Error(std::string(what) + ": row stride " + str(rowStride) +
+                " bytes is less than a row's " + std::to_string(width) + " x " + str(pixelBytes) +
+                " = " + str(rowBytes));
+  if (rowStride % channelBytes != 0)
+    throw Error(std::string(what) + ": row stride " + str(rowStride) +
+                " bytes is not a multiple of the channel size " + str(channelBytes));
+  if (reinterpret_cast<std::uintptr_t>(bytes.data()) % channelBytes != 0)
+    throw Error(std::string(what) + ": buffer is not aligned to " + str(channelBytes) + " bytes");
+  const std::size_t needed = rowStride * (std::size_t(height) - 1) + rowBytes;
+  if (bytes.size() < needed)
+    throw Error(std::string(what) + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                " at row stride " + str(rowStride) + " needs " + str(needed) +
+                " bytes, the buffer has " + str(bytes.size()));
+}
+
+// Rows in parallel (each row's bytes depend on that row alone, so the
+// split changes nothing): the sRGB and half conversions cost more than a
+// 1080p frame's render when done on one thread.
+constexpr std::size_t kRowsPerTask = 16;
+
+void writeColor(const Frame& frame, const Target& target, const Executor& executor) {
+  const std::size_t floatsPerRow = std::size_t(frame.width) * 4;
+  executor.parallelFor(
+      std::size_t(frame.height), kRowsPerTask, [&](std::size_t first, std::size_t end) {
+        for (std::size_t y = first; y < end; ++y) {
+          const float* in = &frame.rgba[y * floatsPerRow];
+          std::byte* out = target.pixels.data() + y * target.rowStride;
+          switch (target.format) {
+            case PixelFormat::Rgba32F:
+              std::memcpy(out, in, floatsPerRow * sizeof(float));
+              break;
+            case PixelFormat::Rgba16F:
+              for (std::size_t i = 0; i < floatsPerRow; ++i) {
+                const std::uint16_t half = floatToHalf(in[i]);
+                std::memcpy(out + 2 * i, &half, 2);
+              }
+              break;
+            case PixelFormat::Rgba8Srgb:
+              encodeSrgb8Row(in, frame.width, reinterpret_cast<std::uint8_t*>(out));
+              break;
+          }
+        }
+      });
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  quadra::Renderer renderer;
+  Frame frame;        // kept between frames: its buffers are reused
+  Executor executor;  // for the conversion into the target, on the same threads or arena
+  explicit Impl(const RendererConfig& config)
+      : renderer(config),
+        executor(config.arena ? Executor(*config.arena) : Executor(config.threads)) {}
+};
+
+namespace detail {
+struct RendererAccess {
+  static Renderer make(const RendererConfig& config) {
+    return Renderer(std::make_unique<Renderer::Impl>(config));
+  }
+};
+}  // namespace detail
+
+namespace {
+RendererConfig configOf(const RendererOptions& options) {
+  RendererConfig config;
+  config.threads = options.threads;
+  return config;
+}
+}  // namespace
+
+Renderer::Renderer(const RendererOptions& options)
+    : impl_(std::make_unique<Impl>(configOf(options))) {}
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+Renderer rendererIn(tbb::task_arena& arena) {
+  RendererConfig config;
+  config.arena = &arena;
+  return detail::RendererAccess::make(config);
+}
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+int Renderer::threadCount() const {
+  return impl_->renderer.threadCount();
+}
+
+void Renderer::render(const Scene& scene, const Target& target, const DepthTarget* depth,
+                      const RenderOptions& options) {
+  if (target.width < 1 || target.height < 1 || target.width > kMaxViewportSize ||
+      target.height > kMaxViewportSize)
+    throw Error("render target: " + std::to_string(target.width) + "x" +
+                std::to_string(target.height) + " is not within 1.." +
+                std::to_string(kMaxViewportSize) + " pixels each way");
+  if (target.format != PixelFormat::Rgba8Srgb && target.format != PixelFormat::Rgba16F &&
+      target.format != PixelFormat::Rgba32F)
+    throw Error("render target: unknown pixel format");
+  const std::size_t pixelBytes = bytesPerPixel(target.format);
+  checkBuffer("render target", target.pixels, target.width, target.height, target.rowStride,
+              pixelBytes, pixelBytes / 4);
+  if (depth)
+    checkBuffer("depth target", depth->bytes, target.width, target.height, depth->rowStride,
+                sizeof(float), sizeof(float));
+
+  const auto& inside = detail::SceneAccess::of(scene);
+  const quadra::Camera camera = inside.camera ? *inside.camera : firstCameraOrDefault(inside.scene);
+  RenderSettings settings;
+  settings.width = target.width;
+  settings.height = target.height;
+  settings.shading =
+      options.shading == Shading::Lit ? quadra::Shading::Lit : quadra::Shading::Unlit;
+  settings.samples = options.samples;
+  settings.clearColor = {options.clearColor[0], options.clearColor[1], options.clearColor[2],
+                         options.clearColor[3]};
+  settings.frameDepth = depth != nullptr;
+  try {
+    impl_->renderer.render(inside.scene, camera, settings, impl_->frame);
+  } catch (const quadra::Error& error) {  // the engine's, as the public type
+    throw Error(error.what());
+  }
+
+  writeColor(impl_->frame, target, impl_->executor);
+  if (depth)
+    for (int y = 0; y < target.height; ++y)
+      std::memcpy(depth->bytes.data() + std::size_t(y) * depth->rowStride,
+                  &impl_->frame.depth[std::size_t(y) * std::size_t(target.width)],
+                  std::size_t(target.width) * sizeof(float));
+}
+
+}  // namespace quadra::api

@@ -1,0 +1,174 @@
+/* quadra's C API: opaque handles, status codes and a message getter, no C++
+ * types, so any language with a C FFI can bind it. It is a thin layer over
+ * the C++ API (quadra/quadra.hpp), with the same validation and messages.
+ *
+ * Errors: every function returning quadra_status returns QUADRA_OK or an
+ * error code, and then quadra_last_error() gives the one-line message of
+ * the calling thread's last failure (valid until its next failing call).
+ * Ownership: *_create and quadra_scene_load hand out handles the caller
+ * releases with the matching *_destroy (NULL is accepted and ignored); a
+ * handle must not be used after it is destroyed. Data passed in is copied.
+ * Threads: as in C++; a scene may be rendered by several renderers at once,
+ * a renderer renders one frame at a time. */
+#ifndef QUADRA_QUADRA_H
+#define QUADRA_QUADRA_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "quadra/export.h"
+#include "quadra/version.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum quadra_status {
+  QUADRA_OK = 0,
+  QUADRA_INVALID_ARGUMENT = 1, /* a NULL handle or pointer, or data that fails validation */
+  QUADRA_FAILED = 2,           /* a load or render that failed (file, memory budget, ...) */
+  QUADRA_OUT_OF_MEMORY = 3
+} quadra_status;
+
+typedef struct quadra_scene quadra_scene;
+typedef struct quadra_renderer quadra_renderer;
+
+/* The library's version, "MAJOR.MINOR.PATCH". */
+QUADRA_API const char* quadra_version(void);
+/* The calling thread's last error message; "" when none. */
+QUADRA_API const char* quadra_last_error(void);
+
+/* Counts are the caller's statement of each array's length: positions,
+ * normals (optional) and colors (optional) hold vertex_count x 3, 3 and 4
+ * floats, uvs (optional) vertex_count x 2; exactly one of indices32 and
+ * indices16 holds index_count entries, each < vertex_count. */
+typedef struct quadra_mesh_data {
+  const float* positions;
+  const float* normals;
+  const float* uvs;
+  const float* colors;
+  size_t vertex_count;
+  const uint32_t* indices32;
+  const uint16_t* indices16;
+  size_t index_count;
+} quadra_mesh_data;
+
+typedef enum quadra_texture_format {
+  QUADRA_TEXTURE_RGBA8_SRGB = 0,
+  QUADRA_TEXTURE_RGBA8_UNORM = 1,
+  QUADRA_TEXTURE_RGBA16F = 2,
+  QUADRA_TEXTURE_RGBA32F = 3
+} quadra_texture_format;
+typedef enum quadra_wrap {
+  QUADRA_WRAP_REPEAT = 0,
+  QUADRA_WRAP_MIRRORED_REPEAT = 1,
+  QUADRA_WRAP_CLAMP_TO_EDGE = 2
+} quadra_wrap;
+typedef enum quadra_filter {
+  QUADRA_FILTER_NEAREST = 0,
+  QUADRA_FILTER_BILINEAR = 1,
+  QUADRA_FILTER_TRILINEAR = 2,
+  QUADRA_FILTER_ANISOTROPIC = 3
+} quadra_filter;
+
+/* texels: size_bytes bytes, rows row_stride apart (0: tightly packed). */
+typedef struct quadra_texture_data {
+  int width;
+  int height;
+  quadra_texture_format format;
+  const void* texels;
+  size_t size_bytes;
+  size_t row_stride;
+  quadra_wrap wrap_u;
+  quadra_wrap wrap_v;
+  quadra_filter filter;
+} quadra_texture_data;
+
+typedef enum quadra_alpha_mode {
+  QUADRA_ALPHA_OPAQUE = 0,
+  QUADRA_ALPHA_MASK = 1,
+  QUADRA_ALPHA_BLEND = 2
+} quadra_alpha_mode;
+
+typedef struct quadra_material_data {
+  float base_color[4]; /* linear, straight */
+  int has_texture;     /* nonzero: texture is read at the mesh's uvs */
+  uint32_t texture;
+  quadra_alpha_mode alpha_mode;
+  float alpha_cutoff;
+  int double_sided;
+} quadra_material_data;
+
+typedef enum quadra_projection {
+  QUADRA_PERSPECTIVE = 0,
+  QUADRA_ORTHOGRAPHIC = 1
+} quadra_projection;
+
+/* As quadra::api::CameraData; world is column-major camera-to-world. */
+typedef struct quadra_camera_data {
+  quadra_projection projection;
+  float yfov;
+  float ymag;
+  float znear;
+  float zfar;
+  float world[16];
+} quadra_camera_data;
+
+typedef enum quadra_pixel_format {
+  QUADRA_PIXEL_RGBA8_SRGB = 0,
+  QUADRA_PIXEL_RGBA16F = 1,
+  QUADRA_PIXEL_RGBA32F = 2
+} quadra_pixel_format;
+
+/* The embedder's buffer of size_bytes bytes; rules as quadra::api::Target. */
+typedef struct quadra_target {
+  void* pixels;
+  size_t size_bytes;
+  int width;
+  int height;
+  size_t row_stride;
+  quadra_pixel_format format;
+} quadra_target;
+typedef struct quadra_depth_target {
+  float* depth;
+  size_t size_bytes;
+  size_t row_stride;
+} quadra_depth_target;
+
+QUADRA_API quadra_status quadra_scene_create(quadra_scene** out);
+QUADRA_API quadra_status quadra_scene_load(const char* path, quadra_scene** out);
+QUADRA_API void quadra_scene_destroy(quadra_scene* scene);
+QUADRA_API quadra_status quadra_scene_add_mesh(quadra_scene* scene, const quadra_mesh_data* mesh,
+                                               uint32_t* out_mesh);
+QUADRA_API quadra_status quadra_scene_update_mesh(quadra_scene* scene, uint32_t mesh,
+                                                  const quadra_mesh_data* data);
+QUADRA_API quadra_status quadra_scene_add_texture(quadra_scene* scene,
+                                                  const quadra_texture_data* texture,
+                                                  uint32_t* out_texture);
+QUADRA_API quadra_status quadra_scene_update_texture(quadra_scene* scene, uint32_t texture,
+                                                     const quadra_texture_data* data);
+QUADRA_API quadra_status quadra_scene_add_material(quadra_scene* scene,
+                                                   const quadra_material_data* material,
+                                                   uint32_t* out_material);
+/* transform: 16 floats, column-major; NULL: the identity. */
+QUADRA_API quadra_status quadra_scene_add_instance(quadra_scene* scene, uint32_t mesh,
+                                                   uint32_t material, const float* transform,
+                                                   uint32_t* out_instance);
+QUADRA_API quadra_status quadra_scene_set_transform(quadra_scene* scene, uint32_t instance,
+                                                    const float* transform);
+QUADRA_API quadra_status quadra_scene_set_camera(quadra_scene* scene,
+                                                 const quadra_camera_data* camera);
+
+/* threads <= 0: all cores. */
+QUADRA_API quadra_status quadra_renderer_create(int threads, quadra_renderer** out);
+QUADRA_API void quadra_renderer_destroy(quadra_renderer* renderer);
+/* depth may be NULL. Unlit shading, 1 sample, transparent black clear. */
+QUADRA_API quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
+                                       const quadra_target* target,
+                                       const quadra_depth_target* depth);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* QUADRA_QUADRA_H */

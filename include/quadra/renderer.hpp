@@ -1,0 +1,100 @@
+// quadra::api::Renderer: renders a Scene into the embedder's own memory.
+//
+// Thread safety: one frame at a time per Renderer (it keeps its working
+// buffers between frames); for concurrent frames use one Renderer per
+// thread. Renderers share no global state. A Renderer uses its own worker
+// threads (`threads`), which render() waits for, or those of the embedder's
+// oneTBB task_arena (quadra/tbb.hpp rendererIn).
+// Ownership: render() only writes into the target's and depth target's
+// bytes during the call and keeps no pointer to them.
+// Errors: quadra::api::Error with a one-line message; a target that fails
+// validation is left untouched.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "quadra/error.hpp"
+#include "quadra/export.h"
+#include "quadra/scene.hpp"
+
+namespace quadra::api {
+
+namespace detail {
+struct RendererAccess;
+}
+
+// The target's pixel layout, 4 channels r, g, b, a per pixel, row 0 the top:
+// Rgba32F: premultiplied linear floats, the renderer's own values bit for bit;
+// Rgba16F: those rounded to IEEE halves (to nearest, ties to even);
+// Rgba8Srgb: straight (alpha divided out) r, g, b as 8-bit sRGB codes and a
+// as UNORM8, exactly the bytes `quadra render --out FILE.png` writes.
+enum class PixelFormat : std::uint8_t { Rgba8Srgb, Rgba16F, Rgba32F };
+
+// Bytes per pixel of a format: 4, 8 or 16.
+constexpr std::size_t bytesPerPixel(PixelFormat format) {
+  return format == PixelFormat::Rgba8Srgb ? 4 : format == PixelFormat::Rgba16F ? 8 : 16;
+}
+
+// The embedder's colour buffer. rowStride >= width x bytesPerPixel and a
+// multiple of the channel size; pixels must hold rowStride x (height - 1) +
+// width x bytesPerPixel bytes and be aligned to the channel size. Bytes past
+// each row's pixels (padding) are never written.
+struct Target {
+  std::span<std::byte> pixels = {};
+  int width = 0;  // 1 .. 8192 each
+  int height = 0;
+  std::size_t rowStride = 0;
+  PixelFormat format = PixelFormat::Rgba8Srgb;
+};
+
+// An optional depth buffer of floats, the same width and height as the
+// target: window depth in [0, 1] of the nearest sample, 1 where nothing is
+// drawn. Rules of stride, size and alignment as Target's, with 4-byte pixels.
+struct DepthTarget {
+  std::span<std::byte> bytes = {};
+  std::size_t rowStride = 0;
+};
+
+enum class Shading : std::uint8_t {
+  Unlit,  // base colour x texture x vertex colour
+  Lit,    // that times the Lambert term of a light at the camera (needs normals)
+};
+
+struct RenderOptions {
+  Shading shading = Shading::Unlit;
+  int samples = 1;                                          // per pixel: 1, 2, 4, 8 or 16
+  std::array<float, 4> clearColor{0.0f, 0.0f, 0.0f, 0.0f};  // premultiplied linear
+};
+
+struct RendererOptions {
+  int threads = 0;  // <= 0: all cores
+};
+
+class QUADRA_API Renderer {
+ public:
+  explicit Renderer(const RendererOptions& options = {});
+  ~Renderer();
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  int threadCount() const;
+
+  // Renders `scene` through its camera into `target` (and `depth` when not
+  // null). Output is the same bits whatever the thread count or CPU.
+  void render(const Scene& scene, const Target& target, const DepthTarget* depth = nullptr,
+              const RenderOptions& options = {});
+
+ private:
+  friend struct detail::RendererAccess;
+  struct Impl;
+  explicit Renderer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace quadra::api

@@ -1,0 +1,146 @@
+/* The C API from a C program (CTest: CApi): an in-memory quad rendered into
+ * padded RGBA32F and depth buffers, checked pixel by pixel against where the
+ * quad must be; a glTF file loaded and rendered; and each misuse returning
+ * its status and one-line message while writing nothing.
+ *   test_c_api FILE.glb */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "quadra/quadra.h"
+
+enum { kSize = 40, kStride = kSize * 16 + 64, kDepthStride = kSize * 4 + 12 };
+
+static int failures = 0;
+
+#define EXPECT(cond)                                                     \
+  do {                                                                   \
+    if (!(cond)) {                                                       \
+      fprintf(stderr, "%s:%d: failed: %s\n", __FILE__, __LINE__, #cond); \
+      ++failures;                                                        \
+    }                                                                    \
+  } while (0)
+
+/* The status and the message of one misuse. */
+static void expect_error(quadra_status status, quadra_status expected, const char* message) {
+  EXPECT(status == expected);
+  if (strcmp(quadra_last_error(), message) != 0) {
+    fprintf(stderr, "message: '%s'\nexpected: '%s'\n", quadra_last_error(), message);
+    ++failures;
+  }
+}
+
+static float pixels[kSize * kStride / 4 + 16];
+static float depth[kSize * kDepthStride / 4];
+
+static void in_memory_quad(quadra_renderer* renderer) {
+  /* x, y in [-0.5, 0.5] at z = 0, seen orthographically from z = 1 over
+   * [-1, 1]^2: pixels 10..29 each way hold it (centres -0.475 .. 0.475). */
+  const float positions[] = {-0.5f, -0.5f, 0, 0.5f, -0.5f, 0, 0.5f, 0.5f, 0, -0.5f, 0.5f, 0};
+  const uint32_t indices[] = {0, 1, 2, 0, 2, 3};
+  quadra_scene* scene = NULL;
+  EXPECT(quadra_scene_create(&scene) == QUADRA_OK);
+  quadra_mesh_data mesh = {0};
+  mesh.positions = positions;
+  mesh.vertex_count = 4;
+  mesh.indices32 = indices;
+  mesh.index_count = 6;
+  uint32_t mesh_id = 99, material_id = 99, instance_id = 99;
+  EXPECT(quadra_scene_add_mesh(scene, &mesh, &mesh_id) == QUADRA_OK);
+  quadra_material_data material = {{0.25f, 0.5f, 0.75f, 1.0f}, 0, 0, QUADRA_ALPHA_OPAQUE, 0.5f, 0};
+  EXPECT(quadra_scene_add_material(scene, &material, &material_id) == QUADRA_OK);
+  EXPECT(quadra_scene_add_instance(scene, mesh_id, material_id, NULL, &instance_id) == QUADRA_OK);
+  quadra_camera_data camera = {QUADRA_ORTHOGRAPHIC,
+                               0.8f,
+                               1.0f,
+                               0.5f,
+                               2.0f,
+                               {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1}};
+  EXPECT(quadra_scene_set_camera(scene, &camera) == QUADRA_OK);
+
+  memset(pixels, 0xA5, sizeof(pixels));
+  quadra_target target = {pixels, sizeof(pixels), kSize, kSize, kStride, QUADRA_PIXEL_RGBA32F};
+  quadra_depth_target depth_target = {depth, sizeof(depth), kDepthStride};
+  EXPECT(quadra_render(renderer, scene, &target, &depth_target) == QUADRA_OK);
+  int wrong = 0;
+  const float base[4] = {0.25f, 0.5f, 0.75f, 1.0f};
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const int inside = x >= 10 && x < 30 && y >= 10 && y < 30;
+      const float* p = &pixels[y * (kStride / 4) + x * 4];
+      for (int c = 0; c < 4; ++c) wrong += p[c] != (inside ? base[c] : 0.0f);
+      const float z = depth[y * (kDepthStride / 4) + x];
+      /* (1 - 0.5) / (2 - 0.5) at the quad, 1 (the far plane) elsewhere */
+      wrong += inside ? fabsf(z - 1.0f / 3.0f) > 1e-6f : z != 1.0f;
+    }
+  EXPECT(wrong == 0);
+  /* the padding after each row is untouched */
+  const unsigned char* bytes = (const unsigned char*)pixels;
+  int touched = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int i = kSize * 16; i < kStride; ++i) touched += bytes[y * kStride + i] != 0xA5;
+  EXPECT(touched == 0);
+
+  /* misuse */
+  unsigned char before[sizeof(pixels)];
+  memcpy(before, pixels, sizeof(pixels));
+  quadra_target short_target = target;
+  short_target.size_bytes = 1000;
+  expect_error(quadra_render(renderer, scene, &short_target, NULL), QUADRA_INVALID_ARGUMENT,
+               "render target: 40x40 at row stride 704 needs 28096 bytes, the buffer has 1000");
+  quadra_target short_stride = target;
+  short_stride.row_stride = 100;
+  expect_error(quadra_render(renderer, scene, &short_stride, NULL), QUADRA_INVALID_ARGUMENT,
+               "render target: row stride 100 bytes is less than a row's 40 x 16 = 640");
+  EXPECT(memcmp(before, pixels, sizeof(pixels)) == 0);
+  expect_error(quadra_render(NULL, scene, &target, NULL), QUADRA_INVALID_ARGUMENT,
+               "quadra_render: an argument is NULL");
+  const uint32_t bad_indices[] = {0, 1, 4};
+  mesh.indices32 = bad_indices;
+  mesh.index_count = 3;
+  uint32_t unused = 0;
+  expect_error(quadra_scene_add_mesh(scene, &mesh, &unused), QUADRA_INVALID_ARGUMENT,
+               "mesh: index 4 (entry 2) is out of range for 4 vertices");
+  quadra_texture_data empty = {0, 4, QUADRA_TEXTURE_RGBA8_SRGB, NULL, 0, 0, 0, 0, 0};
+  expect_error(quadra_scene_add_texture(scene, &empty, &unused), QUADRA_INVALID_ARGUMENT,
+               "texture: 0x4 texels; a texture needs at least one");
+  float transform[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  transform[12] = NAN;
+  expect_error(quadra_scene_set_transform(scene, instance_id, transform), QUADRA_INVALID_ARGUMENT,
+               "instance transform: element 12 (column 3, row 0) is NaN");
+  expect_error(quadra_scene_set_transform(scene, 5, NULL), QUADRA_INVALID_ARGUMENT,
+               "setTransform: handle 5 is not one of this scene's 1");
+  quadra_scene_destroy(scene);
+}
+
+static void gltf_file(quadra_renderer* renderer, const char* path) {
+  quadra_scene* scene = NULL;
+  EXPECT(quadra_scene_load(path, &scene) == QUADRA_OK);
+  if (!scene) return;
+  static unsigned char rgba8[kSize * kSize * 4];
+  quadra_target target = {rgba8, sizeof(rgba8), kSize, kSize, kSize * 4, QUADRA_PIXEL_RGBA8_SRGB};
+  EXPECT(quadra_render(renderer, scene, &target, NULL) == QUADRA_OK);
+  int covered = 0;
+  for (int i = 0; i < kSize * kSize; ++i) covered += rgba8[i * 4 + 3] != 0;
+  EXPECT(covered > kSize * kSize / 10); /* the default camera frames the model */
+  quadra_scene_destroy(scene);
+  quadra_scene* missing = NULL;
+  EXPECT(quadra_scene_load("/nonexistent.glb", &missing) != QUADRA_OK);
+  EXPECT(missing == NULL && strstr(quadra_last_error(), "/nonexistent.glb") != NULL);
+}
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    fprintf(stderr, "usage: test_c_api FILE.glb\n");
+    return 1;
+  }
+  EXPECT(strcmp(quadra_version(), QUADRA_VERSION_STRING) == 0);
+  quadra_renderer* renderer = NULL;
+  EXPECT(quadra_renderer_create(2, &renderer) == QUADRA_OK);
+  in_memory_quad(renderer);
+  gltf_file(renderer, argv[1]);
+  quadra_renderer_destroy(renderer);
+  quadra_scene_destroy(NULL);
+  printf("test_c_api: %d failures\n", failures);
+  return failures == 0 ? 0 : 1;
+}
