@@ -84,7 +84,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          (default, multisampling) or every sample (supersampling)
   --alpha-to-coverage    MASK materials cover round(alpha x samples) of a pixel's samples
                          instead of testing alpha against their cutoff (at 1 sample: 0.5)
-  --threads N            default: all cores
+  --threads N            default: all cores (loading decodes on them too)
   --isa auto|scalar|sse2|avx2|avx512
                          kernel path (default auto: the best this CPU has)
   --frames K             K timed frames after one warm-up (default 1)
@@ -246,6 +246,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   }
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   cmd.settings.maxMemory = cmd.load.maxMemory;
+  cmd.load.threads = cmd.config.threads;  // decoding the scene's meshes and images too
   if (cmd.settings.aovs != 0 && !cmd.outputs.empty() && !cmd.settings.frameDepth)
     std::cerr << "quadra: note: --aov: only .exr outputs hold AOVs; the PNG files will not\n";
   return cmd;

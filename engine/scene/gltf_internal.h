@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 #include "scene/scene.h"
 
 namespace tinygltf {
@@ -27,6 +28,9 @@ struct ModelRef {
   const tinygltf::Model& model;
   const std::string& path;
   MemoryBudget* budget = nullptr;  // the load's (LoadOptions::maxMemory); null: unbounded
+  // Where decoding runs in parallel (LoadOptions::threads / arena); null: on
+  // the loading thread.
+  const Executor* executor = nullptr;
 
   Error fail(const std::string& problem) const { return makeError(path, problem); }
   // Counts `bytes` against the load's budget before they are allocated for

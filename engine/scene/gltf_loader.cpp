@@ -461,7 +461,8 @@ struct PrimitiveJob {
 };
 
 void decodePrimitives(const ModelRef& ref, std::vector<PrimitiveJob>& jobs) {
-  const Executor executor(jobs.size() > 1 ? 0 : 1);
+  const Executor serial(1);
+  const Executor& executor = ref.executor ? *ref.executor : serial;
   executor.parallelFor(jobs.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       PrimitiveJob& job = jobs[i];
@@ -727,7 +728,8 @@ void poseDeformedInstances(Scene& scene) {
 Scene convertModel(const std::string& path, const tinygltf::Model& model,
                    const gltf::ImageStash& stash, const LoadOptions& options, MemoryBudget& budget,
                    std::vector<std::string>& notes) {
-  const ModelRef ref{model, path, &budget};
+  const Executor executor = options.arena ? Executor(*options.arena) : Executor(options.threads);
+  const ModelRef ref{model, path, &budget, &executor};
   chargeParsed(ref, stash);
   checkExtensions(ref, notes);
   Scene scene;

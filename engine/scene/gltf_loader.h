@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/memory_budget.h"
+#include "core/parallel.h"
 #include "scene/scene.h"
 
 namespace quadra {
@@ -20,6 +21,11 @@ struct LoadOptions {
   // read, decoded buffers, meshes and images), each charged before it is
   // allocated (--max-memory). The rules: README, "Memory budget".
   std::uint64_t maxMemory = kDefaultMaxMemory;
+  // Where meshes and images are decoded in parallel: the embedder's arena
+  // (which must outlive the call), else a private one of `threads` threads
+  // (<= 0: all cores). The scene is the same bits either way.
+  int threads = 0;
+  TaskArena* arena = nullptr;
 };
 
 // Throws Error("<path>: <problem>") for anything malformed or unsupported that

@@ -351,7 +351,8 @@ void MaterialTable::finish(Scene& scene) {
   std::vector<std::shared_ptr<const Image>> images(imageIndices.size());
   std::vector<TexelFormat> storage(imageIndices.size(), TexelFormat::Rgba32F);
   std::vector<std::string> errors(imageIndices.size());
-  const Executor executor(0);
+  const Executor serial(1);
+  const Executor& executor = ref_.executor ? *ref_.executor : serial;
   executor.parallelFor(imageIndices.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       try {
