@@ -446,6 +446,19 @@ TEST(PublicApiLoad, LoadedFileWithOptionsIsTheEngineFrame) {
   for (std::size_t i = 0; i < pixels.size(); i += 4) background += pixels[i + 2] == 0.3f;
   EXPECT_GT(background, 0u);                                      // the clear colour
   EXPECT_LT(background, std::size_t(kWidth) * kHeight * 9 / 10);  // and the box
+
+  // Loaded on the embedder's arena: the same frame.
+  tbb::task_arena arena(2);
+  const api::Scene inArena = api::loadIn(path, arena);
+  std::vector<float> again(pixels.size());
+  renderer.render(inArena,
+                  {.pixels = std::as_writable_bytes(std::span(again)),
+                   .width = kWidth,
+                   .height = kHeight,
+                   .rowStride = kWidth * 16,
+                   .format = api::PixelFormat::Rgba32F},
+                  nullptr, options);
+  EXPECT_EQ(std::memcmp(again.data(), pixels.data(), pixels.size() * 4), 0);
 }
 
 TEST(PublicApiVersion, RuntimeVersionIsTheHeadersAndProjects) {

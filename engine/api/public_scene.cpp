@@ -7,6 +7,7 @@
 
 #include "api/public_scene.h"
 #include "core/error.h"
+#include "quadra/tbb.hpp"
 #include "scene/gltf_loader.h"
 #include "texture/image.h"
 #include "texture/texel_format.h"
@@ -278,14 +279,26 @@ std::size_t Scene::instanceCount() const {
   return impl_->scene.instances.size();
 }
 
-Scene load(const std::string& path) {
+namespace {
+Scene loadWith(const std::string& path, const LoadOptions& options) {
   Scene scene;
   try {
-    detail::SceneAccess::mutableOf(scene).scene = loadGltf(path);
+    detail::SceneAccess::mutableOf(scene).scene = loadGltf(path, options);
   } catch (const quadra::Error& error) {  // the engine's, as the public type
     throw Error(error.what());
   }
   return scene;
+}
+}  // namespace
+
+Scene load(const std::string& path) {
+  return loadWith(path, {});
+}
+
+Scene loadIn(const std::string& path, tbb::task_arena& arena) {
+  LoadOptions options;
+  options.arena = &arena;
+  return loadWith(path, options);
 }
 
 }  // namespace quadra::api
