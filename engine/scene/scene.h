@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_precision.hpp>
 
+#include "scene/draw_state.h"
 #include "texture/texel_format.h"
 #include "texture/texture.h"
 
@@ -91,6 +93,11 @@ struct Skin {
 // matrix, set with the node transforms (scene/animation.h placeOnNodes).
 // morphWeights (one per mesh target) are its node's current weights; both
 // stay empty for instances nothing deforms (scene/deformation.h).
+// drawState: how the instance is drawn (depth, culling, blending; an
+// embedder's per-draw state); none, as its material says: back faces culled
+// unless double-sided, BLEND drawn after everything else as depth-ordered
+// premultiplied "over" without depth write. Instances with a state are drawn
+// in scene order among the opaque and masked ones.
 struct Instance {
   int mesh = 0;
   glm::mat4 world{1.0f};
@@ -98,6 +105,7 @@ struct Instance {
   int skin = -1;  // index into Scene::skins
   std::vector<glm::mat4> jointMatrices{};
   std::vector<float> morphWeights{};
+  std::optional<DrawState> drawState{};
 };
 
 // A node of the glTF tree the scene was placed from. Scene::nodes lists them
