@@ -1,4 +1,4 @@
-// Per-draw state (scene/draw_state.h) against independent expectations: every
+// Per-draw state (scene/scene.h DrawState) against independent expectations: every
 // blend equation and factor against its formula evaluated in double on the
 // premultiplied colours, per channel; the depth compare functions, depth
 // write and depth test off, and the three cull modes on a small orthographic

@@ -9,7 +9,6 @@
 
 #include <glm/glm.hpp>
 
-#include "scene/draw_state.h"
 #include "scene/scene.h"
 #include "texture/texture_view.h"
 
@@ -72,7 +71,7 @@ struct ShadeState {
   bool depthGreater = false;
   bool depthWrite = true;
   // How a fragment combines with the sample's colour; off: it replaces it.
-  // In submission order, per sample (scene/draw_state.h).
+  // In submission order, per sample (scene/scene.h DrawState).
   BlendState blend;
   // glTF BLEND materials: premultiplied "over", composited per sample in
   // depth order (tile/blended_fragments.h) instead of submission order.
