@@ -289,7 +289,7 @@ TEST(MemoryBudget, ImagesAreChargedFromTheirHeadersBeforeDecoding) {
 // A draw list for tileMemoryBytes: one draw, composited in depth order or not.
 std::vector<Draw> oneDraw(bool blended) {
   std::vector<Draw> draws(1);
-  draws[0].shade.blend = blended ? BlendMode::Over : BlendMode::Replace;
+  draws[0].shade.depthOrdered = blended;
   draws[0].shade.depthWrite = !blended;
   return draws;
 }

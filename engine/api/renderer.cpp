@@ -70,7 +70,11 @@ float viewDepthOfCentre(const Mesh& mesh, const glm::mat4& modelView) {
   return -centre.z;
 }
 
-Draw makeDraw(const FrameContext& frame, const Instance& instance) {
+// afterForward: an earlier draw of the list takes the forward path; the tile
+// stage runs two-pass draws before forward ones, so this one must go forward
+// too to keep submission order (only draws with state of their own come to
+// that: the material-only lists put every two-pass draw first).
+Draw makeDraw(const FrameContext& frame, const Instance& instance, bool afterForward) {
   const Scene& scene = frame.scene;
   const RenderSettings& settings = frame.settings;
   const Mesh& mesh = scene.meshes.at(std::size_t(instance.mesh));
@@ -83,8 +87,9 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   g.jointMatrices = instance.jointMatrices;
   g.modelView = frame.view * instance.world;
   g.projection = frame.projection;
+  const bool mirrored = glm::determinant(glm::mat3(instance.world)) < 0.0f;
   g.cullBackFaces = !material.doubleSided;
-  g.frontIsClockwise = glm::determinant(glm::mat3(instance.world)) < 0.0f;
+  g.frontIsClockwise = mirrored;
   g.texcoordSet = std::clamp(material.baseColorTexCoord, 0, 1);
 
   s.baseColor = material.baseColorFactor;
@@ -108,10 +113,23 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   }
   s.vertexColor = !mesh.colors.empty();
   s.depthGreater = settings.depth == DepthMode::Reversed;
+  s.depthCompare = compareForDepth(CompareFunction::Less, s.depthGreater);
   s.lit = settings.shading == Shading::Lit;
-  if (s.alphaMode == AlphaMode::Blend) {
-    s.blend = BlendMode::Over;
+  if (instance.drawState) {
+    // The embedder's state; the material still says how alpha is made
+    // (opaque: 1, mask: tested, blend: kept).
+    const DrawState& state = *instance.drawState;
+    // Culling front faces is culling back faces with the winding flipped.
+    g.cullBackFaces = state.cull != CullMode::None;
+    g.frontIsClockwise = mirrored != (state.cull == CullMode::Front);
+    s.depthCompare = state.depthTest ? compareForDepth(state.depthCompare, s.depthGreater)
+                                     : CompareFunction::Always;
+    s.depthWrite = state.depthTest && state.depthWrite;
+    s.blend = state.blend;
+  } else if (s.alphaMode == AlphaMode::Blend) {
+    s.blend = BlendState::premultipliedOver();
     s.depthWrite = false;
+    s.depthOrdered = true;
   }
   if (s.alphaMode == AlphaMode::Mask && settings.alphaToCoverage) {
     s.alphaToCoverage = true;
@@ -120,15 +138,18 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   if (settings.debugView == DebugView::CoverageCount) {
     s = ShadeState{};
     s.baseColor = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
-    s.blend = BlendMode::Add;
-    s.depthTest = s.depthWrite = false;
+    s.blend = BlendState::additive();
+    s.depthCompare = CompareFunction::Always;
+    s.depthWrite = false;
     g.texcoordSet = 0;
     g.transformTexcoords = false;
   } else if (settings.debugView == DebugView::TexCoord ||
              settings.debugView == DebugView::Derivatives) {
     s.textured = s.vertexColor = s.lit = false;
     s.alphaMode = AlphaMode::Opaque;
-    s.blend = BlendMode::Replace;
+    s.blend = BlendState{};
+    s.depthOrdered = false;
+    s.depthCompare = compareForDepth(CompareFunction::Less, s.depthGreater);
     s.depthWrite = true;
     s.output = settings.debugView == DebugView::TexCoord ? ShadeOutput::TexCoord
                                                          : ShadeOutput::Derivatives;
@@ -137,7 +158,10 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance) {
   }
 
   s.derivatives = settings.derivatives;
-  s.twoPass = s.alphaMode != AlphaMode::Blend && s.blend == BlendMode::Replace && s.depthTest &&
+  // The visibility pass tests "nearer" and writes depth, and the shading
+  // pass replaces colour.
+  s.twoPass = !afterForward && s.alphaMode != AlphaMode::Blend && !s.blend.enabled &&
+              s.depthCompare == compareForDepth(CompareFunction::Less, s.depthGreater) &&
               s.depthWrite && s.output == ShadeOutput::Color &&
               s.derivatives == DerivativeMode::Analytic &&
               settings.opaqueShading == OpaqueShading::TwoPass;
@@ -175,12 +199,16 @@ std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
   instances.clear();
   if (settings.debugView == DebugView::None) {
     instances = instanceDrawOrder(scene, frame.view);
-    for (const std::size_t i : instances) draws.push_back(makeDraw(frame, scene.instances[i]));
+    bool forward = false;
+    for (const std::size_t i : instances) {
+      draws.push_back(makeDraw(frame, scene.instances[i], forward));
+      forward = forward || !draws.back().shade.twoPass;
+    }
     return draws;
   }
   // Debug views never blend: scene order.
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    Draw draw = makeDraw(frame, scene.instances[i]);
+    Draw draw = makeDraw(frame, scene.instances[i], true);  // test views shade forward
     if (draw.geometry.mesh->indices.empty()) continue;
     draws.push_back(std::move(draw));
     instances.push_back(i);
@@ -327,7 +355,9 @@ std::vector<std::size_t> instanceDrawOrder(const Scene& scene, const glm::mat4& 
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const Mesh& mesh = scene.meshes.at(std::size_t(scene.instances[i].mesh));
     if (mesh.indices.empty()) continue;
-    (materialOf(scene, mesh).alphaMode == AlphaMode::Blend ? blended : order).push_back(i);
+    const bool depthOrdered =
+        materialOf(scene, mesh).alphaMode == AlphaMode::Blend && !scene.instances[i].drawState;
+    (depthOrdered ? blended : order).push_back(i);
   }
   // Farthest first; stable, so ties keep scene order.
   std::vector<std::pair<float, std::size_t>> keyed;
@@ -370,7 +400,16 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
       buildDrawList(scene, camera, settings, executor, drawInstances, budget);
   chargeFrame(settings, executor.threadCount(), draws, budget);
   std::optional<AovFrame> aov;
-  if (settings.aovs != 0) aov = makeAovFrame(scene, camera, settings, draws, drawInstances);
+  if (settings.aovs != 0) {
+    // The AOV pass reads the visibility pass's winners (checkSettings).
+    for (std::size_t d = 0; d < draws.size(); ++d)
+      if (draws[d].shade.depthWrite && !draws[d].shade.twoPass)
+        throw Error("render: AOVs need every depth-writing draw in the visibility pass; instance " +
+                    std::to_string(drawInstances[d]) +
+                    "'s draw state (blend, depth compare, or a blended or forward draw before "
+                    "it) shades it forward");
+    aov = makeAovFrame(scene, camera, settings, draws, drawInstances);
+  }
   const double drawsDone = stageClockMs();
 
   // Vertex stage.

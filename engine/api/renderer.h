@@ -194,8 +194,9 @@ Camera orbitCamera(const Scene& scene, int view, int views);
 Camera firstCameraOrDefault(const Scene& scene);
 
 // The order a colour frame draws the scene's instances in, as indices into
-// scene.instances: first every instance whose material does not blend, in
-// scene order, then the blended ones (alphaMode BLEND) back to front by the
+// scene.instances: first every instance whose material does not blend or
+// that has a DrawState of its own, in scene order, then the blended ones
+// (alphaMode BLEND, no DrawState) back to front by the
 // view-space depth of their mesh's bounding-box centre (ties keep scene
 // order). Instances of meshes without triangles are left out. The tile stage
 // composites blended fragments in depth order per sample whatever the draw

@@ -314,6 +314,78 @@ struct TrianglePlanes {
   }
 };
 
+// The lanes where a fragment at depth z passes `compare` against the stored
+// depth. Uniform per draw, so the switch is one predicted branch per group.
+QUADRA_LANE_INLINE M depthPasses(CompareFunction compare, const F& z, const F& stored) {
+  switch (compare) {
+    case CompareFunction::Never:
+      return ~(F(0.0f) == F(0.0f));
+    case CompareFunction::Less:
+      return z < stored;
+    case CompareFunction::Equal:
+      return z == stored;
+    case CompareFunction::LessEqual:
+      return z <= stored;
+    case CompareFunction::Greater:
+      return z > stored;
+    case CompareFunction::NotEqual:
+      return z != stored;
+    case CompareFunction::GreaterEqual:
+      return z >= stored;
+    case CompareFunction::Always:
+      break;
+  }
+  return F(0.0f) == F(0.0f);
+}
+
+// A blend factor for channel `channel` (3: alpha) of premultiplied src and
+// dst (scene/scene.h BlendFactor).
+QUADRA_LANE_INLINE F blendFactor(BlendFactor factor, const F* src, const F* dst, int channel) {
+  switch (factor) {
+    case BlendFactor::Zero:
+      return F(0.0f);
+    case BlendFactor::One:
+      return F(1.0f);
+    case BlendFactor::SrcColor:
+      return src[channel];
+    case BlendFactor::OneMinusSrcColor:
+      return F(1.0f) - src[channel];
+    case BlendFactor::DstColor:
+      return dst[channel];
+    case BlendFactor::OneMinusDstColor:
+      return F(1.0f) - dst[channel];
+    case BlendFactor::SrcAlpha:
+      return src[3];
+    case BlendFactor::OneMinusSrcAlpha:
+      return F(1.0f) - src[3];
+    case BlendFactor::DstAlpha:
+      return dst[3];
+    case BlendFactor::OneMinusDstAlpha:
+      break;
+  }
+  return F(1.0f) - dst[3];
+}
+
+// One channel of the blend: equation(s * sf, d * df); min and max take the
+// unscaled values. Premultiplied "over" (One, OneMinusSrcAlpha) rounds as
+// src + dst * (1 - a) did before blend state existed: s * 1 is exact.
+QUADRA_LANE_INLINE F blendChannel(BlendEquation equation, const F& s, const F& sf, const F& d,
+                                  const F& df) {
+  switch (equation) {
+    case BlendEquation::Add:
+      return s * sf + d * df;
+    case BlendEquation::Subtract:
+      return s * sf - d * df;
+    case BlendEquation::ReverseSubtract:
+      return d * df - s * sf;
+    case BlendEquation::Min:
+      return simd::min(s, d);
+    case BlendEquation::Max:
+      break;
+  }
+  return simd::max(s, d);
+}
+
 // Forward path: one group of quads, coverage in; depth test, shading, alpha,
 // blend and depth write as it goes.
 template <class Feat>
@@ -323,19 +395,32 @@ struct ForwardShader {
   const TrianglePlanes planes;
   BlendedFragments* deferred;  // where a blended draw's fragments wait, or null
   int plane;                   // the tile's sample plane, for `deferred`
+  // The premultiplied "over" preset (every glTF BLEND draw), blended without
+  // the general state's per-channel switches: through them, alpha-quads'
+  // frame took ~15% longer (quadra_bench, 1 thread).
+  bool over;
 
   ForwardShader(const ShadeState& s, const TriangleRecord& t, const Plane* p, TileBuffers& tb,
                 BlendedFragments* d = nullptr, int samplePlane = 0)
-      : shade(s), tile(tb), planes(s, t, p, tb), deferred(d), plane(samplePlane) {}
+      : shade(s),
+        tile(tb),
+        planes(s, t, p, tb),
+        deferred(d),
+        plane(samplePlane),
+        over(s.blend == BlendState::premultipliedOver()) {}
 
   bool depthWritten() const { return shade.depthWrite; }
 
-  // Returns the group's depths after it (when the draw writes depth).
-  F shadeGroup(const F& x, const F& y, M cover, int index) const {
+  // Returns the group's depths after it (when the draw writes depth). Forced
+  // inline: called, with the depth compare and blend state switches grown
+  // into it, alpha-quads' blended raster ran 19% more instructions
+  // (callgrind, AVX2).
+  QUADRA_LANE_INLINE F shadeGroup(const F& x, const F& y, M cover, int index) const {
     float* const depth = tile.depth + index;
     const F zValue = planes.z.at(x, y);
     const F zOld = F::load_aligned(depth);
-    if (shade.depthTest) cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
+    if (shade.depthCompare != CompareFunction::Always)
+      cover = cover & depthPasses(shade.depthCompare, zValue, zOld);
     if (!simd::any(cover)) return zOld;
     Rgba<L> c = Feat::color(shade, x, y, planes.invW, planes.attr);
     if (Feat::kAlpha == AlphaMode::Mask) cover = cover & (c.a >= F(shade.alphaCutoff));
@@ -372,26 +457,42 @@ struct ForwardShader {
     }
   }
 
+  // Any other blend state: out of line, so the raster loop that inlines
+  // shadeGroup stays small for the common states.
+  [[gnu::noinline]] static void blendWith(const BlendState& blend, const M& cover, const F* src,
+                                          float* const color[4]) {
+    const F dst[4] = {F::load_aligned(color[0]), F::load_aligned(color[1]),
+                      F::load_aligned(color[2]), F::load_aligned(color[3])};
+    for (int k = 0; k < 4; ++k) {
+      const bool alpha = k == 3;
+      const F sf = blendFactor(alpha ? blend.srcAlpha : blend.srcColor, src, dst, k);
+      const F df = blendFactor(alpha ? blend.dstAlpha : blend.dstColor, src, dst, k);
+      const F out =
+          blendChannel(alpha ? blend.alphaEquation : blend.colorEquation, src[k], sf, dst[k], df);
+      simd::select(cover, out, dst[k]).store_aligned(color[k]);
+    }
+  }
+
   void write(const M& cover, const F& zValue, const F& zOld, const Rgba<L>& c, float* depth,
              float* const color[4]) const {
-    const F src[4] = {c.r, c.g, c.b, c.a};
-    if (shade.blend == BlendMode::Replace) {
+    // The tile holds premultiplied colour; shading gives straight colour, and
+    // only a blended draw's alpha is not 1 (the test views' A is no alpha).
+    F src[4] = {c.r, c.g, c.b, c.a};
+    if constexpr (Feat::kAlpha == AlphaMode::Blend)
+      for (int k = 0; k < 3; ++k) src[k] = src[k] * c.a;
+    const BlendState& blend = shade.blend;
+    if (!blend.enabled) {
       for (int k = 0; k < 4; ++k)
         simd::select(cover, src[k], F::load_aligned(color[k])).store_aligned(color[k]);
-    } else if (shade.blend == BlendMode::Over) {
-      // Premultiplied "over": dst = src*a + dst*(1 - a).
-      const F keep = F(1.0f) - c.a;
-      for (int k = 0; k < 3; ++k) {
-        const F dst = F::load_aligned(color[k]);
-        simd::select(cover, src[k] * c.a + dst * keep, dst).store_aligned(color[k]);
-      }
-      const F dstA = F::load_aligned(color[3]);
-      simd::select(cover, c.a + dstA * keep, dstA).store_aligned(color[3]);
-    } else {
+    } else if (over) {
+      // blendChannel's Add of src * 1 and dst * (1 - a), bit for bit: s * 1 is exact.
+      const F keep = F(1.0f) - src[3];
       for (int k = 0; k < 4; ++k) {
         const F dst = F::load_aligned(color[k]);
-        simd::select(cover, dst + src[k], dst).store_aligned(color[k]);
+        simd::select(cover, src[k] + dst * keep, dst).store_aligned(color[k]);
       }
+    } else {
+      blendWith(blend, cover, src, color);
     }
     if (shade.depthWrite) simd::select(cover, zValue, zOld).store_aligned(depth);
   }
@@ -416,7 +517,8 @@ struct BlendOrderShader {
   F shadeGroup(const F& x, const F& y, M cover, int index) const {
     const F zValue = planes.z.at(x, y);
     const F zOld = F::load_aligned(tile.depth + index);
-    if (shade.depthTest) cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
+    // Only glTF BLEND draws come here, and they test "nearer".
+    cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
     if (!simd::any(cover)) return zOld;
     float* const latest = fragments.latest(plane) + index;
     float* const late = fragments.late(plane) + index;
@@ -474,11 +576,14 @@ struct VisibilityShader {
 // range is widened by 2^-20 of the plane's largest term, well past the
 // rounding of the lanes' float evaluation (three roundings of 2^-24), so a
 // block is skipped only where every sample's depth test would fail: the
-// output does not change, only the work.
+// output does not change, only the work. The ordering compares skip blocks
+// (the ...Equal ones only strictly beyond the bounds, where a depth equal to
+// the bound would pass); Never skips every block; Equal, NotEqual and Always
+// none.
 class BlockDepthTest {
  public:
   BlockDepthTest(const Plane& z, const ShadeState& shade)
-      : enabled_(shade.depthTest), greater_(shade.depthGreater), z_{z.dx, z.dy, z.c} {
+      : compare_(shade.depthCompare), z_{z.dx, z.dy, z.c} {
     const double span = kBlockSize - 1;
     low_ = std::min(0.0, z_.dx * span) + std::min(0.0, z_.dy * span);
     high_ = std::max(0.0, z_.dx * span) + std::max(0.0, z_.dy * span);
@@ -492,14 +597,25 @@ class BlockDepthTest {
   // Whether the triangle fails the depth test at every sample of the block
   // whose top-left pixel is (bx, by), tile-local. NaN ranges never fail.
   bool hidden(int bx, int by, int block, const TileBuffers& tile) const {
-    if (!enabled_) return false;
     const double base = z_.c + z_.dx * bx + z_.dy * by;
-    return greater_ ? base + high_ + margin_ <= tile.blockDepthMin[block]
-                    : base + low_ - margin_ >= tile.blockDepthMax[block];
+    switch (compare_) {
+      case CompareFunction::Less:
+        return base + low_ - margin_ >= tile.blockDepthMax[block];
+      case CompareFunction::LessEqual:
+        return base + low_ - margin_ > tile.blockDepthMax[block];
+      case CompareFunction::Greater:
+        return base + high_ + margin_ <= tile.blockDepthMin[block];
+      case CompareFunction::GreaterEqual:
+        return base + high_ + margin_ < tile.blockDepthMin[block];
+      case CompareFunction::Never:
+        return true;
+      default:
+        return false;
+    }
   }
 
  private:
-  bool enabled_, greater_;
+  CompareFunction compare_;
   struct {
     double dx, dy, c;
   } z_;

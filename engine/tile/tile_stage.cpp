@@ -477,11 +477,12 @@ void nearestSampleDepth(const TileFrame& frame, TileScratch& s) {
 }
 
 // Whether a forward draw's fragments are composited per sample in depth
-// order (tile/blended_fragments.h): blended surfaces that write no depth,
-// whose order is exact that way where surfaces interpenetrate or a draw
-// overlaps itself, which no order of draws is.
+// order (tile/blended_fragments.h): glTF BLEND surfaces, which write no
+// depth, whose order is exact that way where surfaces interpenetrate or a
+// draw overlaps itself, which no order of draws is. Draws with blend state
+// of their own composite in submission order.
 bool composedInDepthOrder(const ShadeState& shade) {
-  return shade.blend == BlendMode::Over && !shade.depthWrite;
+  return shade.depthOrdered;
 }
 
 // Calls draw(triangle, planes, plane) for every sample plane, with the

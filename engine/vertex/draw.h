@@ -46,8 +46,6 @@ struct DrawGeometry {
   std::span<const glm::mat4> jointMatrices;
 };
 
-enum class BlendMode : std::uint8_t { Replace, Over, Add };
-
 // Colour, or the perspective-correct texture coordinates (R, G) or their
 // derivatives as the sampler gets them (R, G, B, A = du/dx, dv/dx, du/dy, dv/dy).
 enum class ShadeOutput : std::uint8_t { Color, TexCoord, Derivatives };
@@ -64,10 +62,20 @@ struct ShadeState {
   // A masked draw's cutoff differs per sample (RenderSettings::alphaToCoverage;
   // the tile stage's shadeAtSample).
   bool alphaToCoverage = false;
-  bool depthTest = true;
-  bool depthGreater = false;  // reversed depth (api/camera.h DepthMode): GREATER, not LESS
+  // The depth test as the kernels run it: the draw's compare resolved for the
+  // frame's depth mode (compareForDepth), Always when its test is off.
+  CompareFunction depthCompare = CompareFunction::Less;
+  // Reversed depth (api/camera.h DepthMode): nearer is greater. What
+  // hierarchical depth keeps and the depth-ordered composite sorts by, and
+  // the visibility pass's test (two-pass draws test "nearer").
+  bool depthGreater = false;
   bool depthWrite = true;
-  BlendMode blend = BlendMode::Replace;
+  // How a fragment combines with the sample's colour; off: it replaces it.
+  // In submission order, per sample (scene/scene.h DrawState).
+  BlendState blend;
+  // glTF BLEND materials: premultiplied "over", composited per sample in
+  // depth order (tile/blended_fragments.h) instead of submission order.
+  bool depthOrdered = false;
   // What the pixels receive; anything but Color is a test view (DebugView),
   // which the tile kernels compile as separate specializations.
   ShadeOutput output = ShadeOutput::Color;
