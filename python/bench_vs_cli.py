@@ -1,14 +1,15 @@
 """A frame from Python against the CLI's frame time (issue 15: within 5%).
 
     PYTHONPATH=build/python /usr/bin/python3 python/bench_vs_cli.py SCENE.gltf \
-        [--cli build/bin/quadra] [--rounds 5] [--frames 10] [--threads 2] [--size 1920x1080]
+        [--cli build/bin/quadra] [--rounds 5] [--frames 10] [--threads 2] [--size 1920x1080] [--reuse] [--depth]
 
 Each round runs the CLI (`quadra render SCENE --frames K`: K timed frames
 after one warm-up, its printed median) and then K timed Python renders after
 one warm-up (their median), the order swapped every round so drift on a
 shared machine hits both alike. Python's time is the whole `render` call: the
-frame into numpy arrays (colour and depth), allocation included; the CLI's is
-its renderer's frame. Prints each round and the medians over the rounds.
+frame into numpy arrays (colour, and depth with --depth), their allocation
+included unless --reuse (out=); the CLI's is its renderer's frame, which
+without --out resolves no depth. Prints each round and the medians over the rounds.
 """
 import argparse
 import statistics
@@ -27,11 +28,13 @@ def cli_median(args, width, height):
 
 
 def python_median(renderer, scene, args, width, height):
-    renderer.render(scene, width=width, height=height)  # warm-up, as the CLI's
+    # warm-up, as the CLI's
+    out = renderer.render(scene, width=width, height=height, depth=args.depth)
     times = []
     for _ in range(args.frames):
         start = time.perf_counter()
-        renderer.render(scene, width=width, height=height)
+        renderer.render(scene, width=width, height=height, depth=args.depth,
+                        out=out if args.reuse else None)
         times.append((time.perf_counter() - start) * 1000)
     return statistics.median(times)
 
@@ -44,6 +47,10 @@ def main():
     parser.add_argument("--frames", type=int, default=10)
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--size", default="1920x1080")
+    parser.add_argument("--reuse", action="store_true",
+                        help="render into the warm-up's arrays (out=) instead of new ones")
+    parser.add_argument("--depth", action="store_true",
+                        help="also return depth (the CLI's timed frame without --out has none)")
     args = parser.parse_args()
     width, height = (int(v) for v in args.size.split("x"))
     scene = quadra.load(args.scene)

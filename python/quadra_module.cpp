@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstring>
@@ -17,6 +18,7 @@
 #include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "quadra/quadra.hpp"
 
@@ -196,9 +198,23 @@ struct RenderResult {
   py::object depth;
 };
 
+// out (a RenderResult of an earlier render) has its arrays reused when they
+// are C-contiguous writable float32 of this size: a new 1080p frame's arrays
+// cost the kernel zeroing 40 MB of fresh pages on first touch.
+bool reusable(const py::object& array, std::vector<py::ssize_t> shape) {
+  if (array.is_none() || !py::isinstance<py::array>(array)) return false;
+  const auto a = array.cast<py::array>();
+  return a.dtype().is(py::dtype::of<float>()) && a.writeable() &&
+         (a.flags() & py::array::c_style) && a.ndim() == py::ssize_t(shape.size()) &&
+         std::equal(shape.begin(), shape.end(), a.shape());
+}
+
 RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
                     const std::optional<PyCamera>& camera, int samples, const std::string& shading,
-                    const std::array<float, 4>& clearColor, bool depth) {
+                    const std::array<float, 4>& clearColor, bool depth,
+                    const std::optional<RenderResult>& out) {
+  // Checked before the arrays are made (the public API's own check, with
+  // its limit, comes after a possibly huge allocation).
   if (width < 1 || height < 1 || width > 8192 || height > 8192)
     argumentError("width, height: " + std::to_string(width) + "x" + std::to_string(height) +
                   " is not within 1..8192 pixels each way");
@@ -208,9 +224,15 @@ RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
   options.shading = choiceOf<api::Shading>(
       "shading", shading, {{"unlit", api::Shading::Unlit}, {"lit", api::Shading::Lit}});
   if (camera) scene.forChange().setCamera(camera->data);
-  py::array_t<float> color({py::ssize_t(height), py::ssize_t(width), py::ssize_t(4)});
+  const std::vector<py::ssize_t> colorShape{height, width, 4}, depthShape{height, width};
+  py::array_t<float> color = out && reusable(out->color, colorShape)
+                                 ? out->color.cast<py::array_t<float>>()
+                                 : py::array_t<float>(colorShape);
   std::optional<py::array_t<float>> depthArray;
-  if (depth) depthArray.emplace(std::vector<py::ssize_t>{height, width});
+  if (depth)
+    depthArray.emplace(out && reusable(out->depth, depthShape)
+                           ? out->depth.cast<py::array_t<float>>()
+                           : py::array_t<float>(depthShape));
   const api::Target target{
       .pixels = {reinterpret_cast<std::byte*>(color.mutable_data()), std::size_t(color.nbytes())},
       .width = width,
@@ -388,6 +410,8 @@ PYBIND11_MODULE(quadra, m) {
       .def("render", &render, py::arg("scene"), py::kw_only(), py::arg("width"), py::arg("height"),
            py::arg("camera") = py::none(), py::arg("samples") = 1, py::arg("shading") = "unlit",
            py::arg("clear_color") = std::array<float, 4>{0, 0, 0, 0}, py::arg("depth") = true,
+           py::arg("out") = py::none(),
            "Renders scene into new numpy arrays (no copy after the render). camera: sets the "
-           "scene's camera first (as scene.set_camera), else the scene's own is used.");
+           "scene's camera first (as scene.set_camera), else the scene's own is used. out: an "
+           "earlier RenderResult whose arrays are overwritten when of this size.");
 }

@@ -98,6 +98,20 @@ class RenderFromNumpy(unittest.TestCase):
         self.assertAlmostEqual(float(out.color[10, 10, 2]), 127 / 255, delta=2 ** -24)
         self.assertEqual(float(out.color[10, 10, 0]), 1.0)
 
+    def test_out_reuses_the_arrays_of_an_earlier_render_of_that_size(self):
+        first = self.renderer.render(quad_scene(), width=40, height=40)
+        fresh = self.renderer.render(quad_scene(transform=translation(0.25, 0, 0)), width=40,
+                                     height=40)
+        again = self.renderer.render(quad_scene(transform=translation(0.25, 0, 0)), width=40,
+                                     height=40, out=first)
+        self.assertIs(again.color, first.color)
+        self.assertIs(again.depth, first.depth)
+        np.testing.assert_array_equal(again.color, fresh.color)
+        np.testing.assert_array_equal(again.depth, fresh.depth)
+        other = self.renderer.render(quad_scene(), width=20, height=40, out=first)
+        self.assertIsNot(other.color, first.color)
+        self.assertEqual(other.color.shape, (40, 20, 4))
+
     def test_depth_can_be_left_out(self):
         out = self.renderer.render(quad_scene(), width=8, height=8, depth=False)
         self.assertIsNone(out.depth)
