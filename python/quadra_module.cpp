@@ -11,7 +11,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstring>
 #include <mutex>
 #include <optional>
@@ -138,14 +137,28 @@ Enum choiceOf(const char* name, const std::string& value,
 
 // The Scene with a count of renders reading it: changing it during one (from
 // another Python thread, the GIL being released) is refused, not a race.
+// The count changes only with the GIL held, as every change of the scene
+// happens, so a change sees every render that has begun.
 struct PyScene {
   api::Scene scene;
-  std::atomic<int> renders{0};
+  int renders = 0;
 
   api::Scene& forChange() {
-    if (renders.load() != 0) throw api::Error("scene: changed while a render reads it");
+    if (renders != 0) throw api::Error("scene: changed while a render reads it");
     return scene;
   }
+};
+
+// Counts one render of the scene for its lifetime (see PyScene).
+class ReadingScene {
+ public:
+  explicit ReadingScene(PyScene& scene) : scene_(scene) { ++scene_.renders; }
+  ~ReadingScene() { --scene_.renders; }
+  ReadingScene(const ReadingScene&) = delete;
+  ReadingScene& operator=(const ReadingScene&) = delete;
+
+ private:
+  PyScene& scene_;
 };
 
 struct PyCamera {
@@ -246,16 +259,10 @@ RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
                                    std::size_t(depthArray->nbytes())},
                          .rowStride = std::size_t(width) * 4};
   {
+    const ReadingScene reading(scene);  // counted and uncounted with the GIL held
     py::gil_scoped_release released;
     std::lock_guard lock(self.busy);
-    ++scene.renders;
-    try {
-      self.renderer.render(scene.scene, target, depthTarget ? &*depthTarget : nullptr, options);
-    } catch (...) {
-      --scene.renders;
-      throw;
-    }
-    --scene.renders;
+    self.renderer.render(scene.scene, target, depthTarget ? &*depthTarget : nullptr, options);
   }
   RenderResult result{std::move(color), py::none()};
   if (depthArray) result.depth = std::move(*depthArray);

@@ -132,6 +132,32 @@ class RenderFromNumpy(unittest.TestCase):
         for r in results[1:]:
             np.testing.assert_array_equal(r, results[0])
 
+    def test_changing_a_scene_while_another_thread_renders_it_is_refused(self):
+        # render releases the GIL; a change meanwhile would be a data race
+        # in the engine, so the module refuses it with the API's error type.
+        scene = quad_scene()
+        renderer = quadra.Renderer(threads=1)
+        done = threading.Event()
+
+        def work():
+            for _ in range(5):
+                renderer.render(scene, width=1024, height=1024, samples=8)
+            done.set()
+
+        thread = threading.Thread(target=work)
+        thread.start()
+        refused, changed = 0, 0
+        while not done.is_set():
+            try:
+                scene.add_material()
+                changed += 1
+            except quadra.Error as error:
+                self.assertEqual(str(error), "scene: changed while a render reads it")
+                refused += 1
+        thread.join()
+        self.assertGreater(refused, 0)
+        scene.add_material()  # and allowed again once no render reads it
+
 
 class RenderGltfEqualsTheCli(unittest.TestCase):
     def test_render_equals_the_cli_exr_bit_for_bit(self):
