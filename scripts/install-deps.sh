@@ -11,10 +11,12 @@ set -euo pipefail
 # holds libFuzzer): the fuzz targets (scripts/fuzz.sh). openimageio-tools
 # (iinfo) and openexr (exrheader): the test that other tools read quadra's
 # EXR AOVs and header (AovsCli.WritesTheChannelsOtherToolsRead).
+# python3-pybind11, python3-dev and python3-numpy: the Python module
+# (python/, built for /usr/bin/python3) and its test.
 packages=(build-essential cmake pkg-config libtbb-dev libxsimd-dev libglm-dev libtinygltf-dev
   libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libjpeg62-turbo-dev libbenchmark-dev
   libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git clang libclang-rt-14-dev
-  openimageio-tools openexr)
+  openimageio-tools openexr python3-pybind11 python3-dev python3-numpy)
 if [ "${1:-}" = --farm ]; then
   packages=(slurm-wlm munge)
 elif (($#)); then

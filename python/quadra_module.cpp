@@ -1,0 +1,424 @@
+// The Python module `quadra` (issue 15 item 6): pybind11 bindings of the
+// public C++ API (include/quadra/*.hpp) and nothing else, with numpy arrays
+// in and out. Renders go straight into numpy-owned arrays through the public
+// Target (RGBA32F) and DepthTarget, with the GIL released. Errors: the
+// public API's quadra::api::Error becomes quadra.Error (a RuntimeError) with
+// the same one-line message; a wrong dtype, shape or option name is a
+// ValueError naming the argument. Documented in docs/python.md.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "quadra/quadra.hpp"
+
+namespace py = pybind11;
+namespace api = quadra::api;
+
+namespace {
+
+[[noreturn]] void argumentError(const std::string& message) {
+  throw py::value_error(message);
+}
+
+std::string dtypeName(const py::array& array) {
+  return py::str(array.dtype()).cast<std::string>();
+}
+
+std::string shapeText(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t axis = 0; axis < array.ndim(); ++axis)
+    text += (axis ? ", " : "") + std::to_string(array.shape(axis));
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+// A C-contiguous float32 (N, columns) array, or a ValueError naming `name`.
+// Only an array of another layout is copied (the Scene copies anyway).
+py::array_t<float, py::array::c_style> vertexArray(const char* name, const py::array& array,
+                                                   py::ssize_t columns) {
+  if (!array.dtype().is(py::dtype::of<float>()))
+    argumentError(std::string(name) + ": dtype " + dtypeName(array) + ", expected float32");
+  if (array.ndim() != 2 || array.shape(1) != columns)
+    argumentError(std::string(name) + ": shape " + shapeText(array) + ", expected (N, " +
+                  std::to_string(columns) + ")");
+  return py::array_t<float, py::array::c_style>::ensure(array);
+}
+
+std::span<const float> spanOf(const py::array_t<float, py::array::c_style>& array) {
+  return {array.data(), std::size_t(array.size())};
+}
+
+// Optional attributes keep their arrays alive until addMesh has copied them.
+struct MeshArrays {
+  py::array_t<float, py::array::c_style> positions, normals, uvs, colors;
+  py::array indices;
+  api::MeshData data;
+};
+
+MeshArrays meshArrays(const py::array& positions, const py::array& indices,
+                      const std::optional<py::array>& normals, const std::optional<py::array>& uvs,
+                      const std::optional<py::array>& colors) {
+  MeshArrays arrays;
+  arrays.positions = vertexArray("positions", positions, 3);
+  arrays.data.positions = spanOf(arrays.positions);
+  if (normals) {
+    arrays.normals = vertexArray("normals", *normals, 3);
+    arrays.data.normals = spanOf(arrays.normals);
+  }
+  if (uvs) {
+    arrays.uvs = vertexArray("uvs", *uvs, 2);
+    arrays.data.uvs = spanOf(arrays.uvs);
+  }
+  if (colors) {
+    arrays.colors = vertexArray("colors", *colors, 4);
+    arrays.data.colors = spanOf(arrays.colors);
+  }
+  if (indices.ndim() != 1 && !(indices.ndim() == 2 && indices.shape(1) == 3))
+    argumentError("indices: shape " + shapeText(indices) + ", expected (M,) or (M, 3)");
+  if (indices.dtype().is(py::dtype::of<std::uint32_t>())) {
+    auto packed = py::array_t<std::uint32_t, py::array::c_style>::ensure(indices);
+    arrays.data.indices32 = {packed.data(), std::size_t(packed.size())};
+    arrays.indices = std::move(packed);
+  } else if (indices.dtype().is(py::dtype::of<std::uint16_t>())) {
+    auto packed = py::array_t<std::uint16_t, py::array::c_style>::ensure(indices);
+    arrays.data.indices16 = {packed.data(), std::size_t(packed.size())};
+    arrays.indices = std::move(packed);
+  } else {
+    argumentError("indices: dtype " + dtypeName(indices) + ", expected uint16 or uint32");
+  }
+  return arrays;
+}
+
+// A (4, 4) float32 or float64 matrix as written in maths (m[row, column],
+// the translation in m[:3, 3]) to the API's column-major Matrix4.
+api::Matrix4 matrixOf(const char* name, const py::array& array) {
+  if (array.ndim() != 2 || array.shape(0) != 4 || array.shape(1) != 4)
+    argumentError(std::string(name) + ": shape " + shapeText(array) + ", expected (4, 4)");
+  const bool isFloat32 = array.dtype().is(py::dtype::of<float>());
+  if (!isFloat32 && !array.dtype().is(py::dtype::of<double>()))
+    argumentError(std::string(name) + ": dtype " + dtypeName(array) +
+                  ", expected float32 or float64");
+  const auto values = py::array_t<double, py::array::c_style>::ensure(array);
+  api::Matrix4 matrix{};
+  for (int row = 0; row < 4; ++row)
+    for (int column = 0; column < 4; ++column)
+      matrix[std::size_t(column * 4 + row)] = float(values.at(row, column));
+  return matrix;
+}
+
+py::array_t<float> arrayOf(const api::Matrix4& matrix) {
+  py::array_t<float> array({4, 4});
+  auto out = array.mutable_unchecked<2>();
+  for (int row = 0; row < 4; ++row)
+    for (int column = 0; column < 4; ++column)
+      out(row, column) = matrix[std::size_t(column * 4 + row)];
+  return array;
+}
+
+template <typename Enum>
+Enum choiceOf(const char* name, const std::string& value,
+              std::initializer_list<std::pair<const char*, Enum>> choices) {
+  std::string names;
+  for (const auto& [text, choice] : choices) {
+    if (value == text) return choice;
+    names += (names.empty() ? "" : ", ") + std::string(text);
+  }
+  argumentError(std::string(name) + ": '" + value + "' is not one of " + names);
+}
+
+// The Scene with a count of renders reading it: changing it during one (from
+// another Python thread, the GIL being released) is refused, not a race.
+// The count changes only with the GIL held, as every change of the scene
+// happens, so a change sees every render that has begun.
+struct PyScene {
+  api::Scene scene;
+  int renders = 0;
+
+  api::Scene& forChange() {
+    if (renders != 0) throw api::Error("scene: changed while a render reads it");
+    return scene;
+  }
+};
+
+// Counts one render of the scene for its lifetime (see PyScene).
+class ReadingScene {
+ public:
+  explicit ReadingScene(PyScene& scene) : scene_(scene) { ++scene_.renders; }
+  ~ReadingScene() { --scene_.renders; }
+  ReadingScene(const ReadingScene&) = delete;
+  ReadingScene& operator=(const ReadingScene&) = delete;
+
+ private:
+  PyScene& scene_;
+};
+
+struct PyCamera {
+  api::CameraData data;
+};
+
+api::TextureData textureData(const py::array& texels, bool srgb, const std::string& wrapU,
+                             const std::string& wrapV, const std::string& filter,
+                             py::array& packed) {
+  if (texels.ndim() != 3 || texels.shape(2) != 4)
+    argumentError("texels: shape " + shapeText(texels) + ", expected (H, W, 4)");
+  api::TextureData data;
+  const auto& dtype = texels.dtype();
+  if (dtype.is(py::dtype::of<std::uint8_t>()))
+    data.format = srgb ? api::TextureFormat::Rgba8Srgb : api::TextureFormat::Rgba8Unorm;
+  else if (dtype.kind() == 'f' && dtype.itemsize() == 2)
+    data.format = api::TextureFormat::Rgba16F;
+  else if (dtype.is(py::dtype::of<float>()))
+    data.format = api::TextureFormat::Rgba32F;
+  else
+    argumentError("texels: dtype " + dtypeName(texels) + ", expected uint8, float16 or float32");
+  packed = py::array::ensure(texels, py::array::c_style);
+  data.height = int(texels.shape(0));
+  data.width = int(texels.shape(1));
+  data.texels = {static_cast<const std::byte*>(packed.data()), std::size_t(packed.nbytes())};
+  const std::initializer_list<std::pair<const char*, api::Wrap>> wraps = {
+      {"repeat", api::Wrap::Repeat},
+      {"mirrored_repeat", api::Wrap::MirroredRepeat},
+      {"clamp_to_edge", api::Wrap::ClampToEdge}};
+  data.wrapU = choiceOf("wrap_u", wrapU, wraps);
+  data.wrapV = choiceOf("wrap_v", wrapV, wraps);
+  data.filter = choiceOf<api::Filter>("filter", filter,
+                                      {{"nearest", api::Filter::Nearest},
+                                       {"bilinear", api::Filter::Bilinear},
+                                       {"trilinear", api::Filter::Trilinear},
+                                       {"anisotropic", api::Filter::Anisotropic}});
+  return data;
+}
+
+// One frame at a time per Renderer (renderer.hpp); the mutex makes two
+// Python threads sharing one wait for each other instead of racing.
+struct PyRenderer {
+  explicit PyRenderer(const api::RendererOptions& options) : renderer(options) {}
+  api::Renderer renderer;
+  std::mutex busy;
+};
+
+struct RenderResult {
+  py::object color;
+  py::object depth;
+};
+
+// out (a RenderResult of an earlier render) has its arrays reused when they
+// are C-contiguous writable float32 of this size: a new 1080p frame's arrays
+// cost the kernel zeroing 40 MB of fresh pages on first touch.
+bool reusable(const py::object& array, std::vector<py::ssize_t> shape) {
+  if (array.is_none() || !py::isinstance<py::array>(array)) return false;
+  const auto a = array.cast<py::array>();
+  return a.dtype().is(py::dtype::of<float>()) && a.writeable() &&
+         (a.flags() & py::array::c_style) && a.ndim() == py::ssize_t(shape.size()) &&
+         std::equal(shape.begin(), shape.end(), a.shape());
+}
+
+RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
+                    const std::optional<PyCamera>& camera, int samples, const std::string& shading,
+                    const std::array<float, 4>& clearColor, bool depth,
+                    const std::optional<RenderResult>& out) {
+  // Checked before the arrays are made (the public API's own check, with
+  // its limit, comes after a possibly huge allocation).
+  if (width < 1 || height < 1 || width > 8192 || height > 8192)
+    argumentError("width, height: " + std::to_string(width) + "x" + std::to_string(height) +
+                  " is not within 1..8192 pixels each way");
+  api::RenderOptions options;
+  options.samples = samples;
+  options.clearColor = clearColor;
+  options.shading = choiceOf<api::Shading>(
+      "shading", shading, {{"unlit", api::Shading::Unlit}, {"lit", api::Shading::Lit}});
+  if (camera) scene.forChange().setCamera(camera->data);
+  const std::vector<py::ssize_t> colorShape{height, width, 4}, depthShape{height, width};
+  py::array_t<float> color = out && reusable(out->color, colorShape)
+                                 ? out->color.cast<py::array_t<float>>()
+                                 : py::array_t<float>(colorShape);
+  std::optional<py::array_t<float>> depthArray;
+  if (depth)
+    depthArray.emplace(out && reusable(out->depth, depthShape)
+                           ? out->depth.cast<py::array_t<float>>()
+                           : py::array_t<float>(depthShape));
+  const api::Target target{
+      .pixels = {reinterpret_cast<std::byte*>(color.mutable_data()), std::size_t(color.nbytes())},
+      .width = width,
+      .height = height,
+      .rowStride = std::size_t(width) * 16,
+      .format = api::PixelFormat::Rgba32F};
+  std::optional<api::DepthTarget> depthTarget;
+  if (depthArray)
+    depthTarget =
+        api::DepthTarget{.bytes = {reinterpret_cast<std::byte*>(depthArray->mutable_data()),
+                                   std::size_t(depthArray->nbytes())},
+                         .rowStride = std::size_t(width) * 4};
+  {
+    const ReadingScene reading(scene);  // counted and uncounted with the GIL held
+    py::gil_scoped_release released;
+    std::lock_guard lock(self.busy);
+    self.renderer.render(scene.scene, target, depthTarget ? &*depthTarget : nullptr, options);
+  }
+  RenderResult result{std::move(color), py::none()};
+  if (depthArray) result.depth = std::move(*depthArray);
+  return result;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(quadra, m) {
+  m.doc() = "quadra, a CPU rasterizer: glTF or numpy scenes rendered into numpy arrays";
+  m.attr("__version__") = quadra::version();
+  py::register_exception<api::Error>(m, "Error", PyExc_RuntimeError);
+
+  py::class_<PyCamera>(m, "Camera", "Looks down its own -Z with +Y up; `world` places it.")
+      .def(py::init([](const std::string& projection, float yfov, float ymag, float znear,
+                       float zfar, const std::optional<py::array>& world) {
+             PyCamera camera;
+             camera.data.projection = choiceOf<api::CameraData::Projection>(
+                 "projection", projection,
+                 {{"perspective", api::CameraData::Projection::Perspective},
+                  {"orthographic", api::CameraData::Projection::Orthographic}});
+             camera.data.yfov = yfov;
+             camera.data.ymag = ymag;
+             camera.data.znear = znear;
+             camera.data.zfar = zfar;
+             if (world) camera.data.world = matrixOf("world", *world);
+             return camera;
+           }),
+           py::kw_only(), py::arg("projection") = "perspective", py::arg("yfov") = 0.8f,
+           py::arg("ymag") = 1.0f, py::arg("znear") = 0.1f, py::arg("zfar") = 0.0f,
+           py::arg("world") = py::none())
+      .def_property_readonly("world", [](const PyCamera& c) { return arrayOf(c.data.world); });
+
+  m.def(
+      "look_at",
+      [](const std::array<float, 3>& eye, const std::array<float, 3>& target,
+         const std::array<float, 3>& up) { return arrayOf(api::lookAt(eye, target, up)); },
+      py::arg("eye"), py::arg("target"), py::arg("up") = std::array<float, 3>{0, 1, 0},
+      "Camera-to-world (4, 4) float32 matrix of a camera at eye looking at target.");
+
+  py::class_<PyScene>(m, "Scene")
+      .def(py::init<>())
+      .def(
+          "add_mesh",
+          [](PyScene& self, const py::array& positions, const py::array& indices,
+             const std::optional<py::array>& normals, const std::optional<py::array>& uvs,
+             const std::optional<py::array>& colors) {
+            const MeshArrays arrays = meshArrays(positions, indices, normals, uvs, colors);
+            return self.forChange().addMesh(arrays.data).index;
+          },
+          py::arg("positions"), py::arg("indices"), py::kw_only(), py::arg("normals") = py::none(),
+          py::arg("uvs") = py::none(), py::arg("colors") = py::none())
+      .def(
+          "update_mesh",
+          [](PyScene& self, std::uint32_t mesh, const py::array& positions,
+             const py::array& indices, const std::optional<py::array>& normals,
+             const std::optional<py::array>& uvs, const std::optional<py::array>& colors) {
+            const MeshArrays arrays = meshArrays(positions, indices, normals, uvs, colors);
+            self.forChange().updateMesh({mesh}, arrays.data);
+          },
+          py::arg("mesh"), py::arg("positions"), py::arg("indices"), py::kw_only(),
+          py::arg("normals") = py::none(), py::arg("uvs") = py::none(),
+          py::arg("colors") = py::none())
+      .def(
+          "add_texture",
+          [](PyScene& self, const py::array& texels, bool srgb, const std::string& wrapU,
+             const std::string& wrapV, const std::string& filter) {
+            py::array packed;
+            const auto data = textureData(texels, srgb, wrapU, wrapV, filter, packed);
+            return self.forChange().addTexture(data).index;
+          },
+          py::arg("texels"), py::kw_only(), py::arg("srgb") = true, py::arg("wrap_u") = "repeat",
+          py::arg("wrap_v") = "repeat", py::arg("filter") = "trilinear")
+      .def(
+          "update_texture",
+          [](PyScene& self, std::uint32_t texture, const py::array& texels, bool srgb,
+             const std::string& wrapU, const std::string& wrapV, const std::string& filter) {
+            py::array packed;
+            const auto data = textureData(texels, srgb, wrapU, wrapV, filter, packed);
+            self.forChange().updateTexture({texture}, data);
+          },
+          py::arg("texture"), py::arg("texels"), py::kw_only(), py::arg("srgb") = true,
+          py::arg("wrap_u") = "repeat", py::arg("wrap_v") = "repeat",
+          py::arg("filter") = "trilinear")
+      .def(
+          "add_material",
+          [](PyScene& self, const std::array<float, 4>& baseColor,
+             std::optional<std::uint32_t> texture, const std::string& alphaMode, float alphaCutoff,
+             bool doubleSided) {
+            api::MaterialData data;
+            data.baseColor = baseColor;
+            if (texture) data.texture = api::TextureHandle{*texture};
+            data.alphaMode = choiceOf<api::AlphaMode>("alpha_mode", alphaMode,
+                                                      {{"opaque", api::AlphaMode::Opaque},
+                                                       {"mask", api::AlphaMode::Mask},
+                                                       {"blend", api::AlphaMode::Blend}});
+            data.alphaCutoff = alphaCutoff;
+            data.doubleSided = doubleSided;
+            return self.forChange().addMaterial(data).index;
+          },
+          py::kw_only(), py::arg("base_color") = std::array<float, 4>{1, 1, 1, 1},
+          py::arg("texture") = py::none(), py::arg("alpha_mode") = "opaque",
+          py::arg("alpha_cutoff") = 0.5f, py::arg("double_sided") = false)
+      .def(
+          "add_instance",
+          [](PyScene& self, std::uint32_t mesh, std::uint32_t material,
+             const std::optional<py::array>& transform) {
+            const api::Matrix4 matrix =
+                transform ? matrixOf("transform", *transform) : api::kIdentity;
+            return self.forChange().addInstance({mesh}, {material}, matrix).index;
+          },
+          py::arg("mesh"), py::arg("material"), py::arg("transform") = py::none())
+      .def(
+          "set_transform",
+          [](PyScene& self, std::uint32_t instance, const py::array& transform) {
+            self.forChange().setTransform({instance}, matrixOf("transform", transform));
+          },
+          py::arg("instance"), py::arg("transform"))
+      .def(
+          "set_camera",
+          [](PyScene& self, const PyCamera& camera) { self.forChange().setCamera(camera.data); },
+          py::arg("camera"))
+      .def_property_readonly("mesh_count", [](const PyScene& s) { return s.scene.meshCount(); })
+      .def_property_readonly("instance_count",
+                             [](const PyScene& s) { return s.scene.instanceCount(); });
+
+  m.def(
+      "load",
+      [](const std::string& path) {
+        auto scene = std::make_unique<PyScene>();
+        {
+          py::gil_scoped_release released;
+          scene->scene = api::load(path);
+        }
+        return scene;
+      },
+      py::arg("path"), "Loads a .gltf or .glb file into a Scene.");
+
+  py::class_<RenderResult>(m, "RenderResult")
+      .def_readonly("color", &RenderResult::color,
+                    "(H, W, 4) float32, premultiplied linear RGBA, row 0 the top")
+      .def_readonly("depth", &RenderResult::depth,
+                    "(H, W) float32 window depth in [0, 1], 1 where nothing is drawn; or None");
+
+  py::class_<PyRenderer>(m, "Renderer")
+      .def(py::init([](int threads) {
+             return std::make_unique<PyRenderer>(api::RendererOptions{.threads = threads});
+           }),
+           py::kw_only(), py::arg("threads") = 0)
+      .def_property_readonly("threads",
+                             [](const PyRenderer& r) { return r.renderer.threadCount(); })
+      .def("render", &render, py::arg("scene"), py::kw_only(), py::arg("width"), py::arg("height"),
+           py::arg("camera") = py::none(), py::arg("samples") = 1, py::arg("shading") = "unlit",
+           py::arg("clear_color") = std::array<float, 4>{0, 0, 0, 0}, py::arg("depth") = true,
+           py::arg("out") = py::none(),
+           "Renders scene into new numpy arrays (no copy after the render). camera: sets the "
+           "scene's camera first (as scene.set_camera), else the scene's own is used. out: an "
+           "earlier RenderResult whose arrays are overwritten when of this size.");
+}

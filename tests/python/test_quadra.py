@@ -1,0 +1,238 @@
+"""The Python module `quadra` (python/quadra_module.cpp), run by CTest
+(tests/CMakeLists.txt, test `Python`) as
+
+    test_quadra.py QUADRA_CLI READ_REFERENCE GLB
+
+with PYTHONPATH=build/python. Exits non-zero when a test fails, errors, or
+when no test ran at all (Python 3.11's unittest exits 0 after "Ran 0 tests").
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import threading
+import unittest
+
+import numpy as np
+
+import quadra
+
+CLI, READ_REFERENCE, GLB = (sys.argv[1:4] if len(sys.argv) >= 4 else (None, None, None))
+
+# The C API test's quad (tests/c_api/test_c_api.c): x, y in [-0.5, 0.5] at
+# z = 0, seen orthographically from z = 1 over [-1, 1]^2, near 0.5, far 2.
+QUAD_POSITIONS = np.array([[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0]],
+                          dtype=np.float32)
+QUAD_INDICES = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
+# v = 0 is the texture's top row: the quad's top edge (y = 0.5) reads it.
+QUAD_UVS = np.array([[0, 1], [1, 1], [1, 0], [0, 0]], dtype=np.float32)
+BASE = np.array([0.25, 0.5, 0.75, 1.0], dtype=np.float32)
+
+
+def translation(x, y, z):
+    m = np.eye(4)
+    m[:3, 3] = (x, y, z)
+    return m
+
+
+def quad_scene(indices=QUAD_INDICES, transform=None, texture=None):
+    scene = quadra.Scene()
+    mesh = scene.add_mesh(QUAD_POSITIONS, indices, uvs=QUAD_UVS)
+    material = scene.add_material(base_color=tuple(BASE) if texture is None else (1, 1, 1, 1),
+                                  texture=texture and texture(scene))
+    scene.add_instance(mesh, material, transform)
+    scene.set_camera(quadra.Camera(projection="orthographic", ymag=1.0, znear=0.5, zfar=2.0,
+                                   world=translation(0, 0, 1)))
+    return scene
+
+
+class RenderFromNumpy(unittest.TestCase):
+    def setUp(self):
+        self.renderer = quadra.Renderer(threads=2)
+
+    def test_quad_pixels_and_depths_are_the_analytic_ones(self):
+        # 40x40 pixels over [-1, 1]^2: centres -0.975 + 0.05 i; the quad holds
+        # pixels 10..29 each way, depth (1 - 0.5) / (2 - 0.5) = 1/3 there.
+        out = self.renderer.render(quad_scene(), width=40, height=40)
+        self.assertEqual(out.color.shape, (40, 40, 4))
+        self.assertEqual(out.color.dtype, np.float32)
+        self.assertEqual(out.depth.shape, (40, 40))
+        expected = np.zeros((40, 40, 4), np.float32)
+        expected[10:30, 10:30] = BASE
+        np.testing.assert_array_equal(out.color, expected)
+        inside = np.zeros((40, 40), bool)
+        inside[10:30, 10:30] = True
+        np.testing.assert_allclose(out.depth[inside], 1 / 3, atol=1e-6, rtol=0)
+        np.testing.assert_array_equal(out.depth[~inside], 1.0)
+
+    def test_uint16_indices_draw_what_uint32_ones_do(self):
+        a = self.renderer.render(quad_scene(QUAD_INDICES), width=24, height=24)
+        b = self.renderer.render(quad_scene(QUAD_INDICES.astype(np.uint16)), width=24, height=24)
+        np.testing.assert_array_equal(a.color, b.color)
+        self.assertGreater(int((a.color[..., 3] > 0).sum()), 0)
+
+    def test_transform_is_a_maths_matrix_with_translation_in_the_last_column(self):
+        # Moved right by 0.25 = 5 pixels and up by 0.5 = 10 pixels (row 0 the top).
+        out = self.renderer.render(quad_scene(transform=translation(0.25, 0.5, 0)),
+                                   width=40, height=40)
+        expected = np.zeros((40, 40, 4), np.float32)
+        expected[0:20, 15:35] = BASE
+        np.testing.assert_array_equal(out.color, expected)
+
+    def test_textures_from_each_dtype_are_read_texel_for_texel(self):
+        # A 2x2 texture with nearest filtering: each texel fills a quarter of
+        # the quad (pixels 4..11 of 16), row 0 at the top.
+        texels = np.array([[[1, 0, 0, 1], [0, 1, 0, 1]], [[0, 0, 1, 1], [1, 1, 0.5, 1]]])
+        for dtype in (np.float32, np.float16):
+            with self.subTest(dtype=dtype.__name__):
+                arr = texels.astype(dtype)
+                scene = quad_scene(texture=lambda s: s.add_texture(arr, filter="nearest"))
+                out = self.renderer.render(scene, width=16, height=16)
+                block = np.repeat(np.repeat(texels.astype(np.float32), 4, 0), 4, 1)
+                np.testing.assert_array_equal(out.color[4:12, 4:12], block)
+        # UNORM8 (srgb=False): 0.5 -> code 127, read back as 127/255 linear to
+        # float rounding (the engine multiplies by 1/255, one ulp from 127/255).
+        unorm = (texels * 255).astype(np.uint8)
+        scene = quad_scene(texture=lambda s: s.add_texture(unorm, srgb=False, filter="nearest"))
+        out = self.renderer.render(scene, width=16, height=16)
+        self.assertAlmostEqual(float(out.color[10, 10, 2]), 127 / 255, delta=2 ** -24)
+        self.assertEqual(float(out.color[10, 10, 0]), 1.0)
+
+    def test_out_reuses_the_arrays_of_an_earlier_render_of_that_size(self):
+        first = self.renderer.render(quad_scene(), width=40, height=40)
+        fresh = self.renderer.render(quad_scene(transform=translation(0.25, 0, 0)), width=40,
+                                     height=40)
+        again = self.renderer.render(quad_scene(transform=translation(0.25, 0, 0)), width=40,
+                                     height=40, out=first)
+        self.assertIs(again.color, first.color)
+        self.assertIs(again.depth, first.depth)
+        np.testing.assert_array_equal(again.color, fresh.color)
+        np.testing.assert_array_equal(again.depth, fresh.depth)
+        other = self.renderer.render(quad_scene(), width=20, height=40, out=first)
+        self.assertIsNot(other.color, first.color)
+        self.assertEqual(other.color.shape, (40, 20, 4))
+
+    def test_depth_can_be_left_out(self):
+        out = self.renderer.render(quad_scene(), width=8, height=8, depth=False)
+        self.assertIsNone(out.depth)
+
+    def test_concurrent_renders_from_python_threads_agree(self):
+        scene = quad_scene()
+        results = [None] * 4
+        renderers = [quadra.Renderer(threads=1) for _ in results]
+
+        def work(i):
+            results[i] = renderers[i].render(scene, width=64, height=48).color
+
+        threads = [threading.Thread(target=work, args=(i,)) for i in range(len(results))]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for r in results[1:]:
+            np.testing.assert_array_equal(r, results[0])
+
+    def test_changing_a_scene_while_another_thread_renders_it_is_refused(self):
+        # render releases the GIL; a change meanwhile would be a data race
+        # in the engine, so the module refuses it with the API's error type.
+        scene = quad_scene()
+        renderer = quadra.Renderer(threads=1)
+        done = threading.Event()
+
+        def work():
+            for _ in range(5):
+                renderer.render(scene, width=1024, height=1024, samples=8)
+            done.set()
+
+        thread = threading.Thread(target=work)
+        thread.start()
+        refused, changed = 0, 0
+        while not done.is_set():
+            try:
+                scene.add_material()
+                changed += 1
+            except quadra.Error as error:
+                self.assertEqual(str(error), "scene: changed while a render reads it")
+                refused += 1
+        thread.join()
+        self.assertGreater(refused, 0)
+        scene.add_material()  # and allowed again once no render reads it
+
+
+class RenderGltfEqualsTheCli(unittest.TestCase):
+    def test_render_equals_the_cli_exr_bit_for_bit(self):
+        # The judge is the InstallAndFindPackage test's: read_reference reads
+        # the CLI's EXR (R, G, B, A, Z floats) with OpenEXR and compares every
+        # value's bits with the raw pixels and depths (and needs > 1/4 covered).
+        if CLI is None:
+            self.skipTest("run by CTest with the CLI and read_reference paths")
+        with tempfile.TemporaryDirectory() as work:
+            exr = os.path.join(work, "cli.exr")
+            subprocess.run([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
+                            "--out", exr], check=True, stdout=subprocess.DEVNULL)
+            out = quadra.Renderer(threads=2).render(quadra.load(GLB), width=96, height=72)
+            raw = os.path.join(work, "python.raw")
+            with open(raw, "wb") as f:
+                f.write(out.color.tobytes() + out.depth.tobytes())
+            judged = subprocess.run([READ_REFERENCE, exr, raw], capture_output=True, text=True)
+            self.assertEqual(judged.returncode, 0, judged.stdout + judged.stderr)
+            # The judge can fail: one value off by one ulp is caught.
+            out.color[36, 48, 0] = np.nextafter(out.color[36, 48, 0], np.float32(2))
+            with open(raw, "wb") as f:
+                f.write(out.color.tobytes() + out.depth.tobytes())
+            judged = subprocess.run([READ_REFERENCE, exr, raw], capture_output=True, text=True)
+            self.assertNotEqual(judged.returncode, 0, judged.stdout)
+
+
+class Misuse(unittest.TestCase):
+    def test_error_is_a_runtime_error(self):
+        self.assertTrue(issubclass(quadra.Error, RuntimeError))
+
+    def test_wrong_dtype_or_shape_is_a_value_error_naming_the_argument(self):
+        scene = quadra.Scene()
+        with self.assertRaisesRegex(ValueError, r"^positions: dtype float64, expected float32$"):
+            scene.add_mesh(QUAD_POSITIONS.astype(np.float64), QUAD_INDICES)
+        with self.assertRaisesRegex(ValueError, r"^positions: shape \(4, 2\), expected \(N, 3\)$"):
+            scene.add_mesh(QUAD_POSITIONS[:, :2], QUAD_INDICES)
+        with self.assertRaisesRegex(ValueError, r"^indices: dtype int64, expected uint16 or uint32$"):
+            scene.add_mesh(QUAD_POSITIONS, QUAD_INDICES.astype(np.int64))
+        with self.assertRaisesRegex(ValueError, r"^texels: shape \(2, 2, 3\), expected \(H, W, 4\)$"):
+            scene.add_texture(np.zeros((2, 2, 3), np.uint8))
+        with self.assertRaisesRegex(ValueError, r"^texels: dtype int32"):
+            scene.add_texture(np.zeros((2, 2, 4), np.int32))
+        with self.assertRaisesRegex(ValueError, r"^transform: shape \(3, 3\), expected \(4, 4\)$"):
+            scene.add_instance(0, 0, np.eye(3))
+        with self.assertRaisesRegex(ValueError, r"^filter: 'cubic' is not one of nearest, "):
+            scene.add_texture(np.zeros((1, 1, 4), np.uint8), filter="cubic")
+        with self.assertRaisesRegex(ValueError, r"^width, height: 0x8 is not within"):
+            quadra.Renderer(threads=1).render(quad_scene(), width=0, height=8)
+        self.assertEqual(scene.mesh_count, 0)
+
+    def test_the_public_apis_errors_keep_their_one_line_message(self):
+        scene = quadra.Scene()
+        bad = QUAD_INDICES.copy()
+        bad[1, 2] = 7
+        with self.assertRaisesRegex(quadra.Error, r"^mesh: index 7 .*out of range for 4 vertices$"):
+            scene.add_mesh(QUAD_POSITIONS, bad)
+        mesh = scene.add_mesh(QUAD_POSITIONS, QUAD_INDICES)
+        material = scene.add_material()
+        nan = np.eye(4)
+        nan[0, 3] = np.nan
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*(NaN|finite)[^\n]*$"):
+            scene.add_instance(mesh, material, nan)
+        self.assertEqual(scene.instance_count, 0)
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*texture[^\n]*$"):
+            scene.add_texture(np.zeros((0, 4, 4), np.uint8))
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*samples[^\n]*$"):
+            quadra.Renderer(threads=1).render(quad_scene(), width=8, height=8, samples=3)
+        with self.assertRaisesRegex(quadra.Error, r"no-such-file\.glb"):
+            quadra.load("no-such-file.glb")
+
+
+if __name__ == "__main__":
+    # argv holds the paths above, not unittest's options.
+    result = unittest.main(argv=sys.argv[:1], exit=False, verbosity=2).result
+    ran = result.testsRun - len(result.skipped)
+    if ran == 0:
+        print("test_quadra.py: no test ran", file=sys.stderr)
+    sys.exit(0 if result.wasSuccessful() and ran > 0 else 1)
