@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "api/public_scene.h"
@@ -80,8 +81,10 @@ PublicScene publicScene(const SceneArrays& a) {
   return s;
 }
 
-// The same scene spelled in the engine's records, and its frame.
-quadra::Frame internalFrame(const SceneArrays& a) {
+// The same scene spelled in the engine's records, and its frame; triState:
+// the triangle instance's draw state.
+quadra::Frame internalFrame(const SceneArrays& a,
+                            const std::optional<quadra::DrawState>& triState = std::nullopt) {
   quadra::Scene scene;
   auto image = std::make_shared<quadra::Image>(2, 2);
   for (int t = 0; t < 4; ++t) {
@@ -119,6 +122,7 @@ quadra::Frame internalFrame(const SceneArrays& a) {
   tri.material = 1;
   scene.meshes = {quad, tri};
   scene.instances = {quadra::Instance{.mesh = 0}, quadra::Instance{.mesh = 1}};
+  scene.instances[1].drawState = triState;
   quadra::Camera camera;
   camera.type = quadra::Camera::Type::Orthographic;
   camera.xmag = camera.ymag = 1.0f;
@@ -413,6 +417,64 @@ TEST_F(PublicApi, RendererInTheEmbeddersArenaRunsThereWithTheSameBits) {
 
 // RenderOptions reach the engine's settings, and a loaded file renders as the
 // engine renders it through its first camera or the default one.
+// setDrawState reaches the engine as the same DrawState: the triangle drawn
+// over the quad without depth test, reverse-subtracted with separate alpha
+// factors, is the engine's frame of that state bit for bit; nullopt goes back
+// to the material's blend; values outside an enum are errors.
+TEST_F(PublicApi, DrawStateIsTheEnginesDrawState) {
+  PublicScene s = publicScene(arrays);
+  const api::InstanceHandle tri{1};
+  api::DrawStateData state;
+  state.depthTest = false;
+  state.cull = api::CullMode::Front;  // the triangle is double-sided, so culling must drop nothing
+  state.blend = {.enabled = true,
+                 .colorEquation = api::BlendEquation::ReverseSubtract,
+                 .alphaEquation = api::BlendEquation::Max,
+                 .srcColor = api::BlendFactor::DstAlpha,
+                 .dstColor = api::BlendFactor::OneMinusSrcColor,
+                 .srcAlpha = api::BlendFactor::One,
+                 .dstAlpha = api::BlendFactor::One};
+  s.scene.setDrawState(tri, state);
+  quadra::DrawState engine;
+  engine.depthTest = false;
+  engine.cull = quadra::CullMode::Front;
+  engine.blend = {true,
+                  quadra::BlendEquation::ReverseSubtract,
+                  quadra::BlendEquation::Max,
+                  quadra::BlendFactor::DstAlpha,
+                  quadra::BlendFactor::OneMinusSrcColor,
+                  quadra::BlendFactor::One,
+                  quadra::BlendFactor::One};
+  const quadra::Frame expected = internalFrame(arrays, engine);
+  std::vector<float> pixels(std::size_t(kWidth) * kHeight * 4);
+  const api::Target floats{.pixels = std::as_writable_bytes(std::span(pixels)),
+                           .width = kWidth,
+                           .height = kHeight,
+                           .rowStride = kWidth * 16,
+                           .format = api::PixelFormat::Rgba32F};
+  renderer.render(s.scene, floats);
+  EXPECT_EQ(std::memcmp(pixels.data(), expected.rgba.data(), pixels.size() * 4), 0);
+  EXPECT_NE(std::memcmp(pixels.data(), frame.rgba.data(), pixels.size() * 4), 0);
+
+  s.scene.setDrawState(tri, std::nullopt);
+  renderer.render(s.scene, floats);
+  EXPECT_EQ(std::memcmp(pixels.data(), frame.rgba.data(), pixels.size() * 4), 0);
+
+  api::DrawStateData bad;
+  bad.blend.dstAlpha = api::BlendFactor(77);
+  try {
+    s.scene.setDrawState(tri, bad);
+    ADD_FAILURE() << "a factor outside the enum was taken";
+  } catch (const api::Error& e) {
+    EXPECT_STREQ(e.what(), "setDrawState: blend.dstAlpha 77 is not one of its values");
+  }
+  try {
+    s.scene.setDrawState(api::InstanceHandle{9}, state);
+    ADD_FAILURE() << "a made-up instance handle was taken";
+  } catch (const api::Error&) {
+  }
+}
+
 TEST(PublicApiLoad, LoadedFileWithOptionsIsTheEngineFrame) {
   const std::string path = QUADRA_FUZZ_DIR "/corpus/glb/BoxTextured.glb";
   const api::Scene scene = api::load(path);

@@ -248,6 +248,72 @@ void Scene::setTransform(InstanceHandle handle, const Matrix4& transform) {
   impl_->scene.instances[index].world = matrixOf(transform, "instance transform");
 }
 
+void Scene::setDrawState(InstanceHandle handle, const std::optional<DrawStateData>& data) {
+  const std::size_t index = checkedIndex(handle, impl_->scene.instances.size(), "setDrawState");
+  std::optional<quadra::DrawState> state;
+  if (data) {
+    // An enum value cast from a number outside it would index past the
+    // kernels' tables.
+    const auto check = [](int value, int last, const char* what) {
+      if (value < 0 || value > last)
+        throw Error("setDrawState: " + std::string(what) + " " + std::to_string(value) +
+                    " is not one of its values");
+    };
+    const BlendData& b = data->blend;
+    check(int(data->depthCompare), int(CompareFunction::Always), "depthCompare");
+    check(int(data->cull), int(CullMode::Front), "cull");
+    check(int(b.colorEquation), int(BlendEquation::Max), "blend.colorEquation");
+    check(int(b.alphaEquation), int(BlendEquation::Max), "blend.alphaEquation");
+    for (const auto& [factor, name] :
+         {std::pair{b.srcColor, "blend.srcColor"}, std::pair{b.dstColor, "blend.dstColor"},
+          std::pair{b.srcAlpha, "blend.srcAlpha"}, std::pair{b.dstAlpha, "blend.dstAlpha"}})
+      check(int(factor), int(BlendFactor::OneMinusDstAlpha), name);
+    // The public enums list the engine's in the same order (static_asserts
+    // below), so each converts by value.
+    state.emplace();
+    state->depthTest = data->depthTest;
+    state->depthWrite = data->depthWrite;
+    state->depthCompare = quadra::CompareFunction(data->depthCompare);
+    state->cull = quadra::CullMode(data->cull);
+    const BlendData& blend = data->blend;
+    state->blend = {blend.enabled,
+                    quadra::BlendEquation(blend.colorEquation),
+                    quadra::BlendEquation(blend.alphaEquation),
+                    quadra::BlendFactor(blend.srcColor),
+                    quadra::BlendFactor(blend.dstColor),
+                    quadra::BlendFactor(blend.srcAlpha),
+                    quadra::BlendFactor(blend.dstAlpha)};
+  }
+  impl_->scene.instances[index].drawState = state;
+}
+
+static_assert(int(CompareFunction::Never) == int(quadra::CompareFunction::Never) &&
+              int(CompareFunction::Less) == int(quadra::CompareFunction::Less) &&
+              int(CompareFunction::Equal) == int(quadra::CompareFunction::Equal) &&
+              int(CompareFunction::LessEqual) == int(quadra::CompareFunction::LessEqual) &&
+              int(CompareFunction::Greater) == int(quadra::CompareFunction::Greater) &&
+              int(CompareFunction::NotEqual) == int(quadra::CompareFunction::NotEqual) &&
+              int(CompareFunction::GreaterEqual) == int(quadra::CompareFunction::GreaterEqual) &&
+              int(CompareFunction::Always) == int(quadra::CompareFunction::Always));
+static_assert(int(CullMode::None) == int(quadra::CullMode::None) &&
+              int(CullMode::Back) == int(quadra::CullMode::Back) &&
+              int(CullMode::Front) == int(quadra::CullMode::Front));
+static_assert(int(BlendEquation::Add) == int(quadra::BlendEquation::Add) &&
+              int(BlendEquation::Subtract) == int(quadra::BlendEquation::Subtract) &&
+              int(BlendEquation::ReverseSubtract) == int(quadra::BlendEquation::ReverseSubtract) &&
+              int(BlendEquation::Min) == int(quadra::BlendEquation::Min) &&
+              int(BlendEquation::Max) == int(quadra::BlendEquation::Max));
+static_assert(int(BlendFactor::Zero) == int(quadra::BlendFactor::Zero) &&
+              int(BlendFactor::One) == int(quadra::BlendFactor::One) &&
+              int(BlendFactor::SrcColor) == int(quadra::BlendFactor::SrcColor) &&
+              int(BlendFactor::OneMinusSrcColor) == int(quadra::BlendFactor::OneMinusSrcColor) &&
+              int(BlendFactor::DstColor) == int(quadra::BlendFactor::DstColor) &&
+              int(BlendFactor::OneMinusDstColor) == int(quadra::BlendFactor::OneMinusDstColor) &&
+              int(BlendFactor::SrcAlpha) == int(quadra::BlendFactor::SrcAlpha) &&
+              int(BlendFactor::OneMinusSrcAlpha) == int(quadra::BlendFactor::OneMinusSrcAlpha) &&
+              int(BlendFactor::DstAlpha) == int(quadra::BlendFactor::DstAlpha) &&
+              int(BlendFactor::OneMinusDstAlpha) == int(quadra::BlendFactor::OneMinusDstAlpha));
+
 void Scene::setCamera(const CameraData& data) {
   quadra::Camera camera;
   camera.type = data.projection == CameraData::Projection::Perspective

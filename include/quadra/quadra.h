@@ -6,8 +6,10 @@
  * error code, and then quadra_last_error() gives the one-line message of
  * the calling thread's last failure (valid until its next failing call).
  * Ownership: *_create and quadra_scene_load hand out handles the caller
- * releases with the matching *_destroy (NULL is accepted and ignored); a
- * handle must not be used after it is destroyed. Data passed in is copied.
+ * releases with the matching *_destroy (NULL is accepted and ignored).
+ * Handles are never reused: one used after its destroy (or made up, or of
+ * the other kind) is QUADRA_INVALID_ARGUMENT with a message naming the call,
+ * and a second destroy only sets that message. Data passed in is copied.
  * Threads: as in C++; a scene may be rendered by several renderers at once,
  * a renderer renders one frame at a time. */
 #ifndef QUADRA_QUADRA_H
@@ -99,6 +101,56 @@ typedef struct quadra_material_data {
   int double_sided;
 } quadra_material_data;
 
+/* Per-draw state, as quadra::api::DrawStateData (quadra/scene.hpp); the
+   enums' values are the C++ enumerators' in declaration order. */
+typedef enum quadra_compare {
+  QUADRA_COMPARE_NEVER = 0,
+  QUADRA_COMPARE_LESS = 1,
+  QUADRA_COMPARE_EQUAL = 2,
+  QUADRA_COMPARE_LEQUAL = 3,
+  QUADRA_COMPARE_GREATER = 4,
+  QUADRA_COMPARE_NOTEQUAL = 5,
+  QUADRA_COMPARE_GEQUAL = 6,
+  QUADRA_COMPARE_ALWAYS = 7
+} quadra_compare;
+typedef enum quadra_cull {
+  QUADRA_CULL_NONE = 0,
+  QUADRA_CULL_BACK = 1,
+  QUADRA_CULL_FRONT = 2
+} quadra_cull;
+typedef enum quadra_blend_equation {
+  QUADRA_BLEND_ADD = 0,
+  QUADRA_BLEND_SUBTRACT = 1,
+  QUADRA_BLEND_REVERSE_SUBTRACT = 2,
+  QUADRA_BLEND_MIN = 3,
+  QUADRA_BLEND_MAX = 4
+} quadra_blend_equation;
+typedef enum quadra_blend_factor {
+  QUADRA_FACTOR_ZERO = 0,
+  QUADRA_FACTOR_ONE = 1,
+  QUADRA_FACTOR_SRC_COLOR = 2,
+  QUADRA_FACTOR_ONE_MINUS_SRC_COLOR = 3,
+  QUADRA_FACTOR_DST_COLOR = 4,
+  QUADRA_FACTOR_ONE_MINUS_DST_COLOR = 5,
+  QUADRA_FACTOR_SRC_ALPHA = 6,
+  QUADRA_FACTOR_ONE_MINUS_SRC_ALPHA = 7,
+  QUADRA_FACTOR_DST_ALPHA = 8,
+  QUADRA_FACTOR_ONE_MINUS_DST_ALPHA = 9
+} quadra_blend_factor;
+typedef struct quadra_draw_state {
+  int depth_test;
+  int depth_write;
+  quadra_compare depth_compare;
+  quadra_cull cull;
+  int blend_enabled;
+  quadra_blend_equation color_equation;
+  quadra_blend_equation alpha_equation;
+  quadra_blend_factor src_color;
+  quadra_blend_factor dst_color;
+  quadra_blend_factor src_alpha;
+  quadra_blend_factor dst_alpha;
+} quadra_draw_state;
+
 typedef enum quadra_projection {
   QUADRA_PERSPECTIVE = 0,
   QUADRA_ORTHOGRAPHIC = 1
@@ -156,6 +208,9 @@ QUADRA_API quadra_status quadra_scene_add_instance(quadra_scene* scene, uint32_t
                                                    uint32_t* out_instance);
 QUADRA_API quadra_status quadra_scene_set_transform(quadra_scene* scene, uint32_t instance,
                                                     const float* transform);
+/* state NULL: the instance goes back to its material's state. */
+QUADRA_API quadra_status quadra_scene_set_draw_state(quadra_scene* scene, uint32_t instance,
+                                                     const quadra_draw_state* state);
 QUADRA_API quadra_status quadra_scene_set_camera(quadra_scene* scene,
                                                  const quadra_camera_data* camera);
 

@@ -97,6 +97,57 @@ struct MaterialData {
   bool doubleSided = false;  // false: back faces (clockwise on screen) are culled
 };
 
+// Per-draw state (setDrawState), as OpenGL states it. Depth compares are
+// stated with smaller = nearer; colours are premultiplied linear floats, so
+// the blend's source is the shaded colour premultiplied by its alpha, and
+// premultiplied "over" is (Add, One, OneMinusSrcAlpha).
+enum class CompareFunction : std::uint8_t {
+  Never,
+  Less,
+  Equal,
+  LessEqual,
+  Greater,
+  NotEqual,
+  GreaterEqual,
+  Always
+};
+// Front faces are counter-clockwise on screen (y up), as glTF and GL have it.
+enum class CullMode : std::uint8_t { None, Back, Front };
+// result = equation(source x srcFactor, destination x dstFactor); Min and Max
+// take the colours unscaled.
+enum class BlendEquation : std::uint8_t { Add, Subtract, ReverseSubtract, Min, Max };
+enum class BlendFactor : std::uint8_t {
+  Zero,
+  One,
+  SrcColor,
+  OneMinusSrcColor,
+  DstColor,
+  OneMinusDstColor,
+  SrcAlpha,
+  OneMinusSrcAlpha,
+  DstAlpha,
+  OneMinusDstAlpha
+};
+struct BlendData {
+  bool enabled = false;  // off: the fragment replaces what is there
+  BlendEquation colorEquation = BlendEquation::Add;
+  BlendEquation alphaEquation = BlendEquation::Add;
+  BlendFactor srcColor = BlendFactor::One, dstColor = BlendFactor::Zero;
+  BlendFactor srcAlpha = BlendFactor::One, dstAlpha = BlendFactor::Zero;
+};
+// An instance with a draw state is drawn in submission order with it
+// (blending in that order, per sample); without one (the default) its
+// material decides: opaque and masked first, then BLEND materials composited
+// per sample in exact depth order (order-independent). A disabled depth test
+// writes no depth either.
+struct DrawStateData {
+  bool depthTest = true;
+  bool depthWrite = true;
+  CompareFunction depthCompare = CompareFunction::Less;
+  CullMode cull = CullMode::Back;
+  BlendData blend = {};
+};
+
 // The camera looks down its own -Z with +Y up; `world` places it
 // (camera-to-world, a rigid transform). The viewport's aspect ratio is the
 // render target's, so pixels stay square. Depth is 0 at znear, 1 at zfar.
@@ -144,6 +195,9 @@ class QUADRA_API Scene {
   InstanceHandle addInstance(MeshHandle mesh, MaterialHandle material,
                              const Matrix4& transform = kIdentity);
   void setTransform(InstanceHandle instance, const Matrix4& transform);
+  // Gives the instance its own depth, cull and blend state; nullopt goes
+  // back to its material's.
+  void setDrawState(InstanceHandle instance, const std::optional<DrawStateData>& state);
 
   // The camera render() uses. Without one: a loaded scene's first camera,
   // else a camera framing the whole scene from the front (+Z).

@@ -81,6 +81,31 @@ static void in_memory_quad(quadra_renderer* renderer) {
     for (int i = kSize * 16; i < kStride; ++i) touched += bytes[y * kStride + i] != 0xA5;
   EXPECT(touched == 0);
 
+  /* A draw state: reverse-subtracted (ONE, ONE) from the clear colour 0,
+   * unclamped, the quad shows 0 - base; without the state it is base again;
+   * a value outside an enum is an error. */
+  quadra_draw_state state = {1,
+                             1,
+                             QUADRA_COMPARE_LESS,
+                             QUADRA_CULL_BACK,
+                             1,
+                             QUADRA_BLEND_REVERSE_SUBTRACT,
+                             QUADRA_BLEND_REVERSE_SUBTRACT,
+                             QUADRA_FACTOR_ONE,
+                             QUADRA_FACTOR_ONE,
+                             QUADRA_FACTOR_ONE,
+                             QUADRA_FACTOR_ONE};
+  EXPECT(quadra_scene_set_draw_state(scene, instance_id, &state) == QUADRA_OK);
+  EXPECT(quadra_render(renderer, scene, &target, NULL) == QUADRA_OK);
+  const float* centre = &pixels[20 * (kStride / 4) + 20 * 4];
+  for (int c = 0; c < 4; ++c) EXPECT(centre[c] == -base[c]);
+  EXPECT(quadra_scene_set_draw_state(scene, instance_id, NULL) == QUADRA_OK);
+  EXPECT(quadra_render(renderer, scene, &target, NULL) == QUADRA_OK);
+  for (int c = 0; c < 4; ++c) EXPECT(centre[c] == base[c]);
+  state.cull = (quadra_cull)9;
+  expect_error(quadra_scene_set_draw_state(scene, instance_id, &state), QUADRA_INVALID_ARGUMENT,
+               "setDrawState: cull 9 is not one of its values");
+
   /* misuse */
   unsigned char before[sizeof(pixels)];
   memcpy(before, pixels, sizeof(pixels));
@@ -111,6 +136,31 @@ static void in_memory_quad(quadra_renderer* renderer) {
   expect_error(quadra_scene_set_transform(scene, 5, NULL), QUADRA_INVALID_ARGUMENT,
                "setTransform: handle 5 is not one of this scene's 1");
   quadra_scene_destroy(scene);
+
+  /* Use after destroy: an error naming the call, never freed memory; a
+   * second destroy is harmless. */
+  expect_error(quadra_scene_set_transform(scene, instance_id, NULL), QUADRA_INVALID_ARGUMENT,
+               "quadra_scene_set_transform: the scene handle is not a live one (destroyed, or "
+               "not made by quadra)");
+  expect_error(quadra_render(renderer, scene, &target, NULL), QUADRA_INVALID_ARGUMENT,
+               "quadra_render: the scene handle is not a live one (destroyed, or not made by "
+               "quadra)");
+  quadra_scene_destroy(scene);
+  EXPECT(strstr(quadra_last_error(), "quadra_scene_destroy: the scene handle is not a live one") ==
+         quadra_last_error());
+  quadra_renderer* gone = NULL;
+  EXPECT(quadra_renderer_create(1, &gone) == QUADRA_OK);
+  quadra_renderer_destroy(gone);
+  quadra_scene* other = NULL;
+  EXPECT(quadra_scene_create(&other) == QUADRA_OK);
+  expect_error(quadra_render(gone, other, &target, NULL), QUADRA_INVALID_ARGUMENT,
+               "quadra_render: the renderer handle is not a live one (destroyed, or not made by "
+               "quadra)");
+  /* A renderer handle passed as a scene is not a scene. */
+  expect_error(quadra_scene_set_camera((quadra_scene*)renderer, &camera), QUADRA_INVALID_ARGUMENT,
+               "quadra_scene_set_camera: the scene handle is not a live one (destroyed, or not "
+               "made by quadra)");
+  quadra_scene_destroy(other);
 }
 
 static void gltf_file(quadra_renderer* renderer, const char* path) {
