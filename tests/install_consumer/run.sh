@@ -33,12 +33,17 @@ if grep -rlE '#include "(api|scene|core|io|texture|window|simd)/' "$include"; th
   echo "an installed header includes the engine's internals"
   exit 1
 fi
+# A sanitizer build's libquadra.so needs its runtime linked into the program
+# (first in the library list); the CMake package says so itself
+# (quadra_sanitizer_link_interface), a plain pkg-config link gets it here.
+sanitize=$(sed -n 's/^QUADRA_SANITIZE:STRING=//p' "$build_dir/CMakeCache.txt")
+sanitize_flags=${sanitize:+-fsanitize=$sanitize}
 # pkg-config alone (no CMake): compile and link a version query.
 printf '#include <quadra/quadra.hpp>\n#include <cstdio>\nint main() { std::puts(quadra::version()); }\n' >"$work/pc.cpp"
 PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --exists quadra ||
   { echo "pkg-config does not find quadra.pc"; exit 1; }
 # shellcheck disable=SC2046
-c++ -std=c++20 "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags --libs quadra)
+c++ -std=c++20 $sanitize_flags "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags --libs quadra)
 [[ $(LD_LIBRARY_PATH="$work/prefix/lib" "$work/pc") == $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --modversion quadra) ]] ||
   { echo "the pkg-config build reports another version"; exit 1; }
 if find "$work/prefix" -name '*lab*' | grep .; then
