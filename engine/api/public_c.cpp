@@ -78,21 +78,22 @@ class LiveHandles {
   T& get(const T* handle, const char* call) const {
     const std::lock_guard<std::mutex> lock(mutex_);
     const auto it = objects_.find(reinterpret_cast<std::uintptr_t>(handle));
-    if (it == objects_.end() || it->second.kind != kindOf<T>())
-      throw api::Error(std::string(call) + ": the " + nameOf<T>() +
-                       " handle is not a live one (destroyed, or not made by quadra)");
+    if (it == objects_.end() || it->second.kind != kindOf<T>()) throw api::Error(notLive<T>(call));
     return *static_cast<T*>(it->second.object.get());
   }
-  // False when nothing live has that handle (destroyed twice, or made up).
+  // Destroys the object; when nothing live has that handle (destroyed
+  // twice, or made up) only sets the thread's last error.
   template <typename T>
-  bool remove(const T* handle) {
+  void remove(const T* handle, const char* call) {
     std::shared_ptr<void> dying;  // destroyed after the lock is released
     const std::lock_guard<std::mutex> lock(mutex_);
     const auto it = objects_.find(reinterpret_cast<std::uintptr_t>(handle));
-    if (it == objects_.end() || it->second.kind != kindOf<T>()) return false;
+    if (it == objects_.end() || it->second.kind != kindOf<T>()) {
+      lastError = notLive<T>(call);
+      return;
+    }
     dying = std::move(it->second.object);
     objects_.erase(it);
-    return true;
   }
 
  private:
@@ -105,8 +106,9 @@ class LiveHandles {
     return std::is_same_v<T, quadra_scene> ? 1 : 2;
   }
   template <typename T>
-  static const char* nameOf() {
-    return std::is_same_v<T, quadra_scene> ? "scene" : "renderer";
+  static std::string notLive(const char* call) {
+    return std::string(call) + ": the " + (std::is_same_v<T, quadra_scene> ? "scene" : "renderer") +
+           " handle is not a live one (destroyed, or not made by quadra)";
   }
   mutable std::mutex mutex_;
   std::uintptr_t next_ = 0x51ad0001;  // odd, and far from small indices
@@ -173,10 +175,7 @@ quadra_status quadra_scene_load(const char* path, quadra_scene** out) {
 }
 
 void quadra_scene_destroy(quadra_scene* scene) {
-  if (scene && !liveHandles().remove(scene))
-    lastError =
-        "quadra_scene_destroy: the scene handle is not a live one (destroyed, or not made by "
-        "quadra)";
+  if (scene) liveHandles().remove(scene, "quadra_scene_destroy");
 }
 
 quadra_status quadra_scene_add_mesh(quadra_scene* scene, const quadra_mesh_data* mesh,
@@ -305,10 +304,7 @@ quadra_status quadra_renderer_create(int threads, quadra_renderer** out) {
 }
 
 void quadra_renderer_destroy(quadra_renderer* renderer) {
-  if (renderer && !liveHandles().remove(renderer))
-    lastError =
-        "quadra_renderer_destroy: the renderer handle is not a live one (destroyed, or not made by "
-        "quadra)";
+  if (renderer) liveHandles().remove(renderer, "quadra_renderer_destroy");
 }
 
 quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
