@@ -51,6 +51,34 @@ quadra_status missing(const char* what) {
   return QUADRA_INVALID_ARGUMENT;
 }
 
+// A C caller can store any int in an enum field, but C++ must not read a
+// value outside its enum's range (undefined behaviour), so the field is read
+// as the int C stored and checked before it becomes the C++ enum; a value the
+// narrower C++ enum would wrap into range is refused too.
+template <typename ApiEnum, typename CEnum>
+ApiEnum enumField(const CEnum& field, CEnum last, const char* context, const char* name) {
+  static_assert(sizeof(CEnum) == sizeof(int), "C enums are stored as int");
+  int value;
+  std::memcpy(&value, &field, sizeof value);
+  if (value < 0 || value > int(last))
+    throw api::Error(std::string(context) + ": " + name + " " + std::to_string(value) +
+                     " is not one of its values");
+  return ApiEnum(value);
+}
+
+// enumField converts by value: each C enum lists its C++ enum's values in the
+// same order, ending at the same last one.
+static_assert(int(QUADRA_TEXTURE_RGBA32F) == int(api::TextureFormat::Rgba32F) &&
+              int(QUADRA_WRAP_CLAMP_TO_EDGE) == int(api::Wrap::ClampToEdge) &&
+              int(QUADRA_FILTER_ANISOTROPIC) == int(api::Filter::Anisotropic) &&
+              int(QUADRA_ALPHA_BLEND) == int(api::AlphaMode::Blend) &&
+              int(QUADRA_COMPARE_ALWAYS) == int(api::CompareFunction::Always) &&
+              int(QUADRA_CULL_FRONT) == int(api::CullMode::Front) &&
+              int(QUADRA_BLEND_MAX) == int(api::BlendEquation::Max) &&
+              int(QUADRA_FACTOR_ONE_MINUS_DST_ALPHA) == int(api::BlendFactor::OneMinusDstAlpha) &&
+              int(QUADRA_ORTHOGRAPHIC) == int(api::CameraData::Projection::Orthographic) &&
+              int(QUADRA_PIXEL_RGBA32F) == int(api::PixelFormat::Rgba32F));
+
 template <typename T>
 std::span<const T> span(const T* data, std::size_t count) {
   return data ? std::span<const T>(data, count) : std::span<const T>();
@@ -131,16 +159,16 @@ api::MeshData meshOf(const quadra_mesh_data& m) {
 }
 
 api::TextureData textureOf(const quadra_texture_data& t) {
-  if (t.format < QUADRA_TEXTURE_RGBA8_SRGB || t.format > QUADRA_TEXTURE_RGBA32F)
-    throw api::Error("texture: unknown format " + std::to_string(int(t.format)));
   return {.width = t.width,
           .height = t.height,
-          .format = api::TextureFormat(t.format),
+          .format = enumField<api::TextureFormat>(t.format, QUADRA_TEXTURE_RGBA32F, "texture",
+                                                  "format"),
           .texels = std::span(static_cast<const std::byte*>(t.texels), t.texels ? t.size_bytes : 0),
           .rowStride = t.row_stride,
-          .wrapU = api::Wrap(t.wrap_u),
-          .wrapV = api::Wrap(t.wrap_v),
-          .filter = api::Filter(t.filter)};
+          .wrapU = enumField<api::Wrap>(t.wrap_u, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_u"),
+          .wrapV = enumField<api::Wrap>(t.wrap_v, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_v"),
+          .filter = enumField<api::Filter>(t.filter, QUADRA_FILTER_ANISOTROPIC, "texture",
+                                           "filter")};
 }
 
 api::Matrix4 matrixOf(const float* m) {
@@ -221,12 +249,11 @@ quadra_status quadra_scene_add_material(quadra_scene* scene, const quadra_materi
   if (!scene || !material || !out_material)
     return missing("quadra_scene_add_material: an argument");
   return guarded([&] {
-    if (material->alpha_mode < QUADRA_ALPHA_OPAQUE || material->alpha_mode > QUADRA_ALPHA_BLEND)
-      throw api::Error("material: unknown alpha mode " + std::to_string(int(material->alpha_mode)));
     api::MaterialData data;
     std::memcpy(data.baseColor.data(), material->base_color, sizeof(material->base_color));
     if (material->has_texture) data.texture = api::TextureHandle{material->texture};
-    data.alphaMode = api::AlphaMode(material->alpha_mode);
+    data.alphaMode =
+        enumField<api::AlphaMode>(material->alpha_mode, QUADRA_ALPHA_BLEND, "material", "alpha_mode");
     data.alphaCutoff = material->alpha_cutoff;
     data.doubleSided = material->double_sided != 0;
     *out_material =
@@ -261,19 +288,28 @@ quadra_status quadra_scene_set_draw_state(quadra_scene* scene, uint32_t instance
   return guarded([&] {
     std::optional<api::DrawStateData> data;
     if (state) {
-      // Values outside an enum are the C++ call's one-line errors.
-      data =
-          api::DrawStateData{.depthTest = state->depth_test != 0,
-                             .depthWrite = state->depth_write != 0,
-                             .depthCompare = api::CompareFunction(state->depth_compare),
-                             .cull = api::CullMode(state->cull),
-                             .blend = {.enabled = state->blend_enabled != 0,
-                                       .colorEquation = api::BlendEquation(state->color_equation),
-                                       .alphaEquation = api::BlendEquation(state->alpha_equation),
-                                       .srcColor = api::BlendFactor(state->src_color),
-                                       .dstColor = api::BlendFactor(state->dst_color),
-                                       .srcAlpha = api::BlendFactor(state->src_alpha),
-                                       .dstAlpha = api::BlendFactor(state->dst_alpha)}};
+      const char* context = "setDrawState";
+      const auto equation = [&](const quadra_blend_equation& field, const char* name) {
+        return enumField<api::BlendEquation>(field, QUADRA_BLEND_MAX, context, name);
+      };
+      const auto factor = [&](const quadra_blend_factor& field, const char* name) {
+        return enumField<api::BlendFactor>(field, QUADRA_FACTOR_ONE_MINUS_DST_ALPHA, context,
+                                           name);
+      };
+      data = api::DrawStateData{
+          .depthTest = state->depth_test != 0,
+          .depthWrite = state->depth_write != 0,
+          .depthCompare = enumField<api::CompareFunction>(state->depth_compare,
+                                                          QUADRA_COMPARE_ALWAYS, context,
+                                                          "depth_compare"),
+          .cull = enumField<api::CullMode>(state->cull, QUADRA_CULL_FRONT, context, "cull"),
+          .blend = {.enabled = state->blend_enabled != 0,
+                    .colorEquation = equation(state->color_equation, "color_equation"),
+                    .alphaEquation = equation(state->alpha_equation, "alpha_equation"),
+                    .srcColor = factor(state->src_color, "src_color"),
+                    .dstColor = factor(state->dst_color, "dst_color"),
+                    .srcAlpha = factor(state->src_alpha, "src_alpha"),
+                    .dstAlpha = factor(state->dst_alpha, "dst_alpha")}};
     }
     liveHandles().get(scene, "quadra_scene_set_draw_state").scene.setDrawState({instance}, data);
   });
@@ -282,11 +318,10 @@ quadra_status quadra_scene_set_draw_state(quadra_scene* scene, uint32_t instance
 quadra_status quadra_scene_set_camera(quadra_scene* scene, const quadra_camera_data* camera) {
   if (!scene || !camera) return missing("quadra_scene_set_camera: an argument");
   return guarded([&] {
-    if (camera->projection != QUADRA_PERSPECTIVE && camera->projection != QUADRA_ORTHOGRAPHIC)
-      throw api::Error("camera: unknown projection " + std::to_string(int(camera->projection)));
     liveHandles()
         .get(scene, "quadra_scene_set_camera")
-        .scene.setCamera({.projection = api::CameraData::Projection(camera->projection),
+        .scene.setCamera({.projection = enumField<api::CameraData::Projection>(
+                              camera->projection, QUADRA_ORTHOGRAPHIC, "camera", "projection"),
                           .yfov = camera->yfov,
                           .ymag = camera->ymag,
                           .znear = camera->znear,
@@ -313,15 +348,13 @@ quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene
   if (!target->pixels) return missing("render target: pixels");
   if (depth && !depth->depth) return missing("depth target: depth");
   return guarded([&] {
-    if (target->format < QUADRA_PIXEL_RGBA8_SRGB || target->format > QUADRA_PIXEL_RGBA32F)
-      throw api::Error("render target: unknown pixel format " +
-                       std::to_string(int(target->format)));
     const api::Target t{
         .pixels = std::span(static_cast<std::byte*>(target->pixels), target->size_bytes),
         .width = target->width,
         .height = target->height,
         .rowStride = target->row_stride,
-        .format = api::PixelFormat(target->format)};
+        .format = enumField<api::PixelFormat>(target->format, QUADRA_PIXEL_RGBA32F,
+                                              "render target", "format")};
     api::DepthTarget d;
     if (depth)
       d = {.bytes = std::span(reinterpret_cast<std::byte*>(depth->depth), depth->size_bytes),

@@ -105,6 +105,11 @@ static void in_memory_quad(quadra_renderer* renderer) {
   state.cull = (quadra_cull)9;
   expect_error(quadra_scene_set_draw_state(scene, instance_id, &state), QUADRA_INVALID_ARGUMENT,
                "setDrawState: cull 9 is not one of its values");
+  /* A value a one-byte C++ enum would wrap into range (257 -> 1) is refused too. */
+  state.cull = QUADRA_CULL_NONE;
+  state.dst_alpha = (quadra_blend_factor)257;
+  expect_error(quadra_scene_set_draw_state(scene, instance_id, &state), QUADRA_INVALID_ARGUMENT,
+               "setDrawState: dst_alpha 257 is not one of its values");
 
   /* misuse */
   unsigned char before[sizeof(pixels)];
@@ -129,6 +134,19 @@ static void in_memory_quad(quadra_renderer* renderer) {
   quadra_texture_data empty = {0, 4, QUADRA_TEXTURE_RGBA8_SRGB, NULL, 0, 0, 0, 0, 0};
   expect_error(quadra_scene_add_texture(scene, &empty, &unused), QUADRA_INVALID_ARGUMENT,
                "texture: 0x4 texels; a texture needs at least one");
+  const unsigned char white[4] = {255, 255, 255, 255};
+  quadra_texture_data odd_wrap = {1, 1, QUADRA_TEXTURE_RGBA8_SRGB, white, 4, 4, 0, 0, 0};
+  odd_wrap.wrap_v = (quadra_wrap)-1;
+  expect_error(quadra_scene_add_texture(scene, &odd_wrap, &unused), QUADRA_INVALID_ARGUMENT,
+               "texture: wrap_v -1 is not one of its values");
+  quadra_camera_data odd_camera = camera;
+  odd_camera.projection = (quadra_projection)2;
+  expect_error(quadra_scene_set_camera(scene, &odd_camera), QUADRA_INVALID_ARGUMENT,
+               "camera: projection 2 is not one of its values");
+  quadra_target odd_target = target;
+  odd_target.format = (quadra_pixel_format)300;
+  expect_error(quadra_render(renderer, scene, &odd_target, NULL), QUADRA_INVALID_ARGUMENT,
+               "render target: format 300 is not one of its values");
   float transform[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   transform[12] = NAN;
   expect_error(quadra_scene_set_transform(scene, instance_id, transform), QUADRA_INVALID_ARGUMENT,
