@@ -5,12 +5,35 @@
 # its own and that quadra.pc works; then build the consumer against it with
 # find_package(quadra), render its in-memory quad from C++ and from C, and
 # check the pixels and depths equal bit for bit the installed CLI's EXR of the same quad as glTF;
-# then build and run the README's example (examples/) the same way. With --oiio-peer (the
+# then build and run the README's examples (examples/) the same way: the C++
+# and C triangles must print the same pixel. With --oiio-peer (the
 # build made quadra_oiio_peer.so), also check that the installed quadra finds
-# the installed module: its `report textures` has OpenImageIO's rows.
+# the installed module: its `report textures` has OpenImageIO's rows. With
+# --python PYTHON DIR (the build made the module, installed into DIR under
+# the prefix), run examples/triangle.py against the installed module.
+#   run.sh BUILD_DIR [--oiio-peer] [--python PYTHON DIR]
 set -euo pipefail
 build_dir=$1
-oiio_peer=${2:-}
+shift
+oiio_peer=
+python=
+python_dir=
+while (($#)); do
+  case "$1" in
+    '') ;; # an option CMake's generator expression left out
+    --oiio-peer) oiio_peer=--oiio-peer ;;
+    --python)
+      python=$2
+      python_dir=$3
+      shift 2
+      ;;
+    *)
+      echo "run.sh: unknown option $1" >&2
+      exit 2
+      ;;
+  esac
+  shift
+done
 source_dir=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -64,7 +87,15 @@ mkdir "$work/quad"
 cmake -S "$source_dir/../../examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" \
   -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/examples" >/dev/null
-"$work/examples/triangle"
+cxx_line=$("$work/examples/triangle")
+c_line=$("$work/examples/triangle_c")
+echo "$cxx_line"
+[[ $c_line == "$cxx_line" ]] || { echo "the C example printed another line: $c_line"; exit 1; }
+if [[ -n $python ]]; then
+  [[ -d $work/prefix/$python_dir ]] || { echo "the Python module was not installed into $python_dir"; exit 1; }
+  # From the prefix only: the installed module finds the installed libquadra.so.
+  (cd "$work" && PYTHONPATH="$work/prefix/$python_dir" "$python" "$source_dir/../../examples/triangle.py")
+fi
 if [[ $oiio_peer == --oiio-peer ]]; then
   "$work/prefix/bin/quadra" report textures --size 8 --lookups 36 --threads 2 \
     --out-dir "$work/report" >"$work/report.txt"
