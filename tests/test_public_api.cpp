@@ -191,6 +191,44 @@ TEST_F(PublicApi, Rgba32FIsTheEngineFrameBitForBit) {
   expectGuardsKept(buffer, stride, kWidth * 16);
 }
 
+// Contiguous RGBA32F rows and depth rows are resolved into in place (no
+// frame copy, docs/api.md "Targets"); the bits are the same, whichever path a
+// target takes and in whichever order targets of both kinds come.
+TEST_F(PublicApi, ContiguousTargetsResolvedInPlaceHoldTheSameBits) {
+  PublicScene s = publicScene(arrays);
+  const std::size_t pixels = std::size_t(kWidth) * kHeight;
+  for (const bool padded : {false, true, false}) {
+    const std::size_t stride = kWidth * 16 + (padded ? 16 : 0);
+    // Floats: 16-byte aligned as operator new gives; one row more as a guard.
+    std::vector<float> color(stride / 4 * (kHeight + 1), -7.0f), depth(pixels + kWidth, -7.0f);
+    const api::DepthTarget depthTarget{.bytes = std::as_writable_bytes(std::span(depth)),
+                                       .rowStride = kWidth * 4};
+    renderer.render(s.scene,
+                    {.pixels = std::as_writable_bytes(std::span(color)),
+                     .width = kWidth,
+                     .height = kHeight,
+                     .rowStride = stride,
+                     .format = api::PixelFormat::Rgba32F},
+                    &depthTarget);
+    std::size_t differing = 0, guardsChanged = 0;
+    for (int y = 0; y <= kHeight; ++y)
+      for (std::size_t i = 0; i < stride / 4; ++i) {
+        const float value = color[y * stride / 4 + i];
+        if (y == kHeight || i >= std::size_t(kWidth) * 4)
+          guardsChanged += value != -7.0f;
+        else
+          differing += std::memcmp(&value, &frame.rgba[y * kWidth * 4 + i], 4) != 0;
+      }
+    for (std::size_t i = 0; i < pixels + kWidth; ++i)
+      if (i < pixels)
+        differing += std::memcmp(&depth[i], &frame.depth[i], 4) != 0;
+      else
+        guardsChanged += depth[i] != -7.0f;
+    EXPECT_EQ(differing, 0u) << (padded ? "padded" : "contiguous");
+    EXPECT_EQ(guardsChanged, 0u) << (padded ? "padded" : "contiguous");
+  }
+}
+
 TEST_F(PublicApi, Rgba16FIsTheFrameRoundedToHalves) {
   PublicScene s = publicScene(arrays);
   const std::size_t stride = kWidth * 8 + 6;  // a stride that is no multiple of a pixel

@@ -1,7 +1,10 @@
 // The public Renderer (include/quadra/renderer.hpp): checks the embedder's
-// buffers, renders through the engine's Renderer into its own float Frame,
-// and converts that frame into the target's format row by row, leaving the
-// rows' padding alone; and quadra::version().
+// buffers and renders through the engine's Renderer. An RGBA32F target (and
+// a depth target) whose rows are contiguous is resolved into directly; any
+// other is rendered into the Renderer's own float Frame and converted into
+// the target's format row by row, leaving the rows' padding alone. And
+// quadra::version().
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -154,18 +157,34 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
   settings.clearColor = {options.clearColor[0], options.clearColor[1], options.clearColor[2],
                          options.clearColor[3]};
   settings.frameDepth = depth != nullptr;
-  try {
-    impl_->renderer.render(inside.scene, camera, settings, impl_->frame);
-  } catch (const quadra::Error& error) {  // the engine's, as the public type
-    throw Error(error.what());
+  // The tile stage's streaming stores need 16-byte aligned colour.
+  Frame& frame = impl_->frame;
+  const std::size_t width = std::size_t(target.width);
+  const bool colorInPlace = target.format == PixelFormat::Rgba32F &&
+                            target.rowStride == width * 16 &&
+                            reinterpret_cast<std::uintptr_t>(target.pixels.data()) % 16 == 0;
+  const bool depthInPlace = depth && depth->rowStride == width * sizeof(float);
+  {
+    // The frame must not keep the embedder's pointers past this call.
+    struct Borrowed {
+      Frame& frame;
+      ~Borrowed() { frame.rgbaInto = frame.depthInto = nullptr; }
+    } borrowed{frame};
+    frame.rgbaInto = colorInPlace ? reinterpret_cast<float*>(target.pixels.data()) : nullptr;
+    frame.depthInto = depthInPlace ? reinterpret_cast<float*>(depth->bytes.data()) : nullptr;
+    try {
+      impl_->renderer.render(inside.scene, camera, settings, frame);
+    } catch (const quadra::Error& error) {  // the engine's, as the public type
+      throw Error(error.what());
+    }
   }
 
-  writeColor(impl_->frame, target, impl_->executor);
-  if (depth)
+  if (!colorInPlace) writeColor(frame, target, impl_->executor);
+  if (depth && !depthInPlace)
     for (int y = 0; y < target.height; ++y)
       std::memcpy(depth->bytes.data() + std::size_t(y) * depth->rowStride,
-                  &impl_->frame.depth[std::size_t(y) * std::size_t(target.width)],
-                  std::size_t(target.width) * sizeof(float));
+                  &frame.depth[std::size_t(y) * width],
+                  width * sizeof(float));
 }
 
 }  // namespace quadra::api

@@ -468,8 +468,8 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   out.width = settings.width;
   out.height = settings.height;
   const std::size_t pixels = std::size_t(out.width) * std::size_t(out.height);
-  resizeLarge(out.rgba, pixels * 4, 0.0f, &executor);
-  resizeLarge(out.depth, settings.frameDepth ? pixels : 0, 0.0f, &executor);
+  resizeLarge(out.rgba, out.rgbaInto ? 0 : pixels * 4, 0.0f, &executor);
+  resizeLarge(out.depth, settings.frameDepth && !out.depthInto ? pixels : 0, 0.0f, &executor);
   resizeLarge(out.coverage, settings.frameCoverage ? pixels : 0, 0.0f, &executor);
   // The AOV pass writes every pixel of the planes asked for, clear values too.
   const auto aovPixels = [&](Aov a) {

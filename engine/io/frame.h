@@ -61,6 +61,14 @@ struct Frame {
   // width * height, or empty when the render was asked for none
   // (RenderSettings::frameDepth); 1 = far plane / nothing drawn.
   std::vector<float> depth;
+  // The embedder's own memory to resolve into instead of rgba / depth (the
+  // public API's targets whose rows are contiguous, so that its frame costs
+  // no copy): width * height * 4 floats, 16-byte aligned / width * height
+  // floats. The render then leaves rgba / depth empty. Set for each render.
+  float* rgbaInto = nullptr;
+  float* depthInto = nullptr;
+  float* colorPixels() { return rgbaInto ? rgbaInto : rgba.data(); }
+  float* depthPixels() { return depthInto ? depthInto : depth.empty() ? nullptr : depth.data(); }
   // width * height, or empty when the render was asked for none
   // (RenderSettings::frameCoverage): the fraction of the pixel's samples that
   // a depth-writing (opaque or masked) triangle holds, filtered as the colour is.

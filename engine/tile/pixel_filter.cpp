@@ -284,7 +284,8 @@ void finishTileBorders(int tileIndex, const PixelFilterFrame& filter, Frame& out
       if (pixelFinishedByTile(rect, x, y, out)) continue;
       const std::size_t pixel = std::size_t(y) * std::size_t(out.width) + std::size_t(x);
       float value[5];
-      for (int c = 0; c < 4; ++c) value[c] = out.rgba[pixel * 4 + std::size_t(c)];
+      float* const rgba = out.colorPixels() + pixel * 4;
+      for (int c = 0; c < 4; ++c) value[c] = rgba[c];
       if (filter.coverage) value[4] = out.coverage[pixel];
       for (int ny = std::max(tileY - 1, 0); ny <= std::min(tileY + 1, filter.tilesY - 1); ++ny)
         for (int nx = std::max(tileX - 1, 0); nx <= std::min(tileX + 1, filter.tilesX - 1); ++nx) {
@@ -298,7 +299,7 @@ void finishTileBorders(int tileIndex, const PixelFilterFrame& filter, Frame& out
           for (int c = 0; c < channels; ++c) value[c] += from[c];
         }
       const float sum = filter.weights.weightSum(x, y, out.width, out.height);
-      for (int c = 0; c < 4; ++c) out.rgba[pixel * 4 + std::size_t(c)] = value[c] / sum;
+      for (int c = 0; c < 4; ++c) rgba[c] = value[c] / sum;
       if (filter.coverage) out.coverage[pixel] = value[4] / sum;
     }
   }

@@ -39,8 +39,8 @@ void resolvePartialQuad(const TileBuffers& tile, int x, int y, float* rgba, floa
 
 void resolveTile(const TileBuffers& tile, Frame& frame) {
   const std::size_t stride = std::size_t(frame.width);
-  float* const rgba = frame.rgba.data();
-  float* const depth = frame.depth.empty() ? nullptr : frame.depth.data();
+  float* const rgba = frame.colorPixels();
+  float* const depth = frame.depthPixels();
   QUADRA_CHECK(reinterpret_cast<std::uintptr_t>(rgba) % 16 == 0);  // streaming stores
   const int fullWidth = tile.width & ~1;
   for (int y = 0; y < tile.height; y += 2) {
