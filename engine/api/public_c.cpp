@@ -159,16 +159,16 @@ api::MeshData meshOf(const quadra_mesh_data& m) {
 }
 
 api::TextureData textureOf(const quadra_texture_data& t) {
-  return {.width = t.width,
-          .height = t.height,
-          .format = enumField<api::TextureFormat>(t.format, QUADRA_TEXTURE_RGBA32F, "texture",
-                                                  "format"),
-          .texels = std::span(static_cast<const std::byte*>(t.texels), t.texels ? t.size_bytes : 0),
-          .rowStride = t.row_stride,
-          .wrapU = enumField<api::Wrap>(t.wrap_u, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_u"),
-          .wrapV = enumField<api::Wrap>(t.wrap_v, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_v"),
-          .filter = enumField<api::Filter>(t.filter, QUADRA_FILTER_ANISOTROPIC, "texture",
-                                           "filter")};
+  return {
+      .width = t.width,
+      .height = t.height,
+      .format =
+          enumField<api::TextureFormat>(t.format, QUADRA_TEXTURE_RGBA32F, "texture", "format"),
+      .texels = std::span(static_cast<const std::byte*>(t.texels), t.texels ? t.size_bytes : 0),
+      .rowStride = t.row_stride,
+      .wrapU = enumField<api::Wrap>(t.wrap_u, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_u"),
+      .wrapV = enumField<api::Wrap>(t.wrap_v, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_v"),
+      .filter = enumField<api::Filter>(t.filter, QUADRA_FILTER_ANISOTROPIC, "texture", "filter")};
 }
 
 api::Matrix4 matrixOf(const float* m) {
@@ -252,8 +252,8 @@ quadra_status quadra_scene_add_material(quadra_scene* scene, const quadra_materi
     api::MaterialData data;
     std::memcpy(data.baseColor.data(), material->base_color, sizeof(material->base_color));
     if (material->has_texture) data.texture = api::TextureHandle{material->texture};
-    data.alphaMode =
-        enumField<api::AlphaMode>(material->alpha_mode, QUADRA_ALPHA_BLEND, "material", "alpha_mode");
+    data.alphaMode = enumField<api::AlphaMode>(material->alpha_mode, QUADRA_ALPHA_BLEND, "material",
+                                               "alpha_mode");
     data.alphaCutoff = material->alpha_cutoff;
     data.doubleSided = material->double_sided != 0;
     *out_material =
@@ -293,15 +293,13 @@ quadra_status quadra_scene_set_draw_state(quadra_scene* scene, uint32_t instance
         return enumField<api::BlendEquation>(field, QUADRA_BLEND_MAX, context, name);
       };
       const auto factor = [&](const quadra_blend_factor& field, const char* name) {
-        return enumField<api::BlendFactor>(field, QUADRA_FACTOR_ONE_MINUS_DST_ALPHA, context,
-                                           name);
+        return enumField<api::BlendFactor>(field, QUADRA_FACTOR_ONE_MINUS_DST_ALPHA, context, name);
       };
       data = api::DrawStateData{
           .depthTest = state->depth_test != 0,
           .depthWrite = state->depth_write != 0,
-          .depthCompare = enumField<api::CompareFunction>(state->depth_compare,
-                                                          QUADRA_COMPARE_ALWAYS, context,
-                                                          "depth_compare"),
+          .depthCompare = enumField<api::CompareFunction>(
+              state->depth_compare, QUADRA_COMPARE_ALWAYS, context, "depth_compare"),
           .cull = enumField<api::CullMode>(state->cull, QUADRA_CULL_FRONT, context, "cull"),
           .blend = {.enabled = state->blend_enabled != 0,
                     .colorEquation = equation(state->color_equation, "color_equation"),
@@ -353,8 +351,8 @@ quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene
         .width = target->width,
         .height = target->height,
         .rowStride = target->row_stride,
-        .format = enumField<api::PixelFormat>(target->format, QUADRA_PIXEL_RGBA32F,
-                                              "render target", "format")};
+        .format = enumField<api::PixelFormat>(target->format, QUADRA_PIXEL_RGBA32F, "render target",
+                                              "format")};
     api::DepthTarget d;
     if (depth)
       d = {.bytes = std::span(reinterpret_cast<std::byte*>(depth->depth), depth->size_bytes),

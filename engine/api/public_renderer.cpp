@@ -183,8 +183,7 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
   if (depth && !depthInPlace)
     for (int y = 0; y < target.height; ++y)
       std::memcpy(depth->bytes.data() + std::size_t(y) * depth->rowStride,
-                  &frame.depth[std::size_t(y) * width],
-                  width * sizeof(float));
+                  &frame.depth[std::size_t(y) * width], width * sizeof(float));
 }
 
 }  // namespace quadra::api
