@@ -10,14 +10,17 @@
 # build made quadra_oiio_peer.so), also check that the installed quadra finds
 # the installed module: its `report textures` has OpenImageIO's rows. With
 # --python PYTHON DIR (the build made the module, installed into DIR under
-# the prefix), run examples/triangle.py against the installed module.
-#   run.sh BUILD_DIR [--oiio-peer] [--python PYTHON DIR]
+# the prefix), run examples/triangle.py against the installed module, with
+# --python-preload LIB (a sanitizer build) preloading the sanitizer's runtime
+# into the uninstrumented interpreter (tests/CMakeLists.txt says why).
+#   run.sh BUILD_DIR [--oiio-peer] [--python PYTHON DIR [--python-preload LIB]]
 set -euo pipefail
 build_dir=$1
 shift
 oiio_peer=
 python=
 python_dir=
+python_preload=
 while (($#)); do
   case "$1" in
     '') ;; # an option CMake's generator expression left out
@@ -26,6 +29,10 @@ while (($#)); do
       python=$2
       python_dir=$3
       shift 2
+      ;;
+    --python-preload)
+      python_preload=$2
+      shift
       ;;
     *)
       echo "run.sh: unknown option $1" >&2
@@ -94,7 +101,13 @@ echo "$cxx_line"
 if [[ -n $python ]]; then
   [[ -d $work/prefix/$python_dir ]] || { echo "the Python module was not installed into $python_dir"; exit 1; }
   # From the prefix only: the installed module finds the installed libquadra.so.
-  (cd "$work" && PYTHONPATH="$work/prefix/$python_dir" "$python" "$source_dir/../../examples/triangle.py")
+  (
+    cd "$work"
+    if [[ -n $python_preload ]]; then
+      export LD_PRELOAD=$python_preload ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0
+    fi
+    PYTHONPATH="$work/prefix/$python_dir" "$python" "$source_dir/../../examples/triangle.py"
+  )
 fi
 if [[ $oiio_peer == --oiio-peer ]]; then
   "$work/prefix/bin/quadra" report textures --size 8 --lookups 36 --threads 2 \
