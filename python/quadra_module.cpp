@@ -385,6 +385,27 @@ PYBIND11_MODULE(quadra, m) {
           "set_camera",
           [](PyScene& self, const PyCamera& camera) { self.forChange().setCamera(camera.data); },
           py::arg("camera"))
+      .def(
+          "set_animation_time",
+          [](PyScene& self, double seconds, int animation) {
+            self.forChange().setAnimationTime(animation, seconds);
+          },
+          py::arg("seconds"), py::arg("animation") = 0,
+          "Poses a loaded scene `seconds` into one of its glTF animations (-1: the rest "
+          "pose), as `quadra render --sequence` poses its frames.")
+      .def_property_readonly(
+          "animations",
+          [](const PyScene& s) {
+            std::vector<std::string> names;
+            for (int a = 0; a < s.scene.animationCount(); ++a)
+              names.push_back(s.scene.animationName(a));
+            return names;
+          },
+          "The glTF animations' names, by index (\"\" when unnamed).")
+      .def(
+          "animation_duration",
+          [](const PyScene& s, int animation) { return s.scene.animationDuration(animation); },
+          py::arg("animation"), "Seconds to the animation's last key.")
       .def_property_readonly("mesh_count", [](const PyScene& s) { return s.scene.meshCount(); })
       .def_property_readonly("instance_count",
                              [](const PyScene& s) { return s.scene.instanceCount(); });

@@ -328,6 +328,22 @@ quadra_status quadra_scene_set_camera(quadra_scene* scene, const quadra_camera_d
   });
 }
 
+quadra_status quadra_scene_animation_count(const quadra_scene* scene, int* out_count) {
+  if (!scene || !out_count) return missing("quadra_scene_animation_count: an argument");
+  return guarded([&] {
+    *out_count = liveHandles().get(scene, "quadra_scene_animation_count").scene.animationCount();
+  });
+}
+
+quadra_status quadra_scene_set_animation_time(quadra_scene* scene, int animation, double seconds) {
+  if (!scene) return missing("quadra_scene_set_animation_time: scene");
+  return guarded([&] {
+    liveHandles()
+        .get(scene, "quadra_scene_set_animation_time")
+        .scene.setAnimationTime(animation, seconds);
+  });
+}
+
 quadra_status quadra_renderer_create(int threads, quadra_renderer** out) {
   if (!out) return missing("quadra_renderer_create: out");
   return guarded([&] {

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "api/public_scene.h"
+#include "api/renderer.h"
 #include "core/error.h"
 #include "quadra/tbb.hpp"
 #include "scene/gltf_loader.h"
@@ -343,6 +344,41 @@ std::size_t Scene::meshCount() const {
 }
 std::size_t Scene::instanceCount() const {
   return impl_->scene.instances.size();
+}
+
+namespace {
+std::size_t checkedAnimation(int animation, const quadra::Scene& scene, const char* call,
+                             bool restAllowed) {
+  const int count = int(scene.animations.size());
+  if (animation < (restAllowed ? -1 : 0) || animation >= count)
+    throw Error(std::string(call) + ": animation " + std::to_string(animation) +
+                " is not one of the scene's " + std::to_string(count) +
+                (restAllowed ? " (or -1, the rest pose)" : ""));
+  return std::size_t(animation);
+}
+}  // namespace
+
+int Scene::animationCount() const {
+  return int(impl_->scene.animations.size());
+}
+std::string Scene::animationName(int animation) const {
+  return impl_->scene.animations[checkedAnimation(animation, impl_->scene, "animationName", false)]
+      .name;
+}
+double Scene::animationDuration(int animation) const {
+  return quadra::animationDuration(impl_->scene.animations[checkedAnimation(
+      animation, impl_->scene, "animationDuration", false)]);
+}
+
+void Scene::setAnimationTime(int animation, double seconds) {
+  checkedAnimation(animation, impl_->scene, "setAnimationTime", true);
+  if (!std::isfinite(seconds))
+    throw Error("setAnimationTime: seconds " + std::to_string(seconds) + " is not finite");
+  Impl& impl = *impl_;
+  // Framed before the first pose moves anything, as the CLI frames a sequence.
+  if (!impl.camera && impl.scene.cameras.empty()) impl.camera = defaultCamera(impl.scene);
+  poseNodes(impl.scene, animation, seconds, impl.pose);
+  placeOnNodes(impl.scene, impl.pose);
 }
 
 namespace {

@@ -9,6 +9,7 @@
 
 #include "api/camera.h"
 #include "quadra/scene.hpp"
+#include "scene/animation.h"
 #include "scene/scene.h"
 
 namespace quadra::api {
@@ -21,6 +22,7 @@ struct Scene::Impl {
   std::vector<std::vector<int>> derived;
   std::vector<bool> drawn;               // per public mesh: derived[i][0] has its material
   std::optional<quadra::Camera> camera;  // setCamera's; unset: the scene's or a default
+  NodePose pose;                         // setAnimationTime's, its buffers reused
 };
 
 namespace detail {

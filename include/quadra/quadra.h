@@ -213,6 +213,11 @@ QUADRA_API quadra_status quadra_scene_set_draw_state(quadra_scene* scene, uint32
                                                      const quadra_draw_state* state);
 QUADRA_API quadra_status quadra_scene_set_camera(quadra_scene* scene,
                                                  const quadra_camera_data* camera);
+/* A loaded scene's glTF animations, and its pose `seconds` into one of them
+   (-1: the rest pose), as quadra::api::Scene::setAnimationTime. */
+QUADRA_API quadra_status quadra_scene_animation_count(const quadra_scene* scene, int* out_count);
+QUADRA_API quadra_status quadra_scene_set_animation_time(quadra_scene* scene, int animation,
+                                                         double seconds);
 
 /* threads <= 0: all cores. */
 QUADRA_API quadra_status quadra_renderer_create(int threads, quadra_renderer** out);

@@ -206,6 +206,19 @@ class QUADRA_API Scene {
   std::size_t meshCount() const;
   std::size_t instanceCount() const;
 
+  // A loaded scene's glTF animations (a scene built in code has none).
+  int animationCount() const;
+  std::string animationName(int animation) const;  // "" when the file names none
+  double animationDuration(int animation) const;   // seconds: its last key's time
+  // Poses the file's nodes `seconds` into `animation` (-1: the rest pose, as
+  // loaded): node transforms, skins, morph weights and the cameras on nodes,
+  // as `quadra render --sequence F:L --fps R` poses frame f at f / R, so
+  // the frames are the CLI's bit for bit. Instances added in code keep their
+  // transforms. Without any camera (none set, none in the file) the scene is
+  // framed once, at the rest pose, when it is first posed, as the CLI frames
+  // a sequence. seconds must be finite.
+  void setAnimationTime(int animation, double seconds);
+
  private:
   friend struct detail::SceneAccess;
   struct Impl;

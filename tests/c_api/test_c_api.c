@@ -191,6 +191,12 @@ static void gltf_file(quadra_renderer* renderer, const char* path) {
   int covered = 0;
   for (int i = 0; i < kSize * kSize; ++i) covered += rgba8[i * 4 + 3] != 0;
   EXPECT(covered > kSize * kSize / 10); /* the default camera frames the model */
+  /* BoxTextured has no animation: only the rest pose exists. */
+  int animations = -1;
+  EXPECT(quadra_scene_animation_count(scene, &animations) == QUADRA_OK && animations == 0);
+  EXPECT(quadra_scene_set_animation_time(scene, -1, 0.0) == QUADRA_OK);
+  expect_error(quadra_scene_set_animation_time(scene, 0, 0.5), QUADRA_INVALID_ARGUMENT,
+               "setAnimationTime: animation 0 is not one of the scene's 0 (or -1, the rest pose)");
   quadra_scene_destroy(scene);
   quadra_scene* missing = NULL;
   EXPECT(quadra_scene_load("/nonexistent.glb", &missing) != QUADRA_OK);

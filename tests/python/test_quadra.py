@@ -1,7 +1,7 @@
 """The Python module `quadra` (python/quadra_module.cpp), run by CTest
 (tests/CMakeLists.txt, test `Python`) as
 
-    test_quadra.py QUADRA_CLI READ_REFERENCE GLB
+    test_quadra.py QUADRA_CLI READ_REFERENCE GLB ANIMATED_GLB
 
 with PYTHONPATH=build/python. Exits non-zero when a test fails, errors, or
 when no test ran at all (Python 3.11's unittest exits 0 after "Ran 0 tests").
@@ -17,7 +17,7 @@ import numpy as np
 
 import quadra
 
-CLI, READ_REFERENCE, GLB = (sys.argv[1:4] if len(sys.argv) >= 4 else (None, None, None))
+CLI, READ_REFERENCE, GLB, ANIMATED = (sys.argv[1:5] if len(sys.argv) >= 5 else (None,) * 4)
 
 # The C API test's quad (tests/c_api/test_c_api.c): x, y in [-0.5, 0.5] at
 # z = 0, seen orthographically from z = 1 over [-1, 1]^2, near 0.5, far 2.
@@ -182,6 +182,44 @@ class RenderGltfEqualsTheCli(unittest.TestCase):
                 f.write(out.color.tobytes() + out.depth.tobytes())
             judged = subprocess.run([READ_REFERENCE, exr, raw], capture_output=True, text=True)
             self.assertNotEqual(judged.returncode, 0, judged.stdout)
+
+
+class Animation(unittest.TestCase):
+    def test_posed_frames_equal_the_cli_sequence_bit_for_bit(self):
+        # BoxAnimated: one unnamed animation, 3.7 s long, no camera (framed
+        # once at the rest pose, as the CLI frames a sequence).
+        if CLI is None:
+            self.skipTest("run by CTest with the CLI, read_reference and model paths")
+        scene = quadra.load(ANIMATED)
+        self.assertEqual(scene.animations, [""])
+        self.assertAlmostEqual(scene.animation_duration(0), 3.7083, places=3)
+        renderer = quadra.Renderer(threads=2)
+        with tempfile.TemporaryDirectory() as work:
+            subprocess.run([CLI, "render", ANIMATED, "--width", "64", "--height", "48", "--threads",
+                            "2", "--sequence", "0:2", "--fps", "2", "--out",
+                            os.path.join(work, "f_#.exr")], check=True, stdout=subprocess.DEVNULL)
+            colors = []
+            for f in range(3):
+                scene.set_animation_time(f / 2)
+                out = renderer.render(scene, width=64, height=48)
+                colors.append(out.color)
+                raw = os.path.join(work, "python.raw")
+                with open(raw, "wb") as file:
+                    file.write(out.color.tobytes() + out.depth.tobytes())
+                judged = subprocess.run([READ_REFERENCE, os.path.join(work, f"f_{f}.exr"), raw],
+                                        capture_output=True, text=True)
+                self.assertEqual(judged.returncode, 0, f"frame {f}: {judged.stdout}{judged.stderr}")
+            self.assertFalse(np.array_equal(colors[0], colors[2]))  # the box moved
+
+    def test_bad_animation_or_time_is_an_error(self):
+        if CLI is None:
+            self.skipTest("run by CTest with the model path")
+        scene = quadra.load(ANIMATED)
+        with self.assertRaisesRegex(quadra.Error, r"^setAnimationTime: animation 1 is not one of"):
+            scene.set_animation_time(0.5, animation=1)
+        with self.assertRaisesRegex(quadra.Error, r"^setAnimationTime: seconds inf is not finite$"):
+            scene.set_animation_time(float("inf"))
+        self.assertEqual(quadra.Scene().animations, [])
 
 
 class Misuse(unittest.TestCase):
