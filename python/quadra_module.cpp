@@ -412,15 +412,24 @@ PYBIND11_MODULE(quadra, m) {
 
   m.def(
       "load",
-      [](const std::string& path) {
+      [](const std::string& path, const std::vector<std::string>& allowedPaths,
+         std::optional<std::uint64_t> maxMemory, int sceneIndex) {
+        api::LoadOptions options;
+        options.allowedPaths = allowedPaths;
+        if (maxMemory) options.maxMemory = *maxMemory;
+        options.scene = sceneIndex;
         auto scene = std::make_unique<PyScene>();
         {
           py::gil_scoped_release released;
-          scene->scene = api::load(path);
+          scene->scene = api::load(path, options);
         }
         return scene;
       },
-      py::arg("path"), "Loads a .gltf or .glb file into a Scene.");
+      py::arg("path"), py::kw_only(), py::arg("allowed_paths") = std::vector<std::string>{},
+      py::arg("max_memory") = py::none(), py::arg("scene") = -1,
+      "Loads a .gltf or .glb file into a Scene. allowed_paths: folders besides the file's own "
+      "its URIs may read; max_memory: bytes the load may allocate (default 8 GiB); scene: the "
+      "glTF scene (-1: the file's default).");
 
   py::class_<RenderResult>(m, "RenderResult")
       .def_readonly("color", &RenderResult::color,

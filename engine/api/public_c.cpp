@@ -194,12 +194,43 @@ quadra_status quadra_scene_create(quadra_scene** out) {
   return guarded([&] { *out = liveHandles().add(std::make_unique<quadra_scene>()); });
 }
 
+namespace {
+// Whatever the loader refuses is the file's failure (QUADRA_FAILED), not a
+// bad argument of the call.
+// options: NULL for the defaults, else checked for NULL folders already.
+quadra_status loadScene(const char* path, const quadra_load_options* options, quadra_scene** out) {
+  const quadra_status status = guarded([&] {
+    api::LoadOptions loadOptions;
+    if (options) {
+      loadOptions.allowedPaths.assign(options->allowed_paths,
+                                      options->allowed_paths + options->allowed_path_count);
+      if (options->max_memory != 0) loadOptions.maxMemory = options->max_memory;
+      loadOptions.scene = options->scene;
+    }
+    *out = liveHandles().add(
+        std::make_unique<quadra_scene>(quadra_scene{api::load(path, loadOptions)}));
+  });
+  return status == QUADRA_INVALID_ARGUMENT ? QUADRA_FAILED : status;
+}
+}  // namespace
+
 quadra_status quadra_scene_load(const char* path, quadra_scene** out) {
   if (!path) return missing("quadra_scene_load: path");
   if (!out) return missing("quadra_scene_load: out");
-  return guarded([&] {
-    *out = liveHandles().add(std::make_unique<quadra_scene>(quadra_scene{api::load(path)}));
-  });
+  return loadScene(path, nullptr, out);
+}
+
+quadra_status quadra_scene_load_with(const char* path, const quadra_load_options* options,
+                                     quadra_scene** out) {
+  if (!path || !options || !out) return missing("quadra_scene_load_with: an argument");
+  if (options->allowed_path_count != 0 && !options->allowed_paths)
+    return missing("quadra_scene_load_with: allowed_paths");
+  for (std::size_t i = 0; i < options->allowed_path_count; ++i)
+    if (!options->allowed_paths[i]) {
+      lastError = "quadra_scene_load_with: allowed_paths[" + std::to_string(i) + "] is NULL";
+      return QUADRA_INVALID_ARGUMENT;
+    }
+  return loadScene(path, options, out);
 }
 
 void quadra_scene_destroy(quadra_scene* scene) {

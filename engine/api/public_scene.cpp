@@ -382,25 +382,32 @@ void Scene::setAnimationTime(int animation, double seconds) {
 }
 
 namespace {
-Scene loadWith(const std::string& path, const LoadOptions& options) {
+Scene loadWith(const std::string& path, const LoadOptions& options, TaskArena* arena) {
+  if (options.scene < -1)
+    throw Error(path + ": scene " + std::to_string(options.scene) +
+                " is not a scene index (or -1, the file's default)");
+  quadra::LoadOptions engine;
+  engine.allowedPaths = options.allowedPaths;
+  engine.maxMemory = options.maxMemory;
+  engine.sceneIndex = options.scene;
+  engine.arena = arena;
   Scene scene;
   try {
-    detail::SceneAccess::mutableOf(scene).scene = loadGltf(path, options);
+    detail::SceneAccess::mutableOf(scene).scene = loadGltf(path, engine);
   } catch (const quadra::Error& error) {  // the engine's, as the public type
     throw Error(error.what());
   }
   return scene;
 }
 }  // namespace
+static_assert(kDefaultMaxMemory == quadra::kDefaultMaxMemory, "the CLI's default budget");
 
-Scene load(const std::string& path) {
-  return loadWith(path, {});
+Scene load(const std::string& path, const LoadOptions& options) {
+  return loadWith(path, options, nullptr);
 }
 
-Scene loadIn(const std::string& path, tbb::task_arena& arena) {
-  LoadOptions options;
-  options.arena = &arena;
-  return loadWith(path, options);
+Scene loadIn(const std::string& path, tbb::task_arena& arena, const LoadOptions& options) {
+  return loadWith(path, options, &arena);
 }
 
 }  // namespace quadra::api

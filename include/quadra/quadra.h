@@ -189,6 +189,18 @@ typedef struct quadra_depth_target {
 
 QUADRA_API quadra_status quadra_scene_create(quadra_scene** out);
 QUADRA_API quadra_status quadra_scene_load(const char* path, quadra_scene** out);
+/* As quadra::api::LoadOptions: folders the file may also read, the bytes
+   its load may allocate (0: the default, 8 GiB), the glTF scene (-1: the
+   file's default). */
+typedef struct quadra_load_options {
+  const char* const* allowed_paths;
+  size_t allowed_path_count;
+  uint64_t max_memory;
+  int scene;
+} quadra_load_options;
+QUADRA_API quadra_status quadra_scene_load_with(const char* path,
+                                                const quadra_load_options* options,
+                                                quadra_scene** out);
 QUADRA_API void quadra_scene_destroy(quadra_scene* scene);
 QUADRA_API quadra_status quadra_scene_add_mesh(quadra_scene* scene, const quadra_mesh_data* mesh,
                                                uint32_t* out_mesh);

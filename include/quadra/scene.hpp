@@ -21,6 +21,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "quadra/error.hpp"
 #include "quadra/export.h"
@@ -225,9 +226,24 @@ class QUADRA_API Scene {
   std::unique_ptr<Impl> impl_;
 };
 
+// What a load may read and allocate: the guards for a file from someone you
+// do not trust (README "Scene sandbox" and "Memory budget" give the rules;
+// they are the CLI's --allow-path, --max-memory and --scene).
+inline constexpr std::uint64_t kDefaultMaxMemory = std::uint64_t(8) << 30;  // 8 GiB
+struct LoadOptions {
+  // Folders besides the file's own that its buffer and image URIs may read;
+  // each must exist.
+  std::vector<std::string> allowedPaths = {};
+  // Bytes the load may allocate for what the file controls (the files read,
+  // decoded buffers, meshes, images), each charged before it is allocated:
+  // going over is an Error naming the file and the allocation.
+  std::uint64_t maxMemory = kDefaultMaxMemory;
+  int scene = -1;  // the glTF scene to place; -1: the file's default (or scene 0)
+};
+
 // Loads a .gltf or .glb file, its buffers and images (which must lie in the
-// file's folder). Meshes and textures can be added to the result; the file's
-// own meshes have no handles.
-QUADRA_API Scene load(const std::string& path);
+// file's folder unless options.allowedPaths says otherwise). Meshes and
+// textures can be added to the result; the file's own meshes have no handles.
+QUADRA_API Scene load(const std::string& path, const LoadOptions& options = {});
 
 }  // namespace quadra::api

@@ -19,8 +19,9 @@ namespace quadra::api {
 // output is the same bits as any other Renderer's.
 QUADRA_API Renderer rendererIn(tbb::task_arena& arena);
 
-// load(path), its meshes and images decoded on `arena`'s threads: the same
-// scene as load's.
-QUADRA_API Scene loadIn(const std::string& path, tbb::task_arena& arena);
+// load(path, options), its meshes and images decoded on `arena`'s threads:
+// the same scene as load's.
+QUADRA_API Scene loadIn(const std::string& path, tbb::task_arena& arena,
+                        const LoadOptions& options = {});
 
 }  // namespace quadra::api

@@ -198,8 +198,22 @@ static void gltf_file(quadra_renderer* renderer, const char* path) {
   expect_error(quadra_scene_set_animation_time(scene, 0, 0.5), QUADRA_INVALID_ARGUMENT,
                "setAnimationTime: animation 0 is not one of the scene's 0 (or -1, the rest pose)");
   quadra_scene_destroy(scene);
+  /* Load options: the budget is honoured, a NULL folder is refused. */
+  quadra_load_options options = {NULL, 0, 1000, -1};
+  quadra_scene* refused = NULL;
+  EXPECT(quadra_scene_load_with(path, &options, &refused) == QUADRA_FAILED && refused == NULL);
+  EXPECT(strstr(quadra_last_error(), "over the memory budget of 1000 bytes") != NULL);
+  const char* folders[] = {"/tmp", NULL};
+  options.allowed_paths = folders;
+  options.allowed_path_count = 2;
+  options.max_memory = 0; /* the default */
+  expect_error(quadra_scene_load_with(path, &options, &refused), QUADRA_INVALID_ARGUMENT,
+               "quadra_scene_load_with: allowed_paths[1] is NULL");
+  options.allowed_path_count = 1;
+  EXPECT(quadra_scene_load_with(path, &options, &refused) == QUADRA_OK && refused != NULL);
+  quadra_scene_destroy(refused);
   quadra_scene* missing = NULL;
-  EXPECT(quadra_scene_load("/nonexistent.glb", &missing) != QUADRA_OK);
+  EXPECT(quadra_scene_load("/nonexistent.glb", &missing) == QUADRA_FAILED);
   EXPECT(missing == NULL && strstr(quadra_last_error(), "/nonexistent.glb") != NULL);
 }
 

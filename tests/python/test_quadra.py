@@ -266,6 +266,19 @@ class Misuse(unittest.TestCase):
         with self.assertRaisesRegex(quadra.Error, r"no-such-file\.glb"):
             quadra.load("no-such-file.glb")
 
+    def test_load_options_guard_the_load(self):
+        if CLI is None:
+            self.skipTest("run by CTest with the model path")
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*over the memory budget of 1000 bytes"):
+            quadra.load(GLB, max_memory=1000)
+        with self.assertRaisesRegex(quadra.Error, r"scene 5 does not exist"):
+            quadra.load(GLB, scene=5)
+        with self.assertRaisesRegex(quadra.Error, r"/no/such/folder"):
+            quadra.load(GLB, allowed_paths=["/no/such/folder"])
+        scene = quadra.load(GLB, allowed_paths=[os.path.dirname(GLB)], scene=0)
+        out = quadra.Renderer(threads=1).render(scene, width=16, height=16)
+        self.assertGreater(int((out.color[..., 3] > 0).sum()), 16)
+
 
 if __name__ == "__main__":
     # argv holds the paths above, not unittest's options.

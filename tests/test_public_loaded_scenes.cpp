@@ -1,8 +1,10 @@
-// The public API's animation clock (Scene::setAnimationTime): frames posed
-// through it are `quadra render --sequence`'s EXRs bit for bit (a node
-// hierarchy framed once without a camera, a skin, morph targets), the rest
-// pose is the scene as loaded, and bad animations and times are one-line
-// errors.
+// What the public API offers for a loaded scene. LoadOptions: the sandbox
+// widened only by allowedPaths, the memory budget and the scene index, each
+// refusal a one-line error naming the file. The animation clock
+// (Scene::setAnimationTime): frames posed through it are `quadra render
+// --sequence`'s EXRs bit for bit (a node hierarchy framed once without a
+// camera, a skin, morph targets), the rest pose is the scene as loaded, and
+// bad animations and times are one-line errors.
 #include <gtest/gtest.h>
 
 #include <OpenEXR/ImfChannelList.h>
@@ -12,8 +14,10 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <span>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -77,6 +81,61 @@ std::size_t differingFloats(const std::vector<float>& a, const std::vector<float
   return differing;
 }
 
+// One misuse, and its message (or a part of it).
+template <typename Call>
+void expectError(Call&& call, const std::string& message, bool whole = true) {
+  try {
+    call();
+    ADD_FAILURE() << "no error, expected: " << message;
+  } catch (const api::Error& error) {
+    if (whole)
+      EXPECT_EQ(std::string(error.what()), message);
+    else
+      EXPECT_NE(std::string(error.what()).find(message), std::string::npos) << error.what();
+  }
+}
+
+std::size_t coveredPixels(const ExrFrame& frame) {
+  std::size_t covered = 0;
+  for (std::size_t i = 3; i < frame.rgba.size(); i += 4) covered += frame.rgba[i] > 0.0f;
+  return covered;
+}
+
+TEST(PublicLoadOptions, SandboxBudgetAndSceneGuardTheLoad) {
+  const std::string box = modelPath("Box");
+  if (!fs::exists(box)) GTEST_SKIP() << "no " << box;
+  // Box.gltf in a folder of its own, its buffer moved into a sibling folder.
+  const fs::path root = emptyFolder("public_load_options");
+  fs::create_directories(root / "scene");
+  fs::create_directories(root / "outside");
+  fs::copy_file(fs::path(box).parent_path() / "Box0.bin", root / "outside" / "Box0.bin");
+  std::stringstream text;
+  text << std::ifstream(box).rdbuf();
+  std::string json = text.str();
+  const std::string uri = "\"Box0.bin\"";
+  ASSERT_NE(json.find(uri), std::string::npos);
+  json.replace(json.find(uri), uri.size(), "\"../outside/Box0.bin\"");
+  const std::string escaping = (root / "scene" / "box.gltf").string();
+  std::ofstream(escaping) << json;
+
+  expectError([&] { (void)api::load(escaping); }, "URI '../outside/Box0.bin'", false);
+  expectError([&] { (void)api::load(escaping, {.allowedPaths = {(root / "scene").string()}}); },
+              "URI '../outside/Box0.bin'", false);
+  const api::Scene allowed = api::load(escaping, {.allowedPaths = {(root / "outside").string()}});
+  api::Renderer renderer({.threads = 2});
+  EXPECT_GT(coveredPixels(renderThroughApi(allowed, renderer)), std::size_t(kWidth * kHeight / 8));
+
+  expectError([&] { (void)api::load(box, {.maxMemory = 1000}); },
+              box +
+                  ": the file (2898 bytes) needs 2.8 KiB, over the memory budget of 1000 bytes "
+                  "(0 bytes already used; --max-memory raises it)");
+  expectError([&] { (void)api::load(box, {.scene = 3}); },
+              box + ": scene 3 does not exist (the file has 1)");
+  expectError([&] { (void)api::load(box, {.scene = -2}); },
+              box + ": scene -2 is not a scene index (or -1, the file's default)");
+  EXPECT_EQ(api::LoadOptions{}.maxMemory, std::uint64_t(8) << 30);
+}
+
 TEST(PublicAnimation, PosedFramesAreTheCliSequencesFrames) {
   int models = 0;
   for (const char* name : {"BoxAnimated", "SimpleSkin", "AnimatedMorphCube"}) {
@@ -128,14 +187,6 @@ TEST(PublicAnimation, BadAnimationsAndTimesAreOneLineErrors) {
   const std::string model = modelPath("BoxAnimated");
   if (!fs::exists(model)) GTEST_SKIP() << "no " << model;
   api::Scene scene = api::load(model);
-  const auto expectError = [](auto&& call, const std::string& message) {
-    try {
-      call();
-      ADD_FAILURE() << "no error, expected: " << message;
-    } catch (const api::Error& error) {
-      EXPECT_EQ(std::string(error.what()), message);
-    }
-  };
   expectError([&] { scene.setAnimationTime(1, 0.0); },
               "setAnimationTime: animation 1 is not one of the scene's 1 (or -1, the rest pose)");
   expectError([&] { scene.setAnimationTime(-2, 0.0); },
