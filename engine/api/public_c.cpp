@@ -46,8 +46,8 @@ quadra_status guarded(Body&& body) {
   }
 }
 
-quadra_status missing(const char* what) {
-  lastError = std::string(what) + " is NULL";
+quadra_status missing(const std::string& what) {
+  lastError = what + " is NULL";
   return QUADRA_INVALID_ARGUMENT;
 }
 
@@ -159,22 +159,66 @@ api::MeshData meshOf(const quadra_mesh_data& m) {
 }
 
 api::TextureData textureOf(const quadra_texture_data& t) {
-  return {.width = t.width,
-          .height = t.height,
-          .format = enumField<api::TextureFormat>(t.format, QUADRA_TEXTURE_RGBA32F, "texture",
-                                                  "format"),
-          .texels = std::span(static_cast<const std::byte*>(t.texels), t.texels ? t.size_bytes : 0),
-          .rowStride = t.row_stride,
-          .wrapU = enumField<api::Wrap>(t.wrap_u, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_u"),
-          .wrapV = enumField<api::Wrap>(t.wrap_v, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_v"),
-          .filter = enumField<api::Filter>(t.filter, QUADRA_FILTER_ANISOTROPIC, "texture",
-                                           "filter")};
+  return {
+      .width = t.width,
+      .height = t.height,
+      .format =
+          enumField<api::TextureFormat>(t.format, QUADRA_TEXTURE_RGBA32F, "texture", "format"),
+      .texels = std::span(static_cast<const std::byte*>(t.texels), t.texels ? t.size_bytes : 0),
+      .rowStride = t.row_stride,
+      .wrapU = enumField<api::Wrap>(t.wrap_u, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_u"),
+      .wrapV = enumField<api::Wrap>(t.wrap_v, QUADRA_WRAP_CLAMP_TO_EDGE, "texture", "wrap_v"),
+      .filter = enumField<api::Filter>(t.filter, QUADRA_FILTER_ANISOTROPIC, "texture", "filter")};
 }
 
 api::Matrix4 matrixOf(const float* m) {
   api::Matrix4 out = api::kIdentity;
   if (m) std::memcpy(out.data(), m, sizeof(out));
   return out;
+}
+
+// A C AOV target as the C++ one; a NULL data pointer stays null bytes (not
+// asked for), whatever size it states.
+template <typename CTarget>
+api::AovTarget aovTarget(const CTarget& target) {
+  if (!target.data) return {};
+  return {.bytes = std::span(reinterpret_cast<std::byte*>(target.data), target.size_bytes),
+          .rowStride = target.row_stride};
+}
+
+// quadra_render and quadra_render_aovs, named `call` in their messages.
+quadra_status render(const char* call, quadra_renderer* renderer, const quadra_scene* scene,
+                     const quadra_target* target, const quadra_depth_target* depth,
+                     const quadra_aov_targets* aovs) {
+  if (!renderer || !scene || !target) return missing(std::string(call) + ": an argument");
+  if (!target->pixels) return missing("render target: pixels");
+  if (depth && !depth->depth) return missing("depth target: depth");
+  return guarded([&] {
+    const api::Target t{
+        .pixels = std::span(static_cast<std::byte*>(target->pixels), target->size_bytes),
+        .width = target->width,
+        .height = target->height,
+        .rowStride = target->row_stride,
+        .format = enumField<api::PixelFormat>(target->format, QUADRA_PIXEL_RGBA32F, "render target",
+                                              "format")};
+    api::DepthTarget d;
+    if (depth)
+      d = {.bytes = std::span(reinterpret_cast<std::byte*>(depth->depth), depth->size_bytes),
+           .rowStride = depth->row_stride};
+    api::AovTargets a;
+    if (aovs)
+      a = {.normal = aovTarget(aovs->normal),
+           .position = aovTarget(aovs->position),
+           .uv = aovTarget(aovs->uv),
+           .mask = aovTarget(aovs->mask),
+           .primitiveId = aovTarget(aovs->primitive_id),
+           .nodeId = aovTarget(aovs->node_id),
+           .materialId = aovTarget(aovs->material_id)};
+    liveHandles()
+        .get(renderer, call)
+        .renderer.render(liveHandles().get(scene, call).scene, t, depth ? &d : nullptr, {},
+                         aovs ? &a : nullptr);
+  });
 }
 
 }  // namespace
@@ -252,8 +296,8 @@ quadra_status quadra_scene_add_material(quadra_scene* scene, const quadra_materi
     api::MaterialData data;
     std::memcpy(data.baseColor.data(), material->base_color, sizeof(material->base_color));
     if (material->has_texture) data.texture = api::TextureHandle{material->texture};
-    data.alphaMode =
-        enumField<api::AlphaMode>(material->alpha_mode, QUADRA_ALPHA_BLEND, "material", "alpha_mode");
+    data.alphaMode = enumField<api::AlphaMode>(material->alpha_mode, QUADRA_ALPHA_BLEND, "material",
+                                               "alpha_mode");
     data.alphaCutoff = material->alpha_cutoff;
     data.doubleSided = material->double_sided != 0;
     *out_material =
@@ -293,15 +337,13 @@ quadra_status quadra_scene_set_draw_state(quadra_scene* scene, uint32_t instance
         return enumField<api::BlendEquation>(field, QUADRA_BLEND_MAX, context, name);
       };
       const auto factor = [&](const quadra_blend_factor& field, const char* name) {
-        return enumField<api::BlendFactor>(field, QUADRA_FACTOR_ONE_MINUS_DST_ALPHA, context,
-                                           name);
+        return enumField<api::BlendFactor>(field, QUADRA_FACTOR_ONE_MINUS_DST_ALPHA, context, name);
       };
       data = api::DrawStateData{
           .depthTest = state->depth_test != 0,
           .depthWrite = state->depth_write != 0,
-          .depthCompare = enumField<api::CompareFunction>(state->depth_compare,
-                                                          QUADRA_COMPARE_ALWAYS, context,
-                                                          "depth_compare"),
+          .depthCompare = enumField<api::CompareFunction>(
+              state->depth_compare, QUADRA_COMPARE_ALWAYS, context, "depth_compare"),
           .cull = enumField<api::CullMode>(state->cull, QUADRA_CULL_FRONT, context, "cull"),
           .blend = {.enabled = state->blend_enabled != 0,
                     .colorEquation = equation(state->color_equation, "color_equation"),
@@ -344,25 +386,13 @@ void quadra_renderer_destroy(quadra_renderer* renderer) {
 
 quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
                             const quadra_target* target, const quadra_depth_target* depth) {
-  if (!renderer || !scene || !target) return missing("quadra_render: an argument");
-  if (!target->pixels) return missing("render target: pixels");
-  if (depth && !depth->depth) return missing("depth target: depth");
-  return guarded([&] {
-    const api::Target t{
-        .pixels = std::span(static_cast<std::byte*>(target->pixels), target->size_bytes),
-        .width = target->width,
-        .height = target->height,
-        .rowStride = target->row_stride,
-        .format = enumField<api::PixelFormat>(target->format, QUADRA_PIXEL_RGBA32F,
-                                              "render target", "format")};
-    api::DepthTarget d;
-    if (depth)
-      d = {.bytes = std::span(reinterpret_cast<std::byte*>(depth->depth), depth->size_bytes),
-           .rowStride = depth->row_stride};
-    liveHandles()
-        .get(renderer, "quadra_render")
-        .renderer.render(liveHandles().get(scene, "quadra_render").scene, t, depth ? &d : nullptr);
-  });
+  return render("quadra_render", renderer, scene, target, depth, nullptr);
+}
+
+quadra_status quadra_render_aovs(quadra_renderer* renderer, const quadra_scene* scene,
+                                 const quadra_target* target, const quadra_depth_target* depth,
+                                 const quadra_aov_targets* aovs) {
+  return render("quadra_render_aovs", renderer, scene, target, depth, aovs);
 }
 
 }  // extern "C"
