@@ -1,7 +1,7 @@
 // The Python module `quadra` (issue 15 item 6): pybind11 bindings of the
 // public C++ API (include/quadra/*.hpp) and nothing else, with numpy arrays
 // in and out. Renders go straight into numpy-owned arrays through the public
-// Target (RGBA32F) and DepthTarget, with the GIL released. Errors: the
+// Target (RGBA32F), DepthTarget and AovTargets, with the GIL released. Errors: the
 // public API's quadra::api::Error becomes quadra.Error (a RuntimeError) with
 // the same one-line message; a wrong dtype, shape or option name is a
 // ValueError naming the argument. Documented in docs/python.md.
@@ -207,25 +207,96 @@ struct PyRenderer {
 };
 
 struct RenderResult {
-  py::object color;
-  py::object depth;
+  py::object color = py::none();
+  py::object depth = py::none();
+  // The AOVs asked for (README "AOVs"), else None.
+  py::object normal = py::none(), position = py::none(), uv = py::none(), mask = py::none();
+  py::object primitiveId = py::none(), nodeId = py::none(), materialId = py::none();
 };
 
-// out (a RenderResult of an earlier render) has its arrays reused when they
-// are C-contiguous writable float32 of this size: a new 1080p frame's arrays
-// cost the kernel zeroing 40 MB of fresh pages on first touch.
-bool reusable(const py::object& array, std::vector<py::ssize_t> shape) {
-  if (array.is_none() || !py::isinstance<py::array>(array)) return false;
-  const auto a = array.cast<py::array>();
-  return a.dtype().is(py::dtype::of<float>()) && a.writeable() &&
-         (a.flags() & py::array::c_style) && a.ndim() == py::ssize_t(shape.size()) &&
-         std::equal(shape.begin(), shape.end(), a.shape());
+// A new array of `shape`, or `previous` (the same field of an earlier
+// RenderResult) when it is a C-contiguous writable array of this dtype and
+// shape: a new 1080p frame's arrays cost the kernel zeroing 40 MB of fresh
+// pages on first touch.
+template <typename T>
+py::array_t<T> outputArray(const std::optional<RenderResult>& out, py::object RenderResult::*field,
+                           const std::vector<py::ssize_t>& shape) {
+  if (out) {
+    const py::object& previous = (*out).*field;
+    if (py::isinstance<py::array>(previous)) {
+      const auto a = previous.cast<py::array>();
+      if (a.dtype().is(py::dtype::of<T>()) && a.writeable() && (a.flags() & py::array::c_style) &&
+          a.ndim() == py::ssize_t(shape.size()) &&
+          std::equal(shape.begin(), shape.end(), a.shape()))
+        return previous.cast<py::array_t<T>>();
+    }
+  }
+  return py::array_t<T>(shape);
+}
+
+// A contiguous array as the bytes of a target whose rows are width pixels.
+template <typename T>
+std::span<std::byte> bytesOf(py::array_t<T>& array) {
+  return {reinterpret_cast<std::byte*>(array.mutable_data()), std::size_t(array.nbytes())};
+}
+
+// The AOV names of the CLI's --aov (README "AOVs") that the public API has.
+enum class AovName { Normal, Position, Uv, Id, Mask };
+
+// The AOVs `names` asks for: arrays in `result` (reused from `out` when they
+// fit) and the API's targets over them.
+api::AovTargets aovArrays(const std::vector<std::string>& names, int width, int height,
+                          const std::optional<RenderResult>& out, RenderResult& result) {
+  api::AovTargets targets;
+  const std::size_t w = std::size_t(width);
+  for (const std::string& name : names) {
+    const AovName aov = choiceOf<AovName>("aovs", name,
+                                          {{"N", AovName::Normal},
+                                           {"P", AovName::Position},
+                                           {"uv", AovName::Uv},
+                                           {"id", AovName::Id},
+                                           {"mask", AovName::Mask}});
+    // One float plane of `channels` per pixel, its array in result.*field.
+    const auto floats = [&](py::object RenderResult::*field, api::AovTarget& target,
+                            py::ssize_t channels) {
+      std::vector<py::ssize_t> shape{height, width};
+      if (channels > 1) shape.push_back(channels);
+      auto array = outputArray<float>(out, field, shape);
+      target = {.bytes = bytesOf(array), .rowStride = w * std::size_t(channels) * 4};
+      result.*field = std::move(array);
+    };
+    const auto ids = [&](py::object RenderResult::*field, api::AovTarget& target) {
+      auto array = outputArray<std::uint32_t>(out, field, {height, width});
+      target = {.bytes = bytesOf(array), .rowStride = w * 4};
+      result.*field = std::move(array);
+    };
+    switch (aov) {
+      case AovName::Normal:
+        floats(&RenderResult::normal, targets.normal, 3);
+        break;
+      case AovName::Position:
+        floats(&RenderResult::position, targets.position, 3);
+        break;
+      case AovName::Uv:
+        floats(&RenderResult::uv, targets.uv, 2);
+        break;
+      case AovName::Mask:
+        floats(&RenderResult::mask, targets.mask, 1);
+        break;
+      case AovName::Id:
+        ids(&RenderResult::primitiveId, targets.primitiveId);
+        ids(&RenderResult::nodeId, targets.nodeId);
+        ids(&RenderResult::materialId, targets.materialId);
+        break;
+    }
+  }
+  return targets;
 }
 
 RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
                     const std::optional<PyCamera>& camera, int samples, const std::string& shading,
                     const std::array<float, 4>& clearColor, bool depth,
-                    const std::optional<RenderResult>& out) {
+                    const std::vector<std::string>& aovs, const std::optional<RenderResult>& out) {
   // Checked before the arrays are made (the public API's own check, with
   // its limit, comes after a possibly huge allocation).
   if (width < 1 || height < 1 || width > 8192 || height > 8192)
@@ -236,36 +307,30 @@ RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
   options.clearColor = clearColor;
   options.shading = choiceOf<api::Shading>(
       "shading", shading, {{"unlit", api::Shading::Unlit}, {"lit", api::Shading::Lit}});
+  RenderResult result;
+  const api::AovTargets aovTargets = aovArrays(aovs, width, height, out, result);
   if (camera) scene.forChange().setCamera(camera->data);
-  const std::vector<py::ssize_t> colorShape{height, width, 4}, depthShape{height, width};
-  py::array_t<float> color = out && reusable(out->color, colorShape)
-                                 ? out->color.cast<py::array_t<float>>()
-                                 : py::array_t<float>(colorShape);
-  std::optional<py::array_t<float>> depthArray;
-  if (depth)
-    depthArray.emplace(out && reusable(out->depth, depthShape)
-                           ? out->depth.cast<py::array_t<float>>()
-                           : py::array_t<float>(depthShape));
-  const api::Target target{
-      .pixels = {reinterpret_cast<std::byte*>(color.mutable_data()), std::size_t(color.nbytes())},
-      .width = width,
-      .height = height,
-      .rowStride = std::size_t(width) * 16,
-      .format = api::PixelFormat::Rgba32F};
+  auto color = outputArray<float>(out, &RenderResult::color, {height, width, 4});
+  const api::Target target{.pixels = bytesOf(color),
+                           .width = width,
+                           .height = height,
+                           .rowStride = std::size_t(width) * 16,
+                           .format = api::PixelFormat::Rgba32F};
+  result.color = color;
   std::optional<api::DepthTarget> depthTarget;
-  if (depthArray)
+  if (depth) {
+    auto depthArray = outputArray<float>(out, &RenderResult::depth, {height, width});
     depthTarget =
-        api::DepthTarget{.bytes = {reinterpret_cast<std::byte*>(depthArray->mutable_data()),
-                                   std::size_t(depthArray->nbytes())},
-                         .rowStride = std::size_t(width) * 4};
+        api::DepthTarget{.bytes = bytesOf(depthArray), .rowStride = std::size_t(width) * 4};
+    result.depth = std::move(depthArray);
+  }
   {
     const ReadingScene reading(scene);  // counted and uncounted with the GIL held
     py::gil_scoped_release released;
     std::lock_guard lock(self.busy);
-    self.renderer.render(scene.scene, target, depthTarget ? &*depthTarget : nullptr, options);
+    self.renderer.render(scene.scene, target, depthTarget ? &*depthTarget : nullptr, options,
+                         &aovTargets);
   }
-  RenderResult result{std::move(color), py::none()};
-  if (depthArray) result.depth = std::move(*depthArray);
   return result;
 }
 
@@ -435,7 +500,21 @@ PYBIND11_MODULE(quadra, m) {
       .def_readonly("color", &RenderResult::color,
                     "(H, W, 4) float32, premultiplied linear RGBA, row 0 the top")
       .def_readonly("depth", &RenderResult::depth,
-                    "(H, W) float32 window depth in [0, 1], 1 where nothing is drawn; or None");
+                    "(H, W) float32 window depth in [0, 1], 1 where nothing is drawn; or None")
+      .def_readonly(
+          "normal", &RenderResult::normal,
+          "aovs 'N': (H, W, 3) float32 world-space unit normal (README \"AOVs\"); or None")
+      .def_readonly("position", &RenderResult::position,
+                    "aovs 'P': (H, W, 3) float32 world-space position; or None")
+      .def_readonly("uv", &RenderResult::uv, "aovs 'uv': (H, W, 2) float32 TEXCOORD_0; or None")
+      .def_readonly("mask", &RenderResult::mask,
+                    "aovs 'mask': (H, W) float32 depth-writing coverage; or None")
+      .def_readonly("primitive_id", &RenderResult::primitiveId,
+                    "aovs 'id': (H, W) uint32 triangle index, 0xFFFFFFFF where none; or None")
+      .def_readonly("node_id", &RenderResult::nodeId,
+                    "aovs 'id': (H, W) uint32 node (glTF) or instance index; or None")
+      .def_readonly("material_id", &RenderResult::materialId,
+                    "aovs 'id': (H, W) uint32 material index; or None");
 
   py::class_<PyRenderer>(m, "Renderer")
       .def(py::init([](int threads) {
@@ -447,8 +526,9 @@ PYBIND11_MODULE(quadra, m) {
       .def("render", &render, py::arg("scene"), py::kw_only(), py::arg("width"), py::arg("height"),
            py::arg("camera") = py::none(), py::arg("samples") = 1, py::arg("shading") = "unlit",
            py::arg("clear_color") = std::array<float, 4>{0, 0, 0, 0}, py::arg("depth") = true,
-           py::arg("out") = py::none(),
+           py::arg("aovs") = std::vector<std::string>{}, py::arg("out") = py::none(),
            "Renders scene into new numpy arrays (no copy after the render). camera: sets the "
            "scene's camera first (as scene.set_camera), else the scene's own is used. out: an "
-           "earlier RenderResult whose arrays are overwritten when of this size.");
+           "earlier RenderResult whose arrays are overwritten when of this size. aovs: names of "
+           "the CLI's --aov (N, P, uv, id, mask) whose arrays the result also holds.");
 }

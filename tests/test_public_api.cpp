@@ -1,10 +1,12 @@
 // The public C++ API (include/quadra): each target format against the
 // engine's own frame of the same scene built with the internal records, row
-// strides with guard bytes, the depth target, every misuse error, and that an
-// update replaces only what it names; rendering in the embedder's arena.
+// strides with guard bytes, the depth and AOV targets, every misuse error,
+// and that an update replaces only what it names; rendering in the
+// embedder's arena.
 #include <gtest/gtest.h>
 #include <oneapi/tbb/task_scheduler_observer.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -82,9 +84,10 @@ PublicScene publicScene(const SceneArrays& a) {
 }
 
 // The same scene spelled in the engine's records, and its frame; triState:
-// the triangle instance's draw state.
+// the triangle instance's draw state; withAovs: every AOV and the coverage.
 quadra::Frame internalFrame(const SceneArrays& a,
-                            const std::optional<quadra::DrawState>& triState = std::nullopt) {
+                            const std::optional<quadra::DrawState>& triState = std::nullopt,
+                            bool withAovs = false) {
   quadra::Scene scene;
   auto image = std::make_shared<quadra::Image>(2, 2);
   for (int t = 0; t < 4; ++t) {
@@ -135,6 +138,11 @@ quadra::Frame internalFrame(const SceneArrays& a,
   quadra::RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
+  if (withAovs) {
+    settings.aovs = std::uint32_t(quadra::Aov::Normal) | std::uint32_t(quadra::Aov::Position) |
+                    std::uint32_t(quadra::Aov::Uv) | std::uint32_t(quadra::Aov::Ids);
+    settings.frameCoverage = true;
+  }
   quadra::Frame frame;
   renderer.render(scene, camera, settings, frame);
   return frame;
@@ -329,6 +337,176 @@ TEST_F(PublicApi, TargetMisuseIsAnErrorAndWritesNothing) {
   expectError(render(t, &shortDepth),
               "depth target: 37x23 at row stride 148 needs 3404 bytes, the buffer has 100");
   EXPECT_EQ(buffer, untouched);
+}
+
+// The public AOV targets, each in a buffer of its own padded stride (the
+// guard rows and padding say what was written), and the engine's planes of
+// them in the same order.
+struct AovBuffers {
+  static constexpr std::size_t kChannels[7] = {3, 3, 2, 1, 1, 1, 1};
+  static constexpr const char* kNames[7] = {"normal",      "position", "uv",        "mask",
+                                            "primitiveId", "nodeId",   "materialId"};
+  std::vector<std::byte> bytes[7];
+  api::AovTargets targets;  // over bytes: not to be copied
+  AovBuffers(const AovBuffers&) = delete;
+  AovBuffers() {
+    api::AovTarget* planes[7] = {&targets.normal,    &targets.position,    &targets.uv,
+                                 &targets.mask,      &targets.primitiveId, &targets.nodeId,
+                                 &targets.materialId};
+    for (int i = 0; i < 7; ++i) {
+      bytes[i] = guarded(stride(i));
+      *planes[i] = {.bytes = bytes[i], .rowStride = stride(i)};
+    }
+  }
+  // Padded by a pixel and a float, so no two planes share a stride.
+  static std::size_t stride(int i) { return (kWidth + 1) * kChannels[i] * 4 + 4; }
+  static const void* enginePlane(const quadra::Frame& f, int i) {
+    const void* planes[7] = {f.normal.data(),    f.position.data(),    f.uv.data(),
+                             f.coverage.data(),  f.primitiveId.data(), f.nodeId.data(),
+                             f.materialId.data()};
+    return planes[i];
+  }
+  // Plane i's value at pixel (x, y), channel c, as 4 bytes.
+  template <typename T>
+  T at(int i, int x, int y, int c = 0) const {
+    T value;
+    std::memcpy(&value, &bytes[i][y * stride(i) + (x * kChannels[i] + c) * 4], 4);
+    return value;
+  }
+};
+
+// Each AOV target holds the engine frame's plane bit for bit, rows at the
+// target's stride, nothing written past them; the colour is unchanged.
+TEST_F(PublicApi, AovTargetsAreTheEngineFramesPlanesBitForBit) {
+  PublicScene s = publicScene(arrays);
+  const quadra::Frame engine = internalFrame(arrays, std::nullopt, true);
+  AovBuffers aovs;
+  std::vector<float> color(std::size_t(kWidth) * kHeight * 4);
+  renderer.render(s.scene,
+                  {.pixels = std::as_writable_bytes(std::span(color)),
+                   .width = kWidth,
+                   .height = kHeight,
+                   .rowStride = kWidth * 16,
+                   .format = api::PixelFormat::Rgba32F},
+                  nullptr, {}, &aovs.targets);
+  for (int i = 0; i < 7; ++i) {
+    const std::size_t rowBytes = kWidth * AovBuffers::kChannels[i] * 4;
+    std::size_t differing = 0;
+    for (int y = 0; y < kHeight; ++y)
+      differing += std::memcmp(&aovs.bytes[i][y * AovBuffers::stride(i)],
+                               static_cast<const std::byte*>(AovBuffers::enginePlane(engine, i)) +
+                                   y * rowBytes,
+                               rowBytes) != 0;
+    EXPECT_EQ(differing, 0u) << AovBuffers::kNames[i] << ": rows differ";
+    expectGuardsKept(aovs.bytes[i], AovBuffers::stride(i), rowBytes);
+  }
+  EXPECT_EQ(std::memcmp(color.data(), frame.rgba.data(), color.size() * 4), 0);
+}
+
+// The opaque quad ([-0.8, 0.5]^2 at z = 0, uv (0, 1) at its (-0.8, -0.8)
+// corner and (1, 0) at (0.5, 0.5), triangles (0, 1, 2) below its diagonal
+// and (0, 2, 3) above) seen orthographically down -z over x in [-37/23,
+// 37/23], y in [-1, 1]: at each pixel centre well inside it, N = (0, 0, 1),
+// P = (x, y, 0), uv linear in x and y, its ids and full coverage; well
+// outside it the clear values. Here the quad is instance 1 with material
+// 2, so that no two ids agree, and the blended triangle in front of it is
+// instance 0: it writes no AOV.
+TEST_F(PublicApi, AovsOfTheQuadAreItsAnalyticValuesAtPixelCentres) {
+  api::Scene scene;
+  const auto blended = scene.addMaterial(
+      {.baseColor = {1, 1, 1, 0.5f}, .alphaMode = api::AlphaMode::Blend, .doubleSided = true});
+  scene.addMaterial({});
+  const auto opaque = scene.addMaterial({});
+  scene.addInstance(scene.addMesh({.positions = arrays.triPositions,
+                                   .colors = arrays.triColors,
+                                   .indices32 = arrays.triIndices}),
+                    blended);
+  scene.addInstance(scene.addMesh({.positions = arrays.quadPositions,
+                                   .uvs = arrays.quadUvs,
+                                   .indices16 = arrays.quadIndices}),
+                    opaque);
+  scene.setCamera(cameraData());
+  AovBuffers aovs;
+  std::vector<std::byte> color(kWidth * 4 * kHeight);
+  renderer.render(scene, target(color, kWidth * 4, api::PixelFormat::Rgba8Srgb), nullptr, {},
+                  &aovs.targets);
+  const double halfWidth = double(kWidth) / kHeight;
+  const double margin = 0.05;  // about half a pixel: centres this close to an edge are skipped
+  std::size_t inside = 0, outside = 0, wrong = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const double wx = ((x + 0.5) / kWidth * 2 - 1) * halfWidth;
+      const double wy = 1 - (y + 0.5) / kHeight * 2;
+      const double edge = std::min({wx + 0.8, 0.5 - wx, wy + 0.8, 0.5 - wy});
+      if (edge > margin && std::abs(wx - wy) > margin) {
+        ++inside;
+        const float expected[] = {0, 0, 1, float(wx), float(wy), 0};
+        for (int c = 0; c < 3; ++c) {
+          wrong += aovs.at<float>(0, x, y, c) != expected[c];
+          wrong += std::abs(aovs.at<float>(1, x, y, c) - expected[3 + c]) > 1e-6f;
+        }
+        wrong += std::abs(aovs.at<float>(2, x, y, 0) - (wx + 0.8) / 1.3) > 1e-6;
+        wrong += std::abs(aovs.at<float>(2, x, y, 1) - (0.5 - wy) / 1.3) > 1e-6;
+        wrong += aovs.at<float>(3, x, y) != 1.0f;
+        wrong += aovs.at<std::uint32_t>(4, x, y) != (wx > wy ? 0u : 1u);
+        wrong += aovs.at<std::uint32_t>(5, x, y) != 1u;  // the quad's InstanceHandle
+        wrong += aovs.at<std::uint32_t>(6, x, y) != 2u;  // its MaterialHandle
+      } else if (edge < -margin) {
+        ++outside;
+        for (int i = 0; i < 4; ++i)
+          for (std::size_t c = 0; c < AovBuffers::kChannels[i]; ++c)
+            wrong += aovs.at<float>(i, x, y, int(c)) != 0.0f;
+        for (int i = 4; i < 7; ++i) wrong += aovs.at<std::uint32_t>(i, x, y) != quadra::kNoId;
+      }
+    }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(inside, std::size_t(kWidth * kHeight / 5));
+  EXPECT_GT(outside, std::size_t(kWidth * kHeight / 5));
+}
+
+// An AOV target that fails validation is an error naming it, and no target
+// (colour or AOV) is written; a null one is simply not asked for.
+TEST_F(PublicApi, AovTargetMisuseIsAnErrorNamingTheAovAndWritesNothing) {
+  PublicScene s = publicScene(arrays);
+  std::vector<std::byte> color = guarded(kWidth * 4);
+  const auto colorBefore = color;
+  const auto expectRefused = [&](const api::AovTargets& targets, const std::string& message) {
+    expectError(
+        [&] {
+          renderer.render(s.scene, target(color, kWidth * 4, api::PixelFormat::Rgba8Srgb), nullptr,
+                          {}, &targets);
+        },
+        message);
+    EXPECT_EQ(color, colorBefore);
+  };
+  AovBuffers aovs;
+  const AovBuffers untouched;
+  api::AovTargets shortPosition = aovs.targets;
+  shortPosition.position.bytes = shortPosition.position.bytes.first(100);
+  expectRefused(shortPosition,
+                "position AOV target: 37x23 at row stride 460 needs 10564 bytes, the buffer has "
+                "100");
+  api::AovTargets shortStride = aovs.targets;
+  shortStride.uv.rowStride = kWidth * 8 - 4;
+  expectRefused(shortStride,
+                "uv AOV target: row stride 292 bytes is less than a row's 37 x 8 = 296");
+  api::AovTargets oddStride = aovs.targets;
+  oddStride.materialId.rowStride = kWidth * 4 + 2;
+  expectRefused(oddStride,
+                "materialId AOV target: row stride 150 bytes is not a multiple of the channel "
+                "size 4");
+  api::AovTargets misaligned = aovs.targets;
+  misaligned.mask.bytes = misaligned.mask.bytes.subspan(1);
+  expectRefused(misaligned, "mask AOV target: buffer is not aligned to 4 bytes");
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(aovs.bytes[i], untouched.bytes[i]) << AovBuffers::kNames[i];
+
+  // Only the node ids asked: that plane written, none of the other AOVs' buffers.
+  api::AovTargets nodeOnly;
+  nodeOnly.nodeId = aovs.targets.nodeId;
+  renderer.render(s.scene, target(color, kWidth * 4, api::PixelFormat::Rgba8Srgb), nullptr, {},
+                  &nodeOnly);
+  for (int i = 0; i < 7; ++i)
+    EXPECT_EQ(aovs.bytes[i] == untouched.bytes[i], i != 5) << AovBuffers::kNames[i];
 }
 
 TEST_F(PublicApi, SceneMisuseIsAnErrorAndChangesNothing) {

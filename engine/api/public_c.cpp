@@ -46,8 +46,8 @@ quadra_status guarded(Body&& body) {
   }
 }
 
-quadra_status missing(const char* what) {
-  lastError = std::string(what) + " is NULL";
+quadra_status missing(const std::string& what) {
+  lastError = what + " is NULL";
   return QUADRA_INVALID_ARGUMENT;
 }
 
@@ -175,6 +175,50 @@ api::Matrix4 matrixOf(const float* m) {
   api::Matrix4 out = api::kIdentity;
   if (m) std::memcpy(out.data(), m, sizeof(out));
   return out;
+}
+
+// A C AOV target as the C++ one; a NULL data pointer stays null bytes (not
+// asked for), whatever size it states.
+template <typename CTarget>
+api::AovTarget aovTarget(const CTarget& target) {
+  if (!target.data) return {};
+  return {.bytes = std::span(reinterpret_cast<std::byte*>(target.data), target.size_bytes),
+          .rowStride = target.row_stride};
+}
+
+// quadra_render and quadra_render_aovs, named `call` in their messages.
+quadra_status render(const char* call, quadra_renderer* renderer, const quadra_scene* scene,
+                     const quadra_target* target, const quadra_depth_target* depth,
+                     const quadra_aov_targets* aovs) {
+  if (!renderer || !scene || !target) return missing(std::string(call) + ": an argument");
+  if (!target->pixels) return missing("render target: pixels");
+  if (depth && !depth->depth) return missing("depth target: depth");
+  return guarded([&] {
+    const api::Target t{
+        .pixels = std::span(static_cast<std::byte*>(target->pixels), target->size_bytes),
+        .width = target->width,
+        .height = target->height,
+        .rowStride = target->row_stride,
+        .format = enumField<api::PixelFormat>(target->format, QUADRA_PIXEL_RGBA32F, "render target",
+                                              "format")};
+    api::DepthTarget d;
+    if (depth)
+      d = {.bytes = std::span(reinterpret_cast<std::byte*>(depth->depth), depth->size_bytes),
+           .rowStride = depth->row_stride};
+    api::AovTargets a;
+    if (aovs)
+      a = {.normal = aovTarget(aovs->normal),
+           .position = aovTarget(aovs->position),
+           .uv = aovTarget(aovs->uv),
+           .mask = aovTarget(aovs->mask),
+           .primitiveId = aovTarget(aovs->primitive_id),
+           .nodeId = aovTarget(aovs->node_id),
+           .materialId = aovTarget(aovs->material_id)};
+    liveHandles()
+        .get(renderer, call)
+        .renderer.render(liveHandles().get(scene, call).scene, t, depth ? &d : nullptr, {},
+                         aovs ? &a : nullptr);
+  });
 }
 
 }  // namespace
@@ -389,25 +433,13 @@ void quadra_renderer_destroy(quadra_renderer* renderer) {
 
 quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
                             const quadra_target* target, const quadra_depth_target* depth) {
-  if (!renderer || !scene || !target) return missing("quadra_render: an argument");
-  if (!target->pixels) return missing("render target: pixels");
-  if (depth && !depth->depth) return missing("depth target: depth");
-  return guarded([&] {
-    const api::Target t{
-        .pixels = std::span(static_cast<std::byte*>(target->pixels), target->size_bytes),
-        .width = target->width,
-        .height = target->height,
-        .rowStride = target->row_stride,
-        .format = enumField<api::PixelFormat>(target->format, QUADRA_PIXEL_RGBA32F, "render target",
-                                              "format")};
-    api::DepthTarget d;
-    if (depth)
-      d = {.bytes = std::span(reinterpret_cast<std::byte*>(depth->depth), depth->size_bytes),
-           .rowStride = depth->row_stride};
-    liveHandles()
-        .get(renderer, "quadra_render")
-        .renderer.render(liveHandles().get(scene, "quadra_render").scene, t, depth ? &d : nullptr);
-  });
+  return render("quadra_render", renderer, scene, target, depth, nullptr);
+}
+
+quadra_status quadra_render_aovs(quadra_renderer* renderer, const quadra_scene* scene,
+                                 const quadra_target* target, const quadra_depth_target* depth,
+                                 const quadra_aov_targets* aovs) {
+  return render("quadra_render_aovs", renderer, scene, target, depth, aovs);
 }
 
 }  // extern "C"

@@ -2,12 +2,15 @@
 // buffers and renders through the engine's Renderer. An RGBA32F target (and
 // a depth target) whose rows are contiguous is resolved into directly; any
 // other is rendered into the Renderer's own float Frame and converted into
-// the target's format row by row, leaving the rows' padding alone. And
-// quadra::version().
+// the target's format row by row, leaving the rows' padding alone. The AOV
+// targets the embedder gives are asked of the engine and copied row by row
+// from its Frame. And quadra::version().
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "api/public_scene.h"
 #include "api/renderer.h"
@@ -85,6 +88,58 @@ void writeColor(const Frame& frame, const Target& target, const Executor& execut
       });
 }
 
+// Rows of rowBytes each, contiguous in `rows`, into a buffer of rowStride
+// apart (checked by checkBuffer), rows in parallel.
+void copyRows(const void* rows, std::size_t rowBytes, int height, std::span<std::byte> out,
+              std::size_t rowStride, const Executor& executor) {
+  executor.parallelFor(std::size_t(height), kRowsPerTask, [&](std::size_t first, std::size_t end) {
+    for (std::size_t y = first; y < end; ++y)
+      std::memcpy(out.data() + y * rowStride, static_cast<const std::byte*>(rows) + y * rowBytes,
+                  rowBytes);
+  });
+}
+
+// Each public AOV target: its name in messages, its 4-byte channels per
+// pixel, the engine's Aov bit that computes it (none for mask, which is the
+// frame's coverage) and the Frame plane it is copied from.
+struct AovPlane {
+  AovTarget AovTargets::*target;
+  const char* what;
+  std::size_t channels;
+  std::optional<Aov> aov;
+  const void* (*plane)(const Frame&);
+};
+constexpr AovPlane kAovPlanes[] = {
+    {&AovTargets::normal, "normal AOV target", 3, Aov::Normal,
+     [](const Frame& f) -> const void* { return f.normal.data(); }},
+    {&AovTargets::position, "position AOV target", 3, Aov::Position,
+     [](const Frame& f) -> const void* { return f.position.data(); }},
+    {&AovTargets::uv, "uv AOV target", 2, Aov::Uv,
+     [](const Frame& f) -> const void* { return f.uv.data(); }},
+    {&AovTargets::mask, "mask AOV target", 1, std::nullopt,
+     [](const Frame& f) -> const void* { return f.coverage.data(); }},
+    {&AovTargets::primitiveId, "primitiveId AOV target", 1, Aov::Ids,
+     [](const Frame& f) -> const void* { return f.primitiveId.data(); }},
+    {&AovTargets::nodeId, "nodeId AOV target", 1, Aov::Ids,
+     [](const Frame& f) -> const void* { return f.nodeId.data(); }},
+    {&AovTargets::materialId, "materialId AOV target", 1, Aov::Ids,
+     [](const Frame& f) -> const void* { return f.materialId.data(); }},
+};
+
+// The AOV targets `aovs` gives (null bytes: not asked), each checked like
+// the depth target.
+std::vector<const AovPlane*> askedAovs(const AovTargets* aovs, int width, int height) {
+  std::vector<const AovPlane*> asked;
+  if (!aovs) return asked;
+  for (const AovPlane& plane : kAovPlanes) {
+    const AovTarget& target = aovs->*plane.target;
+    if (!target.bytes.data()) continue;
+    checkBuffer(plane.what, target.bytes, width, height, target.rowStride, plane.channels * 4, 4);
+    asked.push_back(&plane);
+  }
+  return asked;
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -130,7 +185,7 @@ int Renderer::threadCount() const {
 }
 
 void Renderer::render(const Scene& scene, const Target& target, const DepthTarget* depth,
-                      const RenderOptions& options) {
+                      const RenderOptions& options, const AovTargets* aovs) {
   if (target.width < 1 || target.height < 1 || target.width > kMaxViewportSize ||
       target.height > kMaxViewportSize)
     throw Error("render target: " + std::to_string(target.width) + "x" +
@@ -145,6 +200,7 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
   if (depth)
     checkBuffer("depth target", depth->bytes, target.width, target.height, depth->rowStride,
                 sizeof(float), sizeof(float));
+  const std::vector<const AovPlane*> askedPlanes = askedAovs(aovs, target.width, target.height);
 
   const auto& inside = detail::SceneAccess::of(scene);
   const quadra::Camera camera = inside.camera ? *inside.camera : firstCameraOrDefault(inside.scene);
@@ -157,6 +213,12 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
   settings.clearColor = {options.clearColor[0], options.clearColor[1], options.clearColor[2],
                          options.clearColor[3]};
   settings.frameDepth = depth != nullptr;
+  for (const AovPlane* plane : askedPlanes) {
+    if (plane->aov)
+      settings.aovs |= std::uint32_t(*plane->aov);
+    else
+      settings.frameCoverage = true;
+  }
   // The tile stage's streaming stores need 16-byte aligned colour.
   Frame& frame = impl_->frame;
   const std::size_t width = std::size_t(target.width);
@@ -181,9 +243,13 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
 
   if (!colorInPlace) writeColor(frame, target, impl_->executor);
   if (depth && !depthInPlace)
-    for (int y = 0; y < target.height; ++y)
-      std::memcpy(depth->bytes.data() + std::size_t(y) * depth->rowStride,
-                  &frame.depth[std::size_t(y) * width], width * sizeof(float));
+    copyRows(frame.depth.data(), width * sizeof(float), target.height, depth->bytes,
+             depth->rowStride, impl_->executor);
+  for (const AovPlane* plane : askedPlanes) {
+    const AovTarget& out = aovs->*plane->target;
+    copyRows(plane->plane(frame), width * plane->channels * 4, target.height, out.bytes,
+             out.rowStride, impl_->executor);
+  }
 }
 
 }  // namespace quadra::api

@@ -187,6 +187,30 @@ typedef struct quadra_depth_target {
   size_t row_stride;
 } quadra_depth_target;
 
+/* The AOV targets, as quadra::api::AovTargets (quadra/renderer.hpp): each a
+ * plane of the embedder's own memory with the rules of the depth target, the
+ * AOV defined as the CLI's --aov channel of that name (README "AOVs").
+ * A NULL pointer: that AOV is not asked for, and not computed. */
+typedef struct quadra_aov_float_target {
+  float* data; /* channels floats per pixel */
+  size_t size_bytes;
+  size_t row_stride;
+} quadra_aov_float_target;
+typedef struct quadra_aov_id_target {
+  uint32_t* data; /* 1 per pixel */
+  size_t size_bytes;
+  size_t row_stride;
+} quadra_aov_id_target;
+typedef struct quadra_aov_targets {
+  quadra_aov_float_target normal;    /* 3 channels: N.X N.Y N.Z */
+  quadra_aov_float_target position;  /* 3: P.X P.Y P.Z */
+  quadra_aov_float_target uv;        /* 2: uv.U uv.V */
+  quadra_aov_float_target mask;      /* 1: mask */
+  quadra_aov_id_target primitive_id; /* id.primitive */
+  quadra_aov_id_target node_id;      /* id.node; a scene built in code: the instance's id */
+  quadra_aov_id_target material_id;  /* id.material; built in code: the material's id */
+} quadra_aov_targets;
+
 QUADRA_API quadra_status quadra_scene_create(quadra_scene** out);
 QUADRA_API quadra_status quadra_scene_load(const char* path, quadra_scene** out);
 /* As quadra::api::LoadOptions: folders the file may also read, the bytes
@@ -238,6 +262,11 @@ QUADRA_API void quadra_renderer_destroy(quadra_renderer* renderer);
 QUADRA_API quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
                                        const quadra_target* target,
                                        const quadra_depth_target* depth);
+/* quadra_render plus the AOVs whose targets aovs gives (aovs may be NULL). */
+QUADRA_API quadra_status quadra_render_aovs(quadra_renderer* renderer, const quadra_scene* scene,
+                                            const quadra_target* target,
+                                            const quadra_depth_target* depth,
+                                            const quadra_aov_targets* aovs);
 
 #ifdef __cplusplus
 }

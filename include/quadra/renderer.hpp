@@ -5,8 +5,8 @@
 // thread. Renderers share no global state. A Renderer uses its own worker
 // threads (`threads`), which render() waits for, or those of the embedder's
 // oneTBB task_arena (quadra/tbb.hpp rendererIn).
-// Ownership: render() only writes into the target's and depth target's
-// bytes during the call and keeps no pointer to them.
+// Ownership: render() only writes into the target's, depth target's and AOV
+// targets' bytes during the call and keeps no pointer to them.
 // Errors: quadra::api::Error with a one-line message; a target that fails
 // validation is left untouched.
 #pragma once
@@ -59,6 +59,32 @@ struct DepthTarget {
   std::size_t rowStride = 0;
 };
 
+// One AOV plane in the embedder's memory: row 0 the top, each pixel the
+// AOV's 4-byte channels (floats, or uint32 for the ids) in a row. Rules of
+// stride, size and alignment as Target's, with 4-byte channels. Bytes left
+// null (the default) mean the AOV is not asked for.
+struct AovTarget {
+  std::span<std::byte> bytes = {};
+  std::size_t rowStride = 0;
+};
+
+// The surface AOVs a render can write besides colour and depth, each only
+// when its target is given (and only then computed: a render that asks for
+// none costs nothing more). What each holds, from which surface, and its
+// value where nothing is drawn are the CLI's `--aov` channels of the same
+// name, defined in README "AOVs" (the table there). Channels per pixel:
+struct AovTargets {
+  AovTarget normal;       // 3 floats: the N.X N.Y N.Z channels
+  AovTarget position;     // 3 floats: P.X P.Y P.Z
+  AovTarget uv;           // 2 floats: uv.U uv.V
+  AovTarget mask;         // 1 float: mask
+  AovTarget primitiveId;  // 1 uint32: id.primitive (any id asked computes all three)
+  AovTarget nodeId;       // 1 uint32: id.node; a Scene built in code: the InstanceHandle
+  AovTarget materialId;   // 1 uint32: id.material; built in code: the MaterialHandle
+};
+// Not here: `motion` (README "AOVs"), which needs the previous frame's pose,
+// and a Scene has only the present one.
+
 enum class Shading : std::uint8_t {
   Unlit,  // base colour x texture x vertex colour
   Lit,    // that times the Lambert term of a light at the camera (needs normals)
@@ -85,10 +111,11 @@ class QUADRA_API Renderer {
 
   int threadCount() const;
 
-  // Renders `scene` through its camera into `target` (and `depth` when not
-  // null). Output is the same bits whatever the thread count or CPU.
+  // Renders `scene` through its camera into `target` (and `depth` and the
+  // AOV targets `aovs` gives, when not null). Output is the same bits
+  // whatever the thread count or CPU.
   void render(const Scene& scene, const Target& target, const DepthTarget* depth = nullptr,
-              const RenderOptions& options = {});
+              const RenderOptions& options = {}, const AovTargets* aovs = nullptr);
 
  private:
   friend struct detail::RendererAccess;

@@ -1,7 +1,7 @@
 /* The C API from a C program (CTest: CApi): an in-memory quad rendered into
- * padded RGBA32F and depth buffers, checked pixel by pixel against where the
- * quad must be; a glTF file loaded and rendered; and each misuse returning
- * its status and one-line message while writing nothing.
+ * padded RGBA32F, depth and AOV buffers, checked pixel by pixel against where
+ * the quad must be; a glTF file loaded and rendered; and each misuse
+ * returning its status and one-line message while writing nothing.
  *   test_c_api FILE.glb */
 #include <math.h>
 #include <stdio.h>
@@ -9,7 +9,12 @@
 
 #include "quadra/quadra.h"
 
-enum { kSize = 40, kStride = kSize * 16 + 64, kDepthStride = kSize * 4 + 12 };
+enum {
+  kSize = 40,
+  kStride = kSize * 16 + 64,
+  kDepthStride = kSize * 4 + 12,
+  kAovRow = kSize + 3 /* 4-byte values per AOV row: 3 of padding */
+};
 
 static int failures = 0;
 
@@ -32,6 +37,49 @@ static void expect_error(quadra_status status, quadra_status expected, const cha
 
 static float pixels[kSize * kStride / 4 + 16];
 static float depth[kSize * kDepthStride / 4];
+static uint32_t node_ids[kSize * kAovRow];
+static float mask[kSize * kAovRow];
+
+/* quadra_render_aovs: the node ids (the instance's id on the quad,
+ * 0xFFFFFFFF off it, README "AOVs") and the mask (1 on it, 0 off it) at a
+ * padded stride, the padding untouched; a short normal target is an error
+ * naming it that writes nothing. */
+static void aovs_of_the_quad(quadra_renderer* renderer, const quadra_scene* scene,
+                             const quadra_target* target, uint32_t instance_id) {
+  memset(node_ids, 0xA5, sizeof(node_ids));
+  memset(mask, 0xA5, sizeof(mask));
+  quadra_aov_targets aovs;
+  memset(&aovs, 0, sizeof(aovs));
+  aovs.node_id.data = node_ids;
+  aovs.node_id.size_bytes = sizeof(node_ids);
+  aovs.node_id.row_stride = kAovRow * 4;
+  aovs.mask.data = mask;
+  aovs.mask.size_bytes = sizeof(mask);
+  aovs.mask.row_stride = kAovRow * 4;
+  EXPECT(quadra_render_aovs(renderer, scene, target, NULL, &aovs) == QUADRA_OK);
+  int wrong = 0, padding = 0;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const int inside = x >= 10 && x < 30 && y >= 10 && y < 30;
+      wrong += node_ids[y * kAovRow + x] != (inside ? instance_id : 0xFFFFFFFFu);
+      wrong += mask[y * kAovRow + x] != (inside ? 1.0f : 0.0f);
+    }
+    for (int x = kSize; x < kAovRow; ++x) padding += node_ids[y * kAovRow + x] != 0xA5A5A5A5u;
+  }
+  EXPECT(wrong == 0);
+  EXPECT(padding == 0);
+
+  static float normals[kSize * kSize * 3];
+  memset(node_ids, 0xA5, sizeof(node_ids));
+  aovs.normal.data = normals;
+  aovs.normal.size_bytes = 100;
+  aovs.normal.row_stride = kSize * 12;
+  expect_error(quadra_render_aovs(renderer, scene, target, NULL, &aovs), QUADRA_INVALID_ARGUMENT,
+               "normal AOV target: 40x40 at row stride 480 needs 19200 bytes, the buffer has 100");
+  int written = 0;
+  for (int i = 0; i < kSize * kAovRow; ++i) written += node_ids[i] != 0xA5A5A5A5u;
+  EXPECT(written == 0);
+}
 
 static void in_memory_quad(quadra_renderer* renderer) {
   /* x, y in [-0.5, 0.5] at z = 0, seen orthographically from z = 1 over
@@ -110,6 +158,8 @@ static void in_memory_quad(quadra_renderer* renderer) {
   state.dst_alpha = (quadra_blend_factor)257;
   expect_error(quadra_scene_set_draw_state(scene, instance_id, &state), QUADRA_INVALID_ARGUMENT,
                "setDrawState: dst_alpha 257 is not one of its values");
+
+  aovs_of_the_quad(renderer, scene, &target, instance_id);
 
   /* misuse */
   unsigned char before[sizeof(pixels)];

@@ -112,6 +112,50 @@ class RenderFromNumpy(unittest.TestCase):
         self.assertIsNot(other.color, first.color)
         self.assertEqual(other.color.shape, (40, 20, 4))
 
+    def test_aovs_of_the_quad_are_its_analytic_values(self):
+        # The quad of the test above: N = (0, 0, 1), P = (x, y, 0) and uv
+        # linear across it at the pixel centres, its ids and full coverage;
+        # off it the clear values (README "AOVs").
+        out = self.renderer.render(quad_scene(), width=40, height=40,
+                                   aovs=("N", "P", "uv", "id", "mask"))
+        inside = np.zeros((40, 40), bool)
+        inside[10:30, 10:30] = True
+        centres = -0.975 + 0.05 * np.arange(40)
+        x, y = np.meshgrid(centres, -centres)
+        self.assertEqual(out.normal.shape, (40, 40, 3))
+        self.assertEqual(out.uv.shape, (40, 40, 2))
+        self.assertEqual(out.primitive_id.dtype, np.uint32)
+        np.testing.assert_array_equal(out.normal[inside], [[0, 0, 1]] * 400)
+        np.testing.assert_allclose(out.position[inside], np.stack([x, y, 0 * x], -1)[inside],
+                                   atol=1e-6, rtol=0)
+        np.testing.assert_allclose(out.uv[inside], np.stack([x + 0.5, 0.5 - y], -1)[inside],
+                                   atol=1e-6, rtol=0)
+        np.testing.assert_array_equal(out.mask, inside.astype(np.float32))
+        np.testing.assert_array_equal(out.node_id[inside], 0)
+        np.testing.assert_array_equal(out.material_id[inside], 0)
+        # triangle 0 is (0, 1, 2), below the diagonal x = y; the fill rule
+        # gives the centres on the diagonal to one of the two
+        off_diagonal = inside & (np.abs(x - y) > 0.01)
+        np.testing.assert_array_equal(out.primitive_id[off_diagonal],
+                                      (x < y)[off_diagonal].astype(np.uint32))
+        for ids in (out.primitive_id, out.node_id, out.material_id):
+            np.testing.assert_array_equal(ids[~inside], 0xFFFFFFFF)
+        for floats in (out.normal, out.position, out.uv):
+            np.testing.assert_array_equal(floats[~inside], 0)
+
+    def test_aovs_not_asked_are_none_and_out_reuses_their_arrays(self):
+        first = self.renderer.render(quad_scene(), width=40, height=40, aovs=["N", "id"])
+        self.assertIsNone(first.position)
+        self.assertIsNone(first.mask)
+        again = self.renderer.render(quad_scene(transform=translation(0.25, 0, 0)), width=40,
+                                     height=40, aovs=["N", "id"], out=first)
+        self.assertIs(again.normal, first.normal)
+        self.assertIs(again.node_id, first.node_id)
+        fresh = self.renderer.render(quad_scene(transform=translation(0.25, 0, 0)), width=40,
+                                     height=40, aovs=["N", "id"])
+        np.testing.assert_array_equal(again.normal, fresh.normal)
+        np.testing.assert_array_equal(again.primitive_id, fresh.primitive_id)
+
     def test_depth_can_be_left_out(self):
         out = self.renderer.render(quad_scene(), width=8, height=8, depth=False)
         self.assertIsNone(out.depth)
@@ -183,6 +227,35 @@ class RenderGltfEqualsTheCli(unittest.TestCase):
             judged = subprocess.run([READ_REFERENCE, exr, raw], capture_output=True, text=True)
             self.assertNotEqual(judged.returncode, 0, judged.stdout)
 
+    def test_aovs_equal_the_cli_exr_channels_bit_for_bit(self):
+        # The CLI's --aov channels, read with OpenEXR by read_reference
+        # --channels as stored (FLOAT, or UINT for the ids), against the
+        # arrays' bytes.
+        if CLI is None:
+            self.skipTest("run by CTest with the CLI and read_reference paths")
+        with tempfile.TemporaryDirectory() as work:
+            exr = os.path.join(work, "cli.exr")
+            subprocess.run([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
+                            "--samples", "4", "--aov", "N,P,uv,id,mask", "--out", exr],
+                           check=True, stdout=subprocess.DEVNULL)
+            out = quadra.Renderer(threads=2).render(quadra.load(GLB), width=96, height=72,
+                                                    samples=4, aovs=("N", "P", "uv", "id", "mask"))
+            planes = [(out.color, "R G B A"), (out.normal, "N.X N.Y N.Z"),
+                      (out.position, "P.X P.Y P.Z"), (out.uv, "uv.U uv.V"), (out.mask, "mask"),
+                      (out.primitive_id, "id.primitive"), (out.node_id, "id.node"),
+                      (out.material_id, "id.material")]
+            for array, channels in planes:
+                raw = os.path.join(work, "channels.raw")
+                subprocess.run([READ_REFERENCE, "--channels", exr, raw] + channels.split(),
+                               check=True)
+                with open(raw, "rb") as f:
+                    stored = f.read()
+                self.assertEqual(len(stored), array.nbytes, channels)
+                self.assertTrue(stored == array.tobytes(), channels + " differ from the CLI's")
+            # Both hold a surface and the background: the comparison is not vacuous.
+            self.assertTrue(np.any(out.node_id == 0xFFFFFFFF) and np.any(out.node_id != 0xFFFFFFFF))
+            self.assertTrue(np.any((out.mask > 0) & (out.mask < 1)))  # edges at 4 samples
+
 
 class Animation(unittest.TestCase):
     def test_posed_frames_equal_the_cli_sequence_bit_for_bit(self):
@@ -242,6 +315,8 @@ class Misuse(unittest.TestCase):
             scene.add_instance(0, 0, np.eye(3))
         with self.assertRaisesRegex(ValueError, r"^filter: 'cubic' is not one of nearest, "):
             scene.add_texture(np.zeros((1, 1, 4), np.uint8), filter="cubic")
+        with self.assertRaisesRegex(ValueError, r"^aovs: 'motion' is not one of N, P, uv, id, mask$"):
+            quadra.Renderer(threads=1).render(quad_scene(), width=8, height=8, aovs=["N", "motion"])
         with self.assertRaisesRegex(ValueError, r"^width, height: 0x8 is not within"):
             quadra.Renderer(threads=1).render(quad_scene(), width=0, height=8)
         self.assertEqual(scene.mesh_count, 0)
