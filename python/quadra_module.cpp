@@ -4,7 +4,7 @@
 // Target (RGBA32F), DepthTarget and AovTargets, with the GIL released. Errors: the
 // public API's quadra::api::Error becomes quadra.Error (a RuntimeError) with
 // the same one-line message; a wrong dtype, shape or option name is a
-// ValueError naming the argument. Documented in docs/python.md.
+// ValueError naming the argument. Documented in docs/api.md "Python".
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
