@@ -296,7 +296,8 @@ api::AovTargets aovArrays(const std::vector<std::string>& names, int width, int 
 RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
                     const std::optional<PyCamera>& camera, int samples, const std::string& shading,
                     const std::array<float, 4>& clearColor, bool depth,
-                    const std::vector<std::string>& aovs, const std::optional<RenderResult>& out) {
+                    const std::vector<std::string>& aovs, std::optional<std::uint64_t> maxMemory,
+                    const std::optional<RenderResult>& out) {
   // Checked before the arrays are made (the public API's own check, with
   // its limit, comes after a possibly huge allocation).
   if (width < 1 || height < 1 || width > 8192 || height > 8192)
@@ -305,6 +306,7 @@ RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
   api::RenderOptions options;
   options.samples = samples;
   options.clearColor = clearColor;
+  if (maxMemory) options.maxMemory = *maxMemory;
   options.shading = choiceOf<api::Shading>(
       "shading", shading, {{"unlit", api::Shading::Unlit}, {"lit", api::Shading::Lit}});
   RenderResult result;
@@ -526,9 +528,11 @@ PYBIND11_MODULE(quadra, m) {
       .def("render", &render, py::arg("scene"), py::kw_only(), py::arg("width"), py::arg("height"),
            py::arg("camera") = py::none(), py::arg("samples") = 1, py::arg("shading") = "unlit",
            py::arg("clear_color") = std::array<float, 4>{0, 0, 0, 0}, py::arg("depth") = true,
-           py::arg("aovs") = std::vector<std::string>{}, py::arg("out") = py::none(),
+           py::arg("aovs") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
+           py::arg("out") = py::none(),
            "Renders scene into new numpy arrays (no copy after the render). camera: sets the "
            "scene's camera first (as scene.set_camera), else the scene's own is used. out: an "
            "earlier RenderResult whose arrays are overwritten when of this size. aovs: names of "
-           "the CLI's --aov (N, P, uv, id, mask) whose arrays the result also holds.");
+           "the CLI's --aov (N, P, uv, id, mask) whose arrays the result also holds. max_memory: "
+           "bytes the frame may hold (default 8 GiB), as the CLI's --max-memory.");
 }

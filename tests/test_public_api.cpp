@@ -509,6 +509,25 @@ TEST_F(PublicApi, AovTargetMisuseIsAnErrorNamingTheAovAndWritesNothing) {
     EXPECT_EQ(aovs.bytes[i] == untouched.bytes[i], i != 5) << AovBuffers::kNames[i];
 }
 
+// RenderOptions::maxMemory is the CLI's --max-memory for a frame: refused
+// before anything is drawn, with the engine's one-line message.
+TEST_F(PublicApi, FrameOverItsMemoryBudgetIsAnErrorAndWritesNothing) {
+  PublicScene s = publicScene(arrays);
+  std::vector<std::byte> buffer = guarded(kWidth * 16);
+  const std::vector<std::byte> before = buffer;
+  expectError(
+      [&] {
+        renderer.render(s.scene, target(buffer, kWidth * 16, api::PixelFormat::Rgba32F), nullptr,
+                        {.maxMemory = 1000});
+      },
+      "render: the 37x23 frame needs 13.3 KiB, over the memory budget of 1000 bytes (24 bytes "
+      "already used; --max-memory raises it)");
+  EXPECT_EQ(buffer, before);
+  renderer.render(s.scene, target(buffer, kWidth * 16, api::PixelFormat::Rgba32F), nullptr,
+                  {.maxMemory = 1 << 30});
+  EXPECT_NE(buffer, before);
+}
+
 TEST_F(PublicApi, SceneMisuseIsAnErrorAndChangesNothing) {
   PublicScene s = publicScene(arrays);
   std::vector<float> positions = arrays.triPositions;

@@ -77,7 +77,8 @@ static_assert(int(QUADRA_TEXTURE_RGBA32F) == int(api::TextureFormat::Rgba32F) &&
               int(QUADRA_BLEND_MAX) == int(api::BlendEquation::Max) &&
               int(QUADRA_FACTOR_ONE_MINUS_DST_ALPHA) == int(api::BlendFactor::OneMinusDstAlpha) &&
               int(QUADRA_ORTHOGRAPHIC) == int(api::CameraData::Projection::Orthographic) &&
-              int(QUADRA_PIXEL_RGBA32F) == int(api::PixelFormat::Rgba32F));
+              int(QUADRA_PIXEL_RGBA32F) == int(api::PixelFormat::Rgba32F) &&
+              int(QUADRA_SHADING_LIT) == int(api::Shading::Lit));
 
 template <typename T>
 std::span<const T> span(const T* data, std::size_t count) {
@@ -186,10 +187,10 @@ api::AovTarget aovTarget(const CTarget& target) {
           .rowStride = target.row_stride};
 }
 
-// quadra_render and quadra_render_aovs, named `call` in their messages.
+// quadra_render and quadra_render_with, named `call` in their messages.
 quadra_status render(const char* call, quadra_renderer* renderer, const quadra_scene* scene,
                      const quadra_target* target, const quadra_depth_target* depth,
-                     const quadra_aov_targets* aovs) {
+                     const quadra_render_options* options, const quadra_aov_targets* aovs) {
   if (!renderer || !scene || !target) return missing(std::string(call) + ": an argument");
   if (!target->pixels) return missing("render target: pixels");
   if (depth && !depth->depth) return missing("depth target: depth");
@@ -214,9 +215,17 @@ quadra_status render(const char* call, quadra_renderer* renderer, const quadra_s
            .primitiveId = aovTarget(aovs->primitive_id),
            .nodeId = aovTarget(aovs->node_id),
            .materialId = aovTarget(aovs->material_id)};
+    api::RenderOptions o;
+    if (options) {
+      o.shading = enumField<api::Shading>(options->shading, QUADRA_SHADING_LIT, "render options",
+                                          "shading");
+      o.samples = options->samples;
+      std::memcpy(o.clearColor.data(), options->clear_color, sizeof(options->clear_color));
+      if (options->max_memory != 0) o.maxMemory = options->max_memory;
+    }
     liveHandles()
         .get(renderer, call)
-        .renderer.render(liveHandles().get(scene, call).scene, t, depth ? &d : nullptr, {},
+        .renderer.render(liveHandles().get(scene, call).scene, t, depth ? &d : nullptr, o,
                          aovs ? &a : nullptr);
   });
 }
@@ -433,13 +442,14 @@ void quadra_renderer_destroy(quadra_renderer* renderer) {
 
 quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
                             const quadra_target* target, const quadra_depth_target* depth) {
-  return render("quadra_render", renderer, scene, target, depth, nullptr);
+  return render("quadra_render", renderer, scene, target, depth, nullptr, nullptr);
 }
 
-quadra_status quadra_render_aovs(quadra_renderer* renderer, const quadra_scene* scene,
+quadra_status quadra_render_with(quadra_renderer* renderer, const quadra_scene* scene,
                                  const quadra_target* target, const quadra_depth_target* depth,
+                                 const quadra_render_options* options,
                                  const quadra_aov_targets* aovs) {
-  return render("quadra_render_aovs", renderer, scene, target, depth, aovs);
+  return render("quadra_render_with", renderer, scene, target, depth, options, aovs);
 }
 
 }  // extern "C"

@@ -213,6 +213,7 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
   settings.clearColor = {options.clearColor[0], options.clearColor[1], options.clearColor[2],
                          options.clearColor[3]};
   settings.frameDepth = depth != nullptr;
+  settings.maxMemory = options.maxMemory;
   for (const AovPlane* plane : askedPlanes) {
     if (plane->aov)
       settings.aovs |= std::uint32_t(*plane->aov);

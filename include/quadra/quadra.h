@@ -27,8 +27,9 @@ extern "C" {
 
 typedef enum quadra_status {
   QUADRA_OK = 0,
-  QUADRA_INVALID_ARGUMENT = 1, /* a NULL handle or pointer, or data that fails validation */
-  QUADRA_FAILED = 2,           /* a load or render that failed (file, memory budget, ...) */
+  QUADRA_INVALID_ARGUMENT = 1, /* a NULL handle or pointer, data that fails validation, or a
+                                  frame over its memory budget */
+  QUADRA_FAILED = 2,           /* a load that failed (the file, the sandbox, its budget) */
   QUADRA_OUT_OF_MEMORY = 3
 } quadra_status;
 
@@ -262,10 +263,20 @@ QUADRA_API void quadra_renderer_destroy(quadra_renderer* renderer);
 QUADRA_API quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
                                        const quadra_target* target,
                                        const quadra_depth_target* depth);
-/* quadra_render plus the AOVs whose targets aovs gives (aovs may be NULL). */
-QUADRA_API quadra_status quadra_render_aovs(quadra_renderer* renderer, const quadra_scene* scene,
+/* As quadra::api::RenderOptions. */
+typedef enum quadra_shading { QUADRA_SHADING_UNLIT = 0, QUADRA_SHADING_LIT = 1 } quadra_shading;
+typedef struct quadra_render_options {
+  quadra_shading shading;
+  int samples;          /* per pixel: 1, 2, 4, 8 or 16 */
+  float clear_color[4]; /* premultiplied linear */
+  uint64_t max_memory;  /* bytes a frame may hold; 0: the default, 8 GiB */
+} quadra_render_options;
+/* quadra_render with options (NULL: quadra_render's) and the AOVs whose
+   targets aovs gives (NULL: none). */
+QUADRA_API quadra_status quadra_render_with(quadra_renderer* renderer, const quadra_scene* scene,
                                             const quadra_target* target,
                                             const quadra_depth_target* depth,
+                                            const quadra_render_options* options,
                                             const quadra_aov_targets* aovs);
 
 #ifdef __cplusplus

@@ -94,6 +94,11 @@ struct RenderOptions {
   Shading shading = Shading::Unlit;
   int samples = 1;                                          // per pixel: 1, 2, 4, 8 or 16
   std::array<float, 4> clearColor{0.0f, 0.0f, 0.0f, 0.0f};  // premultiplied linear
+  // The bytes a frame may hold (the CLI's --max-memory): its buffers, the
+  // tile stage's working memory and the texture levels its filters read,
+  // checked before anything is allocated; over it, render throws an Error
+  // naming what and how much (README "Memory budget").
+  std::uint64_t maxMemory = kDefaultMaxMemory;
 };
 
 struct RendererOptions {

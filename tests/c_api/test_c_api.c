@@ -40,7 +40,7 @@ static float depth[kSize * kDepthStride / 4];
 static uint32_t node_ids[kSize * kAovRow];
 static float mask[kSize * kAovRow];
 
-/* quadra_render_aovs: the node ids (the instance's id on the quad,
+/* quadra_render_with: the node ids (the instance's id on the quad,
  * 0xFFFFFFFF off it, README "AOVs") and the mask (1 on it, 0 off it) at a
  * padded stride, the padding untouched; a short normal target is an error
  * naming it that writes nothing. */
@@ -56,7 +56,7 @@ static void aovs_of_the_quad(quadra_renderer* renderer, const quadra_scene* scen
   aovs.mask.data = mask;
   aovs.mask.size_bytes = sizeof(mask);
   aovs.mask.row_stride = kAovRow * 4;
-  EXPECT(quadra_render_aovs(renderer, scene, target, NULL, &aovs) == QUADRA_OK);
+  EXPECT(quadra_render_with(renderer, scene, target, NULL, NULL, &aovs) == QUADRA_OK);
   int wrong = 0, padding = 0;
   for (int y = 0; y < kSize; ++y) {
     for (int x = 0; x < kSize; ++x) {
@@ -74,11 +74,37 @@ static void aovs_of_the_quad(quadra_renderer* renderer, const quadra_scene* scen
   aovs.normal.data = normals;
   aovs.normal.size_bytes = 100;
   aovs.normal.row_stride = kSize * 12;
-  expect_error(quadra_render_aovs(renderer, scene, target, NULL, &aovs), QUADRA_INVALID_ARGUMENT,
+  expect_error(quadra_render_with(renderer, scene, target, NULL, NULL, &aovs),
+               QUADRA_INVALID_ARGUMENT,
                "normal AOV target: 40x40 at row stride 480 needs 19200 bytes, the buffer has 100");
   int written = 0;
   for (int i = 0; i < kSize * kAovRow; ++i) written += node_ids[i] != 0xA5A5A5A5u;
   EXPECT(written == 0);
+}
+
+/* quadra_render_with's options: a clear colour and 4 samples (the quad's
+ * inside keeps its colour, every sample being covered), and each bad option
+ * a one-line error. */
+static void options_of_the_quad(quadra_renderer* renderer, const quadra_scene* scene,
+                                const quadra_target* target, const float base[4]) {
+  quadra_render_options options = {QUADRA_SHADING_UNLIT, 4, {0.0f, 0.0f, 0.125f, 1.0f}, 0};
+  EXPECT(quadra_render_with(renderer, scene, target, NULL, &options, NULL) == QUADRA_OK);
+  const float* corner = (const float*)target->pixels;
+  const float* centre = corner + 20 * (target->row_stride / 4) + 20 * 4;
+  for (int c = 0; c < 4; ++c) EXPECT(corner[c] == options.clear_color[c] && centre[c] == base[c]);
+  options.samples = 3;
+  EXPECT(quadra_render_with(renderer, scene, target, NULL, &options, NULL) ==
+         QUADRA_INVALID_ARGUMENT);
+  EXPECT(strstr(quadra_last_error(), "samples") != NULL);
+  options.samples = 1;
+  options.shading = (quadra_shading)7;
+  expect_error(quadra_render_with(renderer, scene, target, NULL, &options, NULL),
+               QUADRA_INVALID_ARGUMENT, "render options: shading 7 is not one of its values");
+  options.shading = QUADRA_SHADING_UNLIT;
+  options.max_memory = 1000;
+  EXPECT(quadra_render_with(renderer, scene, target, NULL, &options, NULL) ==
+         QUADRA_INVALID_ARGUMENT);
+  EXPECT(strstr(quadra_last_error(), "over the memory budget of 1000 bytes") != NULL);
 }
 
 static void in_memory_quad(quadra_renderer* renderer) {
@@ -160,6 +186,7 @@ static void in_memory_quad(quadra_renderer* renderer) {
                "setDrawState: dst_alpha 257 is not one of its values");
 
   aovs_of_the_quad(renderer, scene, &target, instance_id);
+  options_of_the_quad(renderer, scene, &target, base);
 
   /* misuse */
   unsigned char before[sizeof(pixels)];

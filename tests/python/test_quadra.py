@@ -338,6 +338,8 @@ class Misuse(unittest.TestCase):
             scene.add_texture(np.zeros((0, 4, 4), np.uint8))
         with self.assertRaisesRegex(quadra.Error, r"^[^\n]*samples[^\n]*$"):
             quadra.Renderer(threads=1).render(quad_scene(), width=8, height=8, samples=3)
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*over the memory budget of 1000 bytes"):
+            quadra.Renderer(threads=1).render(quad_scene(), width=8, height=8, max_memory=1000)
         with self.assertRaisesRegex(quadra.Error, r"no-such-file\.glb"):
             quadra.load("no-such-file.glb")
 
