@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/parallel.h"
@@ -212,3 +214,17 @@ TEST(MipChain, ParallelBuildIsBitIdenticalToSerial) {
 
 }  // namespace
 }  // namespace quadra
+
+// Internal checks (core/error.h) end in an exception an embedding
+// application can catch, not in abort(): an empty source is such a bug.
+TEST(InternalCheck, AFailedCheckThrowsALogicErrorNamingItInsteadOfAborting) {
+  try {
+    (void)quadra::downsampleBox(quadra::Image{}, 1, 1, nullptr);
+    ADD_FAILURE() << "the empty source passed the check";
+  } catch (const std::logic_error& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("internal check failed at "), std::string::npos) << what;
+    EXPECT_NE(what.find("mip_chain.cpp:"), std::string::npos) << what;
+    EXPECT_NE(what.find(": src.width > 0 && src.height > 0"), std::string::npos) << what;
+  }
+}

@@ -239,6 +239,8 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
       impl_->renderer.render(inside.scene, camera, settings, frame);
     } catch (const quadra::Error& error) {  // the engine's, as the public type
       throw Error(error.what());
+    } catch (const std::logic_error& error) {  // a failed internal check (core/error.h)
+      throw Error(std::string("quadra: ") + error.what());
     }
   }
 

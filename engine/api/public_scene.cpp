@@ -396,6 +396,8 @@ Scene loadWith(const std::string& path, const LoadOptions& options, TaskArena* a
     detail::SceneAccess::mutableOf(scene).scene = loadGltf(path, engine);
   } catch (const quadra::Error& error) {  // the engine's, as the public type
     throw Error(error.what());
+  } catch (const std::logic_error& error) {  // a failed internal check (core/error.h)
+    throw Error(std::string("quadra: ") + error.what());
   }
   return scene;
 }

@@ -26,7 +26,7 @@ namespace detail {
 
 }  // namespace quadra
 
-// Always-on invariant check; an internal bug, never a user error.
+// Always-on invariant check (a bug, never user input): throws std::logic_error.
 #define QUADRA_CHECK(cond)                                                 \
   do {                                                                     \
     if (!(cond)) ::quadra::detail::checkFailed(__FILE__, __LINE__, #cond); \
