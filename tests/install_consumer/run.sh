@@ -11,9 +11,9 @@
 # the installed module: its `report textures` has OpenImageIO's rows. With
 # --python PYTHON DIR (the build made the module, installed into DIR under
 # the prefix), run examples/triangle.py against the installed module, with
-# --python-preload LIB (a sanitizer build) preloading the sanitizer's runtime
+# --python-preload LIBS (a sanitizer build; colon-separated) preloading the sanitizer runtime
 # into the uninstrumented interpreter (tests/CMakeLists.txt says why).
-#   run.sh BUILD_DIR [--oiio-peer] [--python PYTHON DIR [--python-preload LIB]]
+#   run.sh BUILD_DIR [--oiio-peer] [--python PYTHON DIR [--python-preload LIBS]]
 set -euo pipefail
 build_dir=$1
 shift
