@@ -68,6 +68,14 @@ fi
 # (quadra_sanitizer_link_interface), a plain pkg-config link gets it here.
 sanitize=$(sed -n 's/^QUADRA_SANITIZE:STRING=//p' "$build_dir/CMakeCache.txt")
 sanitize_flags=${sanitize:+-fsanitize=$sanitize}
+# A TSan build links the oneTBB built with TSan (scripts/tsan-tbb.sh); the
+# installed libquadra.so finds oneTBB by the loader's search, which would
+# give it the system's, whose synchronization TSan cannot see (false races in
+# oneTBB's inlined partitioner). The programs below get that build's first.
+if [[ $sanitize == *thread* ]]; then
+  tbb_dir=$(sed -n 's/^TBB_DIR:PATH=//p' "$build_dir/CMakeCache.txt")
+  export LD_LIBRARY_PATH="${tbb_dir%/cmake/TBB}${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+fi
 # pkg-config alone (no CMake): compile and link a version query.
 printf '#include <quadra/quadra.hpp>\n#include <cstdio>\nint main() { std::puts(quadra::version()); }\n' >"$work/pc.cpp"
 PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --exists quadra ||
