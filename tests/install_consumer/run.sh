@@ -42,6 +42,12 @@ while (($#)); do
   shift
 done
 source_dir=$(cd "$(dirname "$0")" && pwd)
+# The consumer is built with the build's own compilers: a sanitizer build's
+# libquadra.so needs the runtime of the compiler that instrumented it (the
+# ASan build is clang's, scripts/sanitize.sh).
+cxx=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
+cc=$(sed -n 's/^CMAKE_C_COMPILER:[A-Z]*=//p' "$build_dir/CMakeCache.txt")
+compilers=(-DCMAKE_CXX_COMPILER="${cxx:=c++}" -DCMAKE_C_COMPILER="${cc:=cc}")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cmake --install "$build_dir" --prefix "$work/prefix" >/dev/null
@@ -56,7 +62,7 @@ for h in "${headers[@]}"; do
       exit 1
       ;;
   esac
-  echo "#include <$h>" | c++ -std=c++20 -fsyntax-only -I"$include" -x c++ - ||
+  echo "#include <$h>" | "$cxx" -std=c++20 -fsyntax-only -I"$include" -x c++ - ||
     { echo "installed header does not compile on its own: $h"; exit 1; }
 done
 if grep -rlE '#include "(api|scene|core|io|texture|window|simd)/' "$include"; then
@@ -81,14 +87,15 @@ printf '#include <quadra/quadra.hpp>\n#include <cstdio>\nint main() { std::puts(
 PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --exists quadra ||
   { echo "pkg-config does not find quadra.pc"; exit 1; }
 # shellcheck disable=SC2046
-c++ -std=c++20 $sanitize_flags "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags --libs quadra)
+"$cxx" -std=c++20 $sanitize_flags "$work/pc.cpp" -o "$work/pc" $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --cflags --libs quadra)
 [[ $(LD_LIBRARY_PATH="$work/prefix/lib" "$work/pc") == $(PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig" pkg-config --modversion quadra) ]] ||
   { echo "the pkg-config build reports another version"; exit 1; }
 if find "$work/prefix" -name '*lab*' | grep .; then
   echo "the lab library was installed"
   exit 1
 fi
-cmake -S "$source_dir" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S "$source_dir" -B "$work/build" "${compilers[@]}" -DCMAKE_PREFIX_PATH="$work/prefix" \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" >/dev/null
 mkdir "$work/quad"
 "$work/build/consumer" gltf "$work/quad"
@@ -99,7 +106,7 @@ mkdir "$work/quad"
 "$work/build/consumer_c" "$work/consumer_c.raw"
 "$work/build/read_reference" "$work/reference.exr" "$work/consumer_c.raw"
 # The README's example (examples/), as a newcomer builds it.
-cmake -S "$source_dir/../../examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefix" \
+cmake -S "$source_dir/../../examples" -B "$work/examples" "${compilers[@]}" -DCMAKE_PREFIX_PATH="$work/prefix" \
   -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/examples" >/dev/null
 cxx_line=$("$work/examples/triangle")
