@@ -78,7 +78,9 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          normal), P (P.X/Y/Z world position), uv (uv.U/V), motion (motion.X/Y,
                          pixels since the previous frame of a --sequence), id (id.primitive,
                          id.node, id.material, uint), mask (coverage, filtered as the colour),
-                         Z (always written); PNG outputs hold none (README "AOVs")
+                         lod and anisotropy (the base colour texture's mip level and probe
+                         count as its filter chooses them), Z (always written); PNG outputs
+                         hold none (README "AOVs")
   --shading-rate pixel|sample
                          with --samples: shade once per pixel and visible triangle
                          (default, multisampling) or every sample (supersampling)

@@ -127,6 +127,8 @@ std::vector<ExrPlane> exrAovPlanes(const Frame& frame) {
   floats(frame.position, {"P.X", "P.Y", "P.Z"});
   floats(frame.uv, {"uv.U", "uv.V"});
   floats(frame.motion, {"motion.X", "motion.Y"});
+  floats(frame.lod, {"lod"});
+  floats(frame.anisotropy, {"anisotropy"});
   const auto ids = [&](const std::vector<std::uint32_t>& plane, const char* name) {
     if (!plane.empty())
       planes.push_back(

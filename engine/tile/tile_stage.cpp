@@ -555,6 +555,53 @@ void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame
   if (samples > 1) nearestSampleDepth(frame, s);
 }
 
+// The lod and anisotropy AOVs (README "AOVs"): per pixel, the nearest
+// sample's triangle looked up by the kernel at the pixel centre as the
+// shading pass would (TileKernels::footprintLevels), one kernel call per run
+// of a textured draw's pixels; 0 and 0 where no textured surface is.
+void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, TileScratch& s,
+                        Frame& out) {
+  const AovSet set = frame.aov->aovs;
+  const TileBuffers& tile = s.planes[0];
+  if (!s.visibleTriangles.empty()) rebaseShadePlanes(frame.draws, tile, SampleOffset{}, s);
+  s.jobs.clear();
+  for (int y = 0; y < tile.height; ++y)
+    for (int x = 0; x < tile.width; ++x) {
+      const int p = TileBuffers::index(x, y);
+      const std::uint32_t id =
+          nearestSampleTriangle(s.planes.get(), frame.samples.count, frame.depthGreater, p);
+      const std::size_t pixel =
+          std::size_t(tile.originY + y) * std::size_t(out.width) + std::size_t(tile.originX + x);
+      if (hasAov(set, Aov::Lod)) out.lod[pixel] = 0.0f;
+      if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = 0.0f;
+      if (id != kNoTriangle && frame.draws[s.visibleTriangles[id].draw].shade.textured)
+        s.jobs.push_back({float(x), float(y), id, std::uint16_t(p), 0});
+    }
+  // A draw's triangles are consecutive in the visible list: by triangle,
+  // each draw's jobs form one run.
+  std::stable_sort(s.jobs.begin(), s.jobs.end(),
+                   [](const ShadeJob& a, const ShadeJob& b) { return a.triangle < b.triangle; });
+  s.jobColor.resize(2 * s.jobs.size());
+  float* const lod = s.jobColor.data();
+  float* const anisotropy = lod + s.jobs.size();
+  for (std::size_t first = 0; first < s.jobs.size();) {
+    const std::uint32_t draw = s.visibleTriangles[s.jobs[first].triangle].draw;
+    std::size_t end = first + 1;
+    while (end < s.jobs.size() && s.visibleTriangles[s.jobs[end].triangle].draw == draw) ++end;
+    kernels.footprintLevels(frame.draws[draw].shade, s.shadePlanes.data(), &s.jobs[first],
+                            int(end - first), lod + first, anisotropy + first);
+    first = end;
+  }
+  for (std::size_t j = 0; j < s.jobs.size(); ++j) {
+    const int p = s.jobs[j].pixel;
+    const std::size_t pixel =
+        std::size_t(tile.originY + TileBuffers::yAt(p)) * std::size_t(out.width) +
+        std::size_t(tile.originX + TileBuffers::xAt(p));
+    if (hasAov(set, Aov::Lod)) out.lod[pixel] = lod[j];
+    if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = anisotropy[j];
+  }
+}
+
 void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out,
                 TileTimes& times) {
   const double start = stageClockMs();
@@ -579,9 +626,11 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
   forwardDraws(frame, s);
   const double rastered = stageClockMs();
   // Before resolveSamples, which folds the samples' depths into plane 0.
-  if (frame.aov)
+  if (frame.aov && (frame.aov->aovs & ~kFootprintAovs) != 0)
     writeSurfaceAovs(*frame.aov, s.planes.get(), samples, frame.depthGreater, s.visibleTriangles,
                      s.visibleSources, s.aovTriangles, out);
+  if (frame.aov && (frame.aov->aovs & kFootprintAovs) != 0)
+    writeFootprintAovs(frame, *frame.kernels.wide, s, out);
   resolveSamples(tileIndex, frame, s, out);
   resolveTile(s.planes[0], out);
   times.raster = (visible - start) + (rastered - shaded);
