@@ -1,9 +1,12 @@
 // The surface AOVs (README "AOVs"): depth, normal, position, uv and ids at
 // pixel centres against the double-precision reference tracer on built-in
 // scenes and shared glTF models; motion against an analytic camera move;
-// the EXR channels and header attributes read back with OpenEXR (and, where
-// installed, with OpenImageIO's and OpenEXR's own tools); the CLI's --aov.
+// lod and anisotropy against analytic footprints and against the colour
+// trilinear filtering produced with them; the EXR channels and header attributes read back with
+// OpenEXR (and, where installed, with OpenImageIO's and OpenEXR's own tools); the CLI's --aov.
 #include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -17,6 +20,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -29,10 +34,13 @@
 #include "io/image_io.h"
 #include "lab/reference/reference_tracer.h"
 #include "lab/scene/builtin_scenes.h"
+#include "lab/texture/ground_truth.h"
+#include "lab/texture/test_textures.h"
 #include "param_names.h"
 #include "render_helpers.h"
 #include "scene/animation.h"
 #include "scene/gltf_loader.h"
+#include "texture/mip_chain.h"
 
 namespace quadra {
 namespace {
@@ -214,13 +222,13 @@ TEST(Aovs, LeaveColourDepthAndCoverageBitsAlone) {
     settings.samples = samples;
     settings.frameCoverage = true;
     const Frame plain = renderOnce(scene, camera, settings);
-    settings.aovs = kAllSurfaceAovs;
+    settings.aovs = kAllSurfaceAovs | kFootprintAovs;
     const Frame withAovs = renderOnce(scene, camera, settings);
     EXPECT_EQ(std::memcmp(plain.rgba.data(), withAovs.rgba.data(), plain.rgba.size() * 4), 0);
     EXPECT_EQ(std::memcmp(plain.depth.data(), withAovs.depth.data(), plain.depth.size() * 4), 0);
     EXPECT_EQ(
         std::memcmp(plain.coverage.data(), withAovs.coverage.data(), plain.coverage.size() * 4), 0);
-    EXPECT_TRUE(plain.normal.empty() && plain.primitiveId.empty());
+    EXPECT_TRUE(plain.normal.empty() && plain.primitiveId.empty() && plain.lod.empty());
     // Where a surface is, its position projects to the pixel's depth (at
     // one sample: with several, Z is the nearest sample's, P the centre's).
     if (samples > 1) continue;
@@ -277,6 +285,178 @@ TEST(Aovs, MotionOfAnOrthographicCameraMoveIsUniform) {
   EXPECT_THROW(renderOnce(scene, camera, settings), Error);
 }
 
+// A square of value-noise texels (a different value per texel, so every
+// mip level differs from the next) on TEXCOORD_0 of the scene's first mesh.
+std::shared_ptr<Texture> noiseTexture() {
+  return std::make_shared<Texture>(std::make_shared<Image>(makeValueNoiseTexture(256, 256, 7)),
+                                   SamplerState{});
+}
+
+// One quad (two triangles) of `material` from corners lo to hi in the plane
+// z = depth, texture coordinates uvAt(position).
+Mesh quadMesh(glm::vec2 lo, glm::vec2 hi, float depth, int material,
+              const std::function<glm::vec2(const glm::vec3&)>& uvAt) {
+  Mesh mesh;
+  mesh.positions = {
+      {lo.x, lo.y, depth}, {hi.x, lo.y, depth}, {hi.x, hi.y, depth}, {lo.x, hi.y, depth}};
+  for (const glm::vec3& p : mesh.positions) mesh.texcoords[0].push_back(uvAt(p));
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  mesh.material = material;
+  return mesh;
+}
+
+// lod and anisotropy against their analytic values: an orthographic camera
+// over a plane facing it, 20 px a unit, texture coordinates scaled so that a
+// pixel spans `across` texels along x and `down` along y (no shear), so
+// every pixel's footprint is the same axis-aligned rectangle. Left of
+// x = 1 the plane is textured, then an untextured one up to x = 2.5, then
+// nothing (both 0 and 0).
+TEST(Aovs, LodAndAnisotropyOfAPlaneFacingTheCamera) {
+  constexpr double kPixelsPerUnit = 20.0, kTexels = 256.0;
+  const auto sceneWith = [&](double across, double down) {
+    Scene scene;
+    scene.textures.push_back(noiseTexture());
+    Material textured, plain;
+    textured.baseColorTexture = 0;
+    textured.doubleSided = plain.doubleSided = true;
+    scene.materials = {textured, plain};
+    const auto uvAt = [&](const glm::vec3& p) {
+      return glm::vec2(float(p.x * kPixelsPerUnit * across / kTexels),
+                       float(-p.y * kPixelsPerUnit * down / kTexels));
+    };
+    scene.meshes.push_back(quadMesh({-4.0f, -2.25f}, {1.0f, 2.25f}, -5.0f, 0, uvAt));
+    scene.meshes.push_back(quadMesh({1.0f, -2.25f}, {2.5f, 2.25f}, -5.0f, 1, uvAt));
+    for (int m = 0; m < 2; ++m) {
+      Instance instance;
+      instance.mesh = m;
+      scene.instances.push_back(instance);
+    }
+    return scene;
+  };
+  Camera camera;
+  camera.type = Camera::Type::Orthographic;
+  camera.xmag = 4.0f;
+  camera.ymag = 2.25f;
+  camera.zfar = 100.0f;
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 90;
+  settings.aovs = kFootprintAovs | AovSet(Aov::Ids);
+  struct Case {
+    std::optional<Filter> filter;
+    LodRule rule;
+    double across, down, lod, anisotropy;
+  };
+  const double box = double(kBoxLodOffset);
+  const Case cases[] = {
+      {std::nullopt, LodRule::Gl, 4.0, 4.0, 2.0, 1.0},  // the glTF sampler's: trilinear
+      {Filter::Trilinear, LodRule::Box, 4.0, 4.0, 2.0 + box, 1.0},
+      {Filter::Trilinear, LodRule::Gl, 8.0, 2.0, 3.0, 1.0},  // the longer side
+      {Filter::NearestMip, LodRule::Gl, 3.0, 3.0, std::log2(3.0), 1.0},
+      // N = ceil(major / minor) = ceil(3.6) = 4 probes, each over 8 / 4 = 2
+      // texels: level 1 (ratios clear of whole numbers, which float
+      // derivatives could round either way); 40:1 is capped at --aniso 16.
+      {Filter::Anisotropic, LodRule::Gl, 8.0, 2.2, 1.0, 4.0},
+      {Filter::Anisotropic, LodRule::Gl, 2.5, 6.0, 1.0, 3.0},
+      {Filter::Anisotropic, LodRule::Gl, 40.0, 1.0, std::log2(40.0 / 16.0), 16.0},
+      // Magnified: level 0; filters without levels read level 0.
+      {Filter::Trilinear, LodRule::Gl, 0.5, 0.5, 0.0, 1.0},
+      {Filter::Bilinear, LodRule::Gl, 4.0, 4.0, 0.0, 1.0},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE((c.filter ? filterName(*c.filter) : "sampler's") + std::string(" ") +
+                 std::to_string(c.across) + " x " + std::to_string(c.down));
+    settings.filter = c.filter;
+    settings.lodRule = c.rule;
+    const Frame frame = renderOnce(sceneWith(c.across, c.down), camera, settings);
+    int textured = 0, plain = 0, empty = 0;
+    for (std::size_t p = 0; p < frame.lod.size(); ++p) {
+      const std::uint32_t material = frame.materialId[p];
+      if (material == 0) {
+        // log2's error is below 1e-6; the derivatives are exact to a few ulps.
+        ASSERT_NEAR(frame.lod[p], c.lod, 1e-5) << "pixel " << p;
+        ASSERT_EQ(frame.anisotropy[p], float(c.anisotropy)) << "pixel " << p;
+        ++textured;
+      } else {
+        ASSERT_EQ(frame.lod[p], 0.0f) << "pixel " << p;
+        ASSERT_EQ(frame.anisotropy[p], 0.0f) << "pixel " << p;
+        ++(material == 1 ? plain : empty);
+      }
+    }
+    EXPECT_EQ(textured, 100 * 90);
+    EXPECT_EQ(plain, 30 * 90);
+    EXPECT_EQ(empty, 30 * 90);
+  }
+}
+
+// The lod AOV is the level trilinear filtering read, shown by the colour: on
+// a ground plane seen at a grazing angle (every level from magnified to the
+// last), each pixel's colour is the blend of the bilinear lookups of mip
+// levels floor(lod) and floor(lod) + 1 (double, at the uv AOV's coordinates)
+// by lod's fraction. A level 0.2 off (GL's rule instead of the box rule the
+// frame used) misses most pixels by far more than the tolerance.
+TEST(Aovs, LodIsTheLevelTrilinearFilteringRead) {
+  const Mesh ground = quadMesh({-20.0f, 0.5f}, {20.0f, 60.0f}, 0.0f, 0, [](const glm::vec3& p) {
+    return glm::vec2(p.x, p.y) * 0.05f;  // 12.8 texels a unit
+  });
+  Scene scene = doubleSidedMeshScene(ground);
+  scene.textures.push_back(noiseTexture());
+  scene.materials[0].baseColorTexture = 0;
+  // The quad lies in z = 0: turned onto the ground plane y = -1, its y
+  // becoming the distance ahead (-z).
+  scene.instances[0].world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -1.0f, 0.0f)) *
+                             glm::rotate(glm::mat4(1.0f), -1.5707963f, glm::vec3(1.0f, 0.0f, 0.0f));
+  Camera camera;
+  camera.yfov = 0.9f;
+  camera.zfar = 500.0f;
+  RenderSettings settings;
+  settings.width = 160;
+  settings.height = 96;
+  settings.filter = Filter::Trilinear;
+  settings.aovs = kFootprintAovs | AovSet(Aov::Uv);
+  const Frame frame = renderOnce(scene, camera, settings);
+
+  const MipChain& mips = scene.textures[0]->mips();
+  std::vector<BilinearReference> levels;
+  for (int l = 0; l < mips.levelCount(); ++l) levels.emplace_back(mips.level(l), SamplerState{});
+  const int last = mips.levelCount() - 1;
+  // The blend of the levels around `lod` at (u, v).
+  const auto trilinear = [&](double lod, double u, double v, double rgb[3]) {
+    lod = std::clamp(lod, 0.0, double(last));
+    const int fine = int(std::floor(lod)), coarse = std::min(fine + 1, last);
+    double a[4], b[4];
+    levels[std::size_t(fine)].lookup(u, v, a);
+    levels[std::size_t(coarse)].lookup(u, v, b);
+    for (int c = 0; c < 3; ++c) rgb[c] = a[c] + (b[c] - a[c]) * (lod - fine);
+  };
+  double worst = 0.0, lowest = 1e9, highest = -1e9;
+  int drawn = 0, missedByOffset = 0;
+  for (std::size_t p = 0; p < frame.lod.size(); ++p) {
+    if (frame.anisotropy[p] == 0.0f) continue;
+    const double lod = frame.lod[p], u = frame.uv[2 * p], v = frame.uv[2 * p + 1];
+    double expected[3], offset[3];
+    trilinear(lod, u, v, expected);
+    trilinear(lod - double(kBoxLodOffset), u, v, offset);
+    double error = 0.0, offsetError = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      error = std::max(error, std::fabs(expected[c] - frame.rgba[4 * p + std::size_t(c)]));
+      offsetError =
+          std::max(offsetError, std::fabs(offset[c] - frame.rgba[4 * p + std::size_t(c)]));
+    }
+    worst = std::max(worst, error);
+    missedByOffset += offsetError > 1e-3;
+    lowest = std::min(lowest, lod), highest = std::max(highest, lod);
+    ++drawn;
+  }
+  EXPECT_GT(drawn, 160 * 40);
+  EXPECT_EQ(lowest, 0.0);          // magnified in front
+  EXPECT_GT(highest, last - 1.0);  // the horizon reaches the coarsest levels
+  // uv is the AOV's double value rounded to float, the kernel's its own
+  // float evaluation: they differ by a few ulps of u, ~1e-4 texels of level 0.
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_GT(missedByOffset, drawn / 2);
+}
+
 TEST(Aovs, NeedTheVisibilityPass) {
   const Scene scene = makeBuiltinScene("checker-plane");
   RenderSettings settings;
@@ -294,7 +474,7 @@ TEST(Aovs, ExrRoundTripKeepsEveryChannelAndTheHeader) {
   RenderSettings settings;
   settings.width = 67;  // odd, so rows are not a multiple of anything
   settings.height = 41;
-  settings.aovs = kAllSurfaceAovs;
+  settings.aovs = kAllSurfaceAovs | kFootprintAovs;
   settings.frameCoverage = true;
   Frame frame = renderOnce(scene, firstCameraOrDefault(scene), settings);
   frame.metadata.strings = {{"quadraVersion", "9.9.9"}, {"quadraRenderSettings", "width=67"}};
@@ -326,6 +506,8 @@ TEST(Aovs, ExrRoundTripKeepsEveryChannelAndTheHeader) {
       {"id.primitive", frame.primitiveId.data(), 1, Imf::UINT},
       {"id.node", frame.nodeId.data(), 1, Imf::UINT},
       {"id.material", frame.materialId.data(), 1, Imf::UINT},
+      {"lod", frame.lod.data(), 1, Imf::FLOAT},
+      {"anisotropy", frame.anisotropy.data(), 1, Imf::FLOAT},
   };
   int channelCount = 0;
   for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channelCount;
@@ -505,7 +687,7 @@ TEST(AovsCli, BadInputIsOneLineAndWritesNothing) {
   const std::string out = " --width 32 --height 32 --out " + exr.string();
   expectOneLineError(run("render builtin:showcase --aov N,normals" + out),
                      "--aov: 'normals' is not an AOV quadra writes (valid: Z, N, P, uv, motion, "
-                     "id, mask)");
+                     "id, mask, lod, anisotropy)");
   expectOneLineError(run("render builtin:showcase --aov ''" + out), "--aov");
   expectOneLineError(run("render builtin:showcase --aov N --derivatives quad" + out),
                      "AOVs need analytic derivatives");

@@ -84,8 +84,8 @@ TEST(Cli, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(
       run("render builtin:checker-plane --pixel-filter gaussian --out " + out.string()),
       "--pixel-filter");
-  expectOneLineError(run("render builtin:checker-plane --aov mask,lod --out " + out.string()),
-                     "'lod'");
+  expectOneLineError(run("render builtin:checker-plane --aov mask,curvature --out " + out.string()),
+                     "'curvature'");
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -69,6 +69,8 @@ void expectSameFrame(const Frame& got, const Frame& expected) {
   EXPECT_TRUE(sameBits(got.primitiveId, expected.primitiveId)) << "id.primitive";
   EXPECT_TRUE(sameBits(got.nodeId, expected.nodeId)) << "id.node";
   EXPECT_TRUE(sameBits(got.materialId, expected.materialId)) << "id.material";
+  EXPECT_TRUE(sameBits(got.lod, expected.lod)) << "lod";
+  EXPECT_TRUE(sameBits(got.anisotropy, expected.anisotropy)) << "anisotropy";
 }
 
 std::string fileBytes(const std::filesystem::path& path) {
@@ -210,7 +212,9 @@ void expectSameAcrossThreadsAndIsas(const Scene& scene, const RenderSettings& se
 
 // The surface AOVs keep the contract too (scalar code after the visibility
 // pass, whose winners are the same bits on every path), at one sample and
-// several, with a moved previous pose so that motion is not all zero.
+// several, with a moved previous pose so that motion is not all zero; lod
+// and anisotropy come from the per-ISA kernels, under the scenes' own
+// filters and the anisotropic one.
 TEST(Determinism, AovsAreIdenticalAcrossThreadsAndIsas) {
   for (const std::string name : {"showcase", "alpha-quads"}) {
     SCOPED_TRACE(name);
@@ -227,8 +231,12 @@ TEST(Determinism, AovsAreIdenticalAcrossThreadsAndIsas) {
       settings.height = kHeight / 2;
       settings.samples = samples;
       settings.aovs = AovSet(Aov::Normal) | AovSet(Aov::Position) | AovSet(Aov::Uv) |
-                      AovSet(Aov::Motion) | AovSet(Aov::Ids);
+                      AovSet(Aov::Motion) | AovSet(Aov::Ids) | kFootprintAovs;
       settings.previousPose = &previous;
+      expectSameAcrossThreadsAndIsas(scene, settings);
+      if (samples > 1) continue;
+      SCOPED_TRACE("aniso");
+      settings.filter = Filter::Anisotropic;
       expectSameAcrossThreadsAndIsas(scene, settings);
     }
   }

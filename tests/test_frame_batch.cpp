@@ -3,8 +3,13 @@
 // --shard, --skip-existing and --progress end to end (the CLI as a
 // subprocess): shards that together write the one-process sequence byte for
 // byte, a resumed sequence that renders only its missing frames, the plain
-// progress lines, and every bad value a one-line error that writes nothing.
+// progress lines, the EXR storage options on every file, and every bad value
+// a one-line error that writes nothing.
 #include <gtest/gtest.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 
 #include <algorithm>
 #include <chrono>
@@ -250,6 +255,40 @@ TEST(FrameBatchCli, ShardPastTheEndRendersNothing) {
   EXPECT_EQ(lineKeyValues(r.out, "quadra frame_ms ").at("frames"), "0");
 }
 
+// --exr-compression and --exr-colour reach every frame of a sequence and a
+// still (through the writer thread and the still's writer alike), and
+// without them the files are what they were: ZIP, FLOAT colour.
+TEST(FrameBatchCli, ExrStorageOptionsReachEveryFile) {
+  const fs::path dir = emptyFolder("exr_storage");
+  const std::string size = "builtin:flyover --width 48 --height 32 ";
+  struct Case {
+    std::string options;
+    Imf::Compression compression;
+    Imf::PixelType colour;
+  };
+  const Case cases[] = {
+      {"", Imf::ZIP_COMPRESSION, Imf::FLOAT},
+      {"--exr-compression piz --exr-colour half", Imf::PIZ_COMPRESSION, Imf::HALF},
+      {"--exr-compression none", Imf::NO_COMPRESSION, Imf::FLOAT},
+      {"--exr-colour half --exr-compression rle", Imf::RLE_COMPRESSION, Imf::HALF}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.options);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    ASSERT_EQ(render(size + "--sequence 0:1 --out " + (dir / "f_#.exr").string() + " " + c.options)
+                  .exitCode,
+              0);
+    ASSERT_EQ(render(size + "--out " + (dir / "still.exr").string() + " " + c.options).exitCode, 0);
+    for (const char* name : {"f_0.exr", "f_1.exr", "still.exr"}) {
+      Imf::InputFile in((dir / name).string().c_str());
+      EXPECT_EQ(in.header().compression(), c.compression) << name;
+      for (const char* channel : {"R", "G", "B", "A"})
+        EXPECT_EQ(in.header().channels().findChannel(channel)->type, c.colour) << name;
+      EXPECT_EQ(in.header().channels().findChannel("Z")->type, Imf::FLOAT) << name;
+    }
+  }
+}
+
 TEST(FrameBatchCli, BadBatchInputIsOneLineAndWritesNothing) {
   const fs::path dir = emptyFolder("bad_batch");
   const std::string seq = "builtin:showcase --sequence 0:3 --out " + (dir / "f_#.png").string();
@@ -269,6 +308,16 @@ TEST(FrameBatchCli, BadBatchInputIsOneLineAndWritesNothing) {
       {still + " --shard 0/2", "--shard: only with --sequence"},
       {still + " --skip-existing", "--skip-existing: only with --sequence"},
       {still + " --progress plain", "--progress: only with --sequence"},
+      // The EXR storage options: a known name, and an EXR to apply to.
+      {seq + " --exr-compression zip", "--exr-compression: no --out is an .exr file"},
+      {still + " --exr-colour half", "--exr-colour: no --out is an .exr file"},
+      {"builtin:showcase --exr-compression none", "--exr-compression: no --out is an .exr file"},
+      {still + " --exr-compression dwaa",
+       "--exr-compression: 'dwaa' is not an EXR compression quadra writes (valid: none, rle, "
+       "zips, zip, piz)"},
+      {"builtin:showcase --sequence 0:3 --out " + (dir / "f_#.exr").string() +
+           " --exr-colour double",
+       "--exr-colour: 'double' is not an EXR colour type (valid: float, half)"},
   };
   for (const Case& c : cases) {
     const RunResult r = render(c.arguments);

@@ -78,7 +78,9 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          normal), P (P.X/Y/Z world position), uv (uv.U/V), motion (motion.X/Y,
                          pixels since the previous frame of a --sequence), id (id.primitive,
                          id.node, id.material, uint), mask (coverage, filtered as the colour),
-                         Z (always written); PNG outputs hold none (README "AOVs")
+                         lod and anisotropy (the base colour texture's mip level and probe
+                         count as its filter chooses them), Z (always written); PNG outputs
+                         hold none (README "AOVs")
   --shading-rate pixel|sample
                          with --samples: shade once per pixel and visible triangle
                          (default, multisampling) or every sample (supersampling)
@@ -90,6 +92,12 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
   --frames K             K timed frames after one warm-up (default 1)
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
+  --exr-compression none|rle|zips|zip|piz
+                         how EXR outputs are compressed, all lossless (default zip, at
+                         zlib's fastest level)
+  --exr-colour float|half
+                         EXR colour channels R, G, B, A as FLOAT (default) or HALF; Z,
+                         mask and the AOVs stay FLOAT
   --sequence FIRST:LAST  render frames FIRST..LAST of an animation, frame f at time f/fps,
                          each frame timed once; every --out must hold a run of '#', which
                          each frame's file has its number in, zero-padded to the run's
@@ -142,6 +150,8 @@ struct RenderCommand {
   std::optional<ProgressMode> progress;  // unset: defaultProgressMode()
   bool stats = false;
   std::vector<std::string> outputs;
+  ExrSettings exr;
+  const char* exrOption = nullptr;  // the first EXR storage option given, for messages
   CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
 };
@@ -201,6 +211,18 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.flag("--stats", [&] { cmd.stats = true; });
   options.flag("--alpha-to-coverage", [&] { cmd.settings.alphaToCoverage = true; });
   addOutputOption(options, cmd.outputs);
+  options.value("--exr-compression", [&cmd](const std::string& option, const std::string& value) {
+    if (!parseExrCompression(value, cmd.exr.compression))
+      throw Error(option + ": '" + value + "' is not an EXR compression quadra writes (valid: " +
+                  exrCompressionNames() + ")");
+    if (!cmd.exrOption) cmd.exrOption = "--exr-compression";
+  });
+  options.value("--exr-colour", [&cmd](const std::string& option, const std::string& value) {
+    if (value != "float" && value != "half")
+      throw Error(option + ": '" + value + "' is not an EXR colour type (valid: float, half)");
+    cmd.exr.halfColour = value == "half";
+    if (!cmd.exrOption) cmd.exrOption = "--exr-colour";
+  });
   options.value("--sequence", [&cmd](const std::string& option, const std::string& value) {
     cmd.sequence = parseFrameRange(option, value);
   });
@@ -245,6 +267,8 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
     }
   }
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  if (cmd.exrOption && !cmd.settings.frameDepth)
+    throw Error(std::string(cmd.exrOption) + ": no --out is an .exr file");
   cmd.settings.maxMemory = cmd.load.maxMemory;
   cmd.load.threads = cmd.config.threads;  // decoding the scene's meshes and images too
   if (cmd.settings.aovs != 0 && !cmd.outputs.empty() && !cmd.settings.frameDepth)
@@ -338,7 +362,7 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   std::mutex reporting;
   // Frame k is written on the writer's thread while frame k + 1 renders; two
   // frames may wait, so a slow disk holds the loop back by at most that.
-  SequenceWriter writer(renderer.threadCount(), 2);
+  SequenceWriter writer(renderer.threadCount(), 2, cmd.exr);
   NodePose pose;
   std::vector<double> times;
   std::vector<StageTimes> stages;
@@ -435,7 +459,7 @@ int renderCommand(const std::vector<std::string>& args) {
   const auto writeStart = std::chrono::steady_clock::now();
   const Executor writer(renderer.threadCount());
   for (const std::string& path : cmd.outputs) {
-    writeFrame(frame, path, &writer);
+    writeFrame(frame, path, &writer, cmd.exr);
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);

@@ -100,7 +100,9 @@ constexpr AovName kAovNames[] = {{"Z", 0},
                                  {"uv", AovSet(Aov::Uv)},
                                  {"motion", AovSet(Aov::Motion)},
                                  {"id", AovSet(Aov::Ids)},
-                                 {kCoverageChannel, 0}};
+                                 {kCoverageChannel, 0},
+                                 {"lod", AovSet(Aov::Lod)},
+                                 {"anisotropy", AovSet(Aov::Anisotropy)}};
 
 }  // namespace
 

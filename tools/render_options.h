@@ -47,11 +47,11 @@ void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs)
 bool outputsNeedDepth(const std::vector<std::string>& outputs);
 
 // --aov LIST, repeatable: comma-separated AOV names (README "AOVs"): Z, N,
-// P, uv, motion, id, mask. mask sets frameCoverage, Z is always in an EXR,
+// P, uv, motion, id, mask, lod, anisotropy. mask sets frameCoverage, Z is always in an EXR,
 // the others are RenderSettings::aovs bits; any other name is an Error
 // listing the valid ones.
 void addAovOption(CommandOptions& options, RenderSettings& settings);
-// The AOV names --aov accepts, for messages: "Z, N, P, uv, motion, id, mask".
+// The AOV names --aov accepts, for messages: "Z, N, P, uv, motion, id, mask, lod, anisotropy".
 std::string aovNames();
 
 // The settings that decide a frame's pixels, as "key=value" words for the

@@ -9,9 +9,10 @@
 
 namespace quadra {
 
-SequenceWriter::SequenceWriter(int threads, std::size_t queueDepth)
+SequenceWriter::SequenceWriter(int threads, std::size_t queueDepth, const ExrSettings& exr)
     : executor_(threads),
       queueDepth_(queueDepth < 1 ? 1 : queueDepth),
+      exr_(exr),
       thread_([this] { run(); }) {}
 
 SequenceWriter::~SequenceWriter() {
@@ -59,7 +60,7 @@ void SequenceWriter::run() {
     std::exception_ptr failure;
     const auto start = std::chrono::steady_clock::now();
     try {
-      for (const std::string& path : job.paths) writeFrame(job.frame, path, &executor_);
+      for (const std::string& path : job.paths) writeFrame(job.frame, path, &executor_, exr_);
       if (job.written) job.written(job.paths);
     } catch (...) {
       failure = std::current_exception();

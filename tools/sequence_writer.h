@@ -17,6 +17,7 @@
 
 #include "core/parallel.h"
 #include "io/frame.h"
+#include "io/image_io.h"
 
 namespace quadra {
 
@@ -28,7 +29,8 @@ class SequenceWriter {
   // threads: for the writers' own compression (io/image_io.h). queueDepth:
   // how many handed-over frames may wait unwritten before submit blocks, and
   // so how many frame buffers (besides the one rendering) the writer keeps.
-  SequenceWriter(int threads, std::size_t queueDepth);
+  // exr: how the EXR files store their pixels.
+  SequenceWriter(int threads, std::size_t queueDepth, const ExrSettings& exr = {});
   // Writes what is still queued (each frame handed over is complete), then
   // stops; errors at this point are dropped, finish() is the way to see them.
   ~SequenceWriter();
@@ -55,6 +57,7 @@ class SequenceWriter {
 
   Executor executor_;
   const std::size_t queueDepth_;
+  const ExrSettings exr_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Job> queue_;

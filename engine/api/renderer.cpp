@@ -479,6 +479,8 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   resizeLarge(out.position, aovPixels(Aov::Position), 0.0f, &executor);
   resizeLarge(out.uv, aovPixels(Aov::Uv), 0.0f, &executor);
   resizeLarge(out.motion, aovPixels(Aov::Motion), 0.0f, &executor);
+  resizeLarge(out.lod, aovPixels(Aov::Lod), 0.0f, &executor);
+  resizeLarge(out.anisotropy, aovPixels(Aov::Anisotropy), 0.0f, &executor);
   for (std::vector<std::uint32_t>* ids : {&out.primitiveId, &out.nodeId, &out.materialId})
     resizeLarge(*ids, hasAov(settings.aovs, Aov::Ids) ? pixels : 0, kNoId, &executor);
   const double aspect = double(settings.width) / settings.height;

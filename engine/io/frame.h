@@ -18,23 +18,29 @@ namespace quadra {
 // depth-writing surface of the pixel, evaluated at the pixel centre (README
 // "AOVs"); blended draws write none.
 enum class Aov : std::uint32_t {
-  Normal = 1u << 0,    // N.X, N.Y, N.Z: world-space shading normal, unit length
-  Position = 1u << 1,  // P.X, P.Y, P.Z: world-space position
-  Uv = 1u << 2,        // uv.U, uv.V: TEXCOORD_0 as stored
-  Motion = 1u << 3,    // motion.X, motion.Y: window pixels moved since the previous pose
-  Ids = 1u << 4,       // id.primitive, id.node, id.material (uint32)
+  Normal = 1u << 0,      // N.X, N.Y, N.Z: world-space shading normal, unit length
+  Position = 1u << 1,    // P.X, P.Y, P.Z: world-space position
+  Uv = 1u << 2,          // uv.U, uv.V: TEXCOORD_0 as stored
+  Motion = 1u << 3,      // motion.X, motion.Y: window pixels moved since the previous pose
+  Ids = 1u << 4,         // id.primitive, id.node, id.material (uint32)
+  Lod = 1u << 5,         // lod: the mip level the base colour texture's filter reads
+  Anisotropy = 1u << 6,  // anisotropy: its probe count (1 but for the anisotropic filter)
 };
+// The AOVs the sampler's level choice fills (tile stage, after the shading pass).
+constexpr std::uint32_t kFootprintAovs = std::uint32_t(Aov::Lod) | std::uint32_t(Aov::Anisotropy);
 using AovSet = std::uint32_t;
 constexpr bool hasAov(AovSet set, Aov aov) {
   return (set & std::uint32_t(aov)) != 0;
 }
 // 4-byte channels per pixel: each AOV's, and a set's in all (3 ids for Ids).
 constexpr int aovChannels(Aov aov) {
+  if (aov == Aov::Lod || aov == Aov::Anisotropy) return 1;
   return aov == Aov::Uv || aov == Aov::Motion ? 2 : 3;
 }
 constexpr int aovChannels(AovSet set) {
   int channels = 0;
-  for (const Aov aov : {Aov::Normal, Aov::Position, Aov::Uv, Aov::Motion, Aov::Ids})
+  for (const Aov aov :
+       {Aov::Normal, Aov::Position, Aov::Uv, Aov::Motion, Aov::Ids, Aov::Lod, Aov::Anisotropy})
     if (hasAov(set, aov)) channels += aovChannels(aov);
   return channels;
 }
@@ -81,6 +87,8 @@ struct Frame {
   std::vector<float> uv;        // 2 per pixel
   std::vector<float> motion;    // 2 per pixel: x right, y down, in pixels
   std::vector<std::uint32_t> primitiveId, nodeId, materialId;  // 1 per pixel each
+  // 1 per pixel each; 0 where no textured depth-writing surface is.
+  std::vector<float> lod, anisotropy;
   FrameMetadata metadata;
 };
 

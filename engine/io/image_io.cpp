@@ -127,6 +127,8 @@ std::vector<ExrPlane> exrAovPlanes(const Frame& frame) {
   floats(frame.position, {"P.X", "P.Y", "P.Z"});
   floats(frame.uv, {"uv.U", "uv.V"});
   floats(frame.motion, {"motion.X", "motion.Y"});
+  floats(frame.lod, {"lod"});
+  floats(frame.anisotropy, {"anisotropy"});
   const auto ids = [&](const std::vector<std::uint32_t>& plane, const char* name) {
     if (!plane.empty())
       planes.push_back(
@@ -170,17 +172,34 @@ void checkFrame(const Frame& frame, const std::string& path, bool needsDepth) {
 
 // ---- EXR --------------------------------------------------------------------
 
-void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string& name) {
+// ExrSettings' compressions, by name and as OpenEXR's.
+struct ExrCompressionName {
+  ExrCompression compression;
+  const char* name;
+  Imf::Compression exr;
+};
+constexpr ExrCompressionName kExrCompressions[] = {
+    {ExrCompression::None, "none", Imf::NO_COMPRESSION},
+    {ExrCompression::Rle, "rle", Imf::RLE_COMPRESSION},
+    {ExrCompression::Zips, "zips", Imf::ZIPS_COMPRESSION},
+    {ExrCompression::Zip, "zip", Imf::ZIP_COMPRESSION},
+    {ExrCompression::Piz, "piz", Imf::PIZ_COMPRESSION},
+};
+
+void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string& name,
+                    const ExrSettings& settings, const Executor* executor) {
   Imf::Header header(frame.width, frame.height);
+  for (const ExrCompressionName& c : kExrCompressions)
+    if (c.compression == settings.compression) header.compression() = c.exr;
   // zlib's fastest level: a 1080p frame writes in 125 ms instead of 300 at
   // OpenEXR's default level 4, for files 10% larger (builtin:flyover,
   // 2026-11-27), and a sequence's frames/s is its writer's when writing is
   // the slower half.
-  header.compression() = Imf::ZIP_COMPRESSION;
   header.zipCompressionLevel() = 1;
-  for (const char* channel : {"R", "G", "B", "A", "Z"}) {
-    header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
-  }
+  const Imf::PixelType colour = settings.halfColour ? Imf::HALF : Imf::FLOAT;
+  for (const char* channel : {"R", "G", "B", "A"})
+    header.channels().insert(channel, Imf::Channel(colour));
+  header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
   if (!frame.coverage.empty()) header.channels().insert(kCoverageChannel, Imf::Channel(Imf::FLOAT));
   const std::vector<ExrPlane> aovs = exrAovPlanes(frame);
   for (const ExrPlane& plane : aovs)
@@ -192,14 +211,13 @@ void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string
   for (const auto& [name, value] : frame.metadata.strings)
     header.insert(name, Imf::StringAttribute(value));
   const Imath::V2i origin(0, 0);
-  const std::size_t rgbaRow = std::size_t(frame.width) * 4 * sizeof(float);
   Imf::FrameBuffer buffer;
   const char* const rgbaNames[4] = {"R", "G", "B", "A"};
-  for (int c = 0; c < 4; ++c) {
-    buffer.insert(rgbaNames[c],
-                  Imf::Slice::Make(Imf::FLOAT, frame.rgba.data() + c, origin, frame.width,
-                                   frame.height, 4 * sizeof(float), rgbaRow));
-  }
+  if (!settings.halfColour)
+    for (int c = 0; c < 4; ++c)
+      buffer.insert(rgbaNames[c], Imf::Slice::Make(Imf::FLOAT, frame.rgba.data() + c, origin,
+                                                   frame.width, frame.height, 4 * sizeof(float),
+                                                   std::size_t(frame.width) * 4 * sizeof(float)));
   const std::size_t planeRow = std::size_t(frame.width) * sizeof(float);
   buffer.insert("Z", Imf::Slice::Make(Imf::FLOAT, frame.depth.data(), origin, frame.width,
                                       frame.height, sizeof(float), planeRow));
@@ -218,13 +236,69 @@ void writeExrStream(const Frame& frame, std::ofstream& stream, const std::string
   // The OutputFile's destructor writes the scanline offset table; it swallows
   // errors there, which the caller detects from the stream's state afterwards.
   Imf::OutputFile file(exrStream, header);
-  file.setFrameBuffer(buffer);
-  file.writePixels(frame.height);
+  if (!settings.halfColour) {
+    file.setFrameBuffer(buffer);
+    file.writePixels(frame.height);
+    return;
+  }
+  // OpenEXR writes a slice only into a channel of its own type, so half
+  // colour is converted first (the texel encoder's rounding: to nearest
+  // even, NaN stored as 0), a band of rows at a time into one small buffer:
+  // converted whole into a fresh 16 MB buffer, a 1080p frame's faulting in
+  // made half colour cost 160-220 ms to write uncompressed against float's
+  // 30-80; in bands 53-70 against 40-44 (builtin:flyover to /dev/shm,
+  // --stats write=, 2026-11-28, the shared VM at load 9).
+  constexpr int kBandRows = 64;
+  const std::size_t rowHalves = std::size_t(frame.width) * 4;
+  std::vector<std::uint16_t> halves(rowHalves * kBandRows);
+  for (int first = 0; first < frame.height; first += kBandRows) {
+    const int rows = std::min(kBandRows, frame.height - first);
+    const auto convert = [&](std::size_t begin, std::size_t end) {
+      encodeTexels(TexelFormat::Rgba16F,
+                   frame.rgba.data() + (std::size_t(first) + begin) * rowHalves,
+                   (end - begin) * std::size_t(frame.width),
+                   reinterpret_cast<std::uint8_t*>(halves.data() + begin * rowHalves));
+    };
+    if (executor)
+      executor->parallelFor(std::size_t(rows), 8, convert);
+    else
+      convert(0, std::size_t(rows));
+    Imf::FrameBuffer band = buffer;
+    for (int c = 0; c < 4; ++c)
+      band.insert(rgbaNames[c], Imf::Slice::Make(Imf::HALF, halves.data() + c, Imath::V2i(0, first),
+                                                 frame.width, rows, sizeof(std::uint16_t) * 4,
+                                                 sizeof(std::uint16_t) * rowHalves));
+    file.setFrameBuffer(band);
+    file.writePixels(rows);
+  }
 }
 
 }  // namespace
 
-void writeExr(const Frame& frame, const std::string& path) {
+const char* exrCompressionName(ExrCompression compression) {
+  for (const ExrCompressionName& c : kExrCompressions)
+    if (c.compression == compression) return c.name;
+  return "?";
+}
+
+bool parseExrCompression(const std::string& name, ExrCompression& out) {
+  for (const ExrCompressionName& c : kExrCompressions)
+    if (name == c.name) {
+      out = c.compression;
+      return true;
+    }
+  return false;
+}
+
+std::string exrCompressionNames() {
+  std::string names;
+  for (const ExrCompressionName& c : kExrCompressions)
+    names += (names.empty() ? "" : ", ") + std::string(c.name);
+  return names;
+}
+
+void writeExr(const Frame& frame, const std::string& path, const ExrSettings& settings,
+              const Executor* executor) {
   checkFrame(frame, path, true);
   TempFile temp(path);
   std::ofstream stream;
@@ -234,7 +308,7 @@ void writeExr(const Frame& frame, const std::string& path) {
     throw makeError(path, "cannot create file (" + errnoText(errno, "open failed") + ")");
   }
   try {
-    writeExrStream(frame, stream, path);  // OpenEXR messages then name the real target
+    writeExrStream(frame, stream, path, settings, executor);  // messages name the real target
   } catch (const std::exception& e) {
     throw makeError(path, "cannot write EXR (" + oneLine(e.what()) + ")");
   }
@@ -371,9 +445,10 @@ void writePng(const Frame& frame, const std::string& path, const Executor* execu
   temp.commit();
 }
 
-void writeFrame(const Frame& frame, const std::string& path, const Executor* executor) {
+void writeFrame(const Frame& frame, const std::string& path, const Executor* executor,
+                const ExrSettings& exr) {
   const std::string ext = lowerExtension(path);
-  if (ext == ".exr") return writeExr(frame, path);
+  if (ext == ".exr") return writeExr(frame, path, exr, executor);
   if (ext == ".png") return writePng(frame, path, executor);
   throw makeError(path, "unsupported output format (use .exr or .png)");
 }

@@ -18,19 +18,41 @@ class Executor;
 // The EXR channel of Frame::coverage; the name the --aov list uses for it.
 constexpr const char* kCoverageChannel = "mask";
 
-// EXR with half-free FLOAT channels R, G, B, A (premultiplied linear) and Z,
-// the coverage as kCoverageChannel and the surface AOVs the frame has
-// (FLOAT N.X/Y/Z, P.X/Y/Z, uv.U/V, motion.X/Y; UINT id.primitive, id.node,
-// id.material; a PNG has no place for them), and in the header the
-// metadata's camera (OpenEXR's worldToCamera and worldToNDC) and strings.
-// Throws Error("<path>: <problem>") on failure.
-void writeExr(const Frame& frame, const std::string& path);
+// How an EXR stores its pixels. Only OpenEXR's lossless compressions, so a
+// FLOAT channel reads back bit for bit: NONE, RLE, ZIPS (zlib, one scanline a
+// block), ZIP (16 scanlines; the default, at zlib's fastest level: see
+// writeExrStream) and PIZ (wavelet + Huffman). halfColour stores R, G, B, A
+// as HALF (each float rounded to the nearest half, NaN written as 0); Z, mask and the AOVs stay
+// FLOAT, as depth, positions and ids need float's precision and range.
+enum class ExrCompression : std::uint8_t { None, Rle, Zips, Zip, Piz };
+struct ExrSettings {
+  ExrCompression compression = ExrCompression::Zip;
+  bool halfColour = false;
+};
+const char* exrCompressionName(ExrCompression compression);
+// Parses none|rle|zips|zip|piz; false when unknown.
+bool parseExrCompression(const std::string& name, ExrCompression& out);
+// The names parseExrCompression accepts, comma separated, for messages.
+std::string exrCompressionNames();
+
+// EXR with FLOAT (or, with halfColour, HALF) channels R, G, B, A
+// (premultiplied linear) and FLOAT Z, the coverage as kCoverageChannel and
+// the surface AOVs the frame has (FLOAT N.X/Y/Z, P.X/Y/Z, uv.U/V,
+// motion.X/Y, lod, anisotropy; UINT id.primitive, id.node, id.material; a
+// PNG has no place for them), and in the header the metadata's camera
+// (OpenEXR's worldToCamera and worldToNDC) and strings. Half colour is
+// converted on `executor`'s threads when one is given (OpenEXR compresses on
+// its own pool). Throws Error("<path>: <problem>") on failure.
+void writeExr(const Frame& frame, const std::string& path, const ExrSettings& settings = {},
+              const Executor* executor = nullptr);
 // PNG, 8-bit sRGB RGBA (colour un-premultiplied before encoding), encoded
 // and compressed in bands of rows in parallel on `executor` when one is
 // given; the file's bytes are the same either way.
 void writePng(const Frame& frame, const std::string& path, const Executor* executor = nullptr);
-// Chooses the writer from the extension (.exr or .png, any case).
-void writeFrame(const Frame& frame, const std::string& path, const Executor* executor = nullptr);
+// Chooses the writer from the extension (.exr or .png, any case); `exr`
+// applies to EXR files only.
+void writeFrame(const Frame& frame, const std::string& path, const Executor* executor = nullptr,
+                const ExrSettings& exr = {});
 
 // Reads a PNG or JPEG (decoded from sRGB to linear; alpha stays linear) or
 // an EXR (already linear; missing channels: RGB 0, A 1) into linear float

@@ -396,6 +396,24 @@ QUADRA_LANE_INLINE typename L::F controlledLod(const TextureView& view, const ty
   return simd::min(simd::max(lod + F(view.lodBias), F(view.minLod)), F(view.maxLod));
 }
 
+// The isotropic filters' λ' from the squared footprint length: the LOD
+// controls applied to half its log2, and at most 0 where the length alone
+// shows the lookup magnified (so rounding in the log2 cannot move that decision).
+template <class L>
+QUADRA_LANE_INLINE typename L::F isotropicLod(const TextureView& view,
+                                              const typename L::F& lengthSq) {
+  using F = typename L::F;
+  const F lod = controlledLod<L>(view, F(0.5f) * simd::log2<L>(lengthSq));
+  return simd::select(lengthSq <= F(view.magnifiedLengthSq), simd::min(lod, F(0.0f)), lod);
+}
+
+// The level a mip filter reads at λ': λ' within the chain [0, last level].
+template <class L>
+QUADRA_LANE_INLINE typename L::F levelRead(const TextureView& view, const typename L::F& lod) {
+  using F = typename L::F;
+  return simd::min(simd::max(lod, F(0.0f)), F(float(view.levelCount - 1)));  // max(NaN, 0) is 0
+}
+
 // One mip level per lane, filtered within the level as view.minLinear says:
 // bilinear, or the nearest texel.
 template <class L, class R>
@@ -412,8 +430,7 @@ QUADRA_LANE_INLINE Rgba<L> sampleMipmapped(const TextureView& view, const typena
                                            bool linearBetweenLevels) {
   using F = typename L::F;
   using I = typename L::I;
-  const F lastLevel = F(float(view.levelCount - 1));
-  lod = simd::min(simd::max(lod, F(0.0f)), lastLevel);  // simd::max(NaN, 0) is 0: level 0
+  lod = levelRead<L>(view, lod);
   if (!linearBetweenLevels) {
     const I level = simd::toInt(simd::floor(lod + F(0.5f)));
     return sampleWithinLevel<L, R>(view, u, v, simd::min(level, I(view.levelCount - 1)));
@@ -489,10 +506,21 @@ QUADRA_LANE_INLINE typename L::F exp2Negative(const typename L::F& k) {
   return simd::asFloat((I(127) - simd::toInt(k)) << 23);
 }
 
-// The plan of every lane's lookup: texture/anisotropic.h, step by step.
+// The footprint's axes, its probe count N and its level: the first steps of
+// the plan, and what the lod and anisotropy AOVs report.
 template <class L>
-QUADRA_LANE_INLINE Plan<L> planAnisotropic(const TextureView& view, const typename L::F& u,
-                                           const typename L::F& v, const UvDerivatives<L>& d) {
+struct Footprint {
+  typename L::M finite;        // else the Jacobian reads as a point
+  typename L::F ex, ey;        // the major axis' unit screen-space direction
+  typename L::F major, minor;  // the singular values, level-0 texels
+  typename L::F probes;        // N in [1, maxAniso]
+  typename L::F lod;           // λ = log2(major / N), before the LOD controls
+  typename L::F read;          // λ' within the chain: the level the runs are placed by
+  typename L::F maxAniso, lastLevel;
+};
+
+template <class L>
+QUADRA_LANE_INLINE Footprint<L> footprint(const TextureView& view, const UvDerivatives<L>& d) {
   using F = typename L::F;
   // The footprint's axes: J^T J = [[p, q], [q, r]] has the squared singular
   // values as eigenvalues. A non-finite Jacobian (NaN, infinite, or too large
@@ -527,8 +555,20 @@ QUADRA_LANE_INLINE Plan<L> planAnisotropic(const TextureView& view, const typena
   probes = simd::select(ratio > probes, probes + F(1.0f), probes);
   probes = simd::max(simd::min(probes, maxAniso), F(1.0f));
   const F lod = F(0.5f) * simd::log2<L>(majorSq) - simd::log2<L>(probes);  // -63 for a point
+  const F read = levelRead<L>(view, controlledLod<L>(view, lod));
   const F lastLevel = F(float(view.levelCount - 1));
-  const F read = simd::min(simd::max(controlledLod<L>(view, lod), F(0.0f)), lastLevel);
+  return {finite, ex, ey, major, minor, probes, lod, read, maxAniso, lastLevel};
+}
+
+// The plan of every lane's lookup: texture/anisotropic.h, step by step.
+template <class L>
+QUADRA_LANE_INLINE Plan<L> planAnisotropic(const TextureView& view, const typename L::F& u,
+                                           const typename L::F& v, const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  const Footprint<L> f = footprint<L>(view, d);
+  const auto finite = f.finite;
+  const F ex = f.ex, ey = f.ey, major = f.major, minor = f.minor, probes = f.probes, lod = f.lod;
+  const F read = f.read, maxAniso = f.maxAniso, lastLevel = f.lastLevel;
 
   // The levels read: both around λ below kBlendBelowRatio (and always where
   // maxAniso is below it), else the nearest.
@@ -734,19 +774,31 @@ Rgba<L> sampleAnisotropic(const TextureView& view, const typename L::F& u, const
 // along it (λu = log2 of the length of the Jacobian's u row in texels, λv of
 // its v row: for an axis-aligned footprint its side lengths), under the view's
 // LOD controls; the four levels around (λu, λv) blended bilinearly.
-template <class L, class R>
-Rgba<L> sampleRipmap(const TextureView& view, const typename L::F& u, const typename L::F& v,
-                     const UvDerivatives<L>& d) {
+template <class L>
+struct RipmapLevels {
+  typename L::F lodU, lodV;  // within [0, ripCountX - 1] and [0, ripCountY - 1]
+};
+
+template <class L>
+QUADRA_LANE_INLINE RipmapLevels<L> ripmapLevels(const TextureView& view,
+                                                const UvDerivatives<L>& d) {
   using F = typename L::F;
-  using I = typename L::I;
   const F w = F(float(view.levels[0].width)), h = F(float(view.levels[0].height));
   const F xu = d.dudx * w, yu = d.dudy * w, xv = d.dvdx * h, yv = d.dvdy * h;
   auto axisLod = [&](const F& lengthSq, int count) {  // simd::max(NaN, 0) is 0: level 0
     const F lod = controlledLod<L>(view, F(0.5f) * simd::log2<L>(lengthSq));
     return simd::min(simd::max(lod, F(0.0f)), F(float(count - 1)));
   };
-  const F lodU = axisLod(xu * xu + yu * yu, view.ripCountX);
-  const F lodV = axisLod(xv * xv + yv * yv, view.ripCountY);
+  return {axisLod(xu * xu + yu * yu, view.ripCountX), axisLod(xv * xv + yv * yv, view.ripCountY)};
+}
+
+template <class L, class R>
+Rgba<L> sampleRipmap(const TextureView& view, const typename L::F& u, const typename L::F& v,
+                     const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  using I = typename L::I;
+  const RipmapLevels<L> levels = ripmapLevels<L>(view, d);
+  const F lodU = levels.lodU, lodV = levels.lodV;
   const F floorU = simd::floor(lodU), floorV = simd::floor(lodV);
   const F tu = lodU - floorU, tv = lodV - floorV;
   const I i0 = simd::toInt(floorU), j0 = simd::toInt(floorV);
@@ -1148,12 +1200,10 @@ Rgba<L> sampleTextureAs(const TextureView& view, const typename L::F& u, const t
   // that is magnified throughout (the common case up close) skips the log2
   // and the level selection, and reads level 0 as trilinear would there.
   const F lengthSq = isotropicLengthSq<L>(view, d);
-  const auto surelyMagnified = lengthSq <= F(view.magnifiedLengthSq);
-  if (filter != Filter::Anisotropic && simd::all(surelyMagnified))
+  if (filter != Filter::Anisotropic && simd::all(lengthSq <= F(view.magnifiedLengthSq)))
     return view.magLinear ? sampleBilinear<L, R>(view, u, v, level0)
                           : sampleNearest<L, R>(view, u, v, level0);
-  F lod = controlledLod<L>(view, F(0.5f) * simd::log2<L>(lengthSq));
-  lod = simd::select(surelyMagnified, simd::min(lod, F(0.0f)), lod);
+  const F lod = isotropicLod<L>(view, lengthSq);
   // OpenGL's switch-over point c (4.6 §8.14.2): 0.5 for linear magnification
   // over nearest-texel mipmaps, so λ <= 0.5 reads bilinear level 0 rather than
   // level 0's nearest texel; else 0.
@@ -1200,6 +1250,59 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
       return sampleTextureAs<L, TexelRead<TexelFormat::Rgba32F, true>>(view, u, v, d);
   }
   return sampleTextureAs<L, TexelRead<TexelFormat::Rgba32F>>(view, u, v, d);
+}
+
+// What the lod and anisotropy AOVs report (README "AOVs"): the level the
+// view's filter reads for this footprint and its probe count, from the
+// functions that filter itself calls, so the AOV is the kernel's choice and
+// not a second formula of it. lod is within the chain [0, levelCount - 1]:
+// trilinear and nearest-mip λ' (the controls applied; magnified: 0), the
+// anisotropic filter's λ' = log2(major / N) with N its probes, the ripmap's
+// coarser axis level, EWA's and the area filter's planned level; 0 for the
+// filters that read level 0 only. anisotropy is N for the anisotropic filter, else 1.
+template <class L>
+struct FootprintLevel {
+  typename L::F lod, anisotropy;
+};
+
+template <class L>
+FootprintLevel<L> footprintLevel(const TextureView& view, const typename L::F& u,
+                                 const typename L::F& v, const UvDerivatives<L>& d) {
+  using F = typename L::F;
+  switch (view.minFilter) {
+    case Filter::Nearest:
+    case Filter::Bilinear:
+    case Filter::SummedArea:
+      break;
+    case Filter::NearestMip:
+    case Filter::Trilinear:
+      return {levelRead<L>(view, isotropicLod<L>(view, isotropicLengthSq<L>(view, d))), F(1.0f)};
+    case Filter::Anisotropic: {
+      const aniso::Footprint<L> f = aniso::footprint<L>(view, d);
+      return {f.read, f.probes};
+    }
+    case Filter::Ripmap: {
+      const RipmapLevels<L> levels = ripmapLevels<L>(view, d);
+      return {simd::max(levels.lodU, levels.lodV), F(1.0f)};
+    }
+    case Filter::Ewa:
+    case Filter::Area: {
+      const LaneLookups<L> in(u, v, d);
+      alignas(64) float level[L::kWidth];
+      for (int k = 0; k < L::kWidth; ++k) {
+        if (view.minFilter == Filter::Area) {
+          level[k] =
+              float(planAreaGrid(view, in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k]).level);
+        } else {
+          const EwaPlan plan =
+              planEwa(view, in.u[k], in.v[k], in.dudx[k], in.dvdx[k], in.dudy[k], in.dvdy[k]);
+          level[k] = plan.grid ? 0.0f : float(plan.level);
+        }
+      }
+      return {F::load_aligned(level), F(1.0f)};
+    }
+  }
+  return {F(0.0f), F(1.0f)};
 }
 
 // The straight colour of a premultiplied lookup (TextureView::premultiplied):

@@ -137,6 +137,17 @@ void writePixel(const AovFrame& aov, const AovTriangle& t, int px, int py, Frame
 
 }  // namespace
 
+std::uint32_t nearestSampleTriangle(const TileBuffers* samplePlanes, int samples, bool depthGreater,
+                                    int p) {
+  // As nearestSampleDepth keeps its depth: the first of equal ones.
+  int nearest = 0;
+  for (int k = 1; k < samples; ++k) {
+    const float depth = samplePlanes[k].depth[p], best = samplePlanes[nearest].depth[p];
+    if (depthGreater ? depth > best : depth < best) nearest = k;
+  }
+  return samplePlanes[nearest].visible[p];
+}
+
 void writeSurfaceAovs(const AovFrame& aov, const TileBuffers* samplePlanes, int samples,
                       bool depthGreater, const std::vector<TileTriangle>& visible,
                       const std::vector<std::uint32_t>& sources,
@@ -146,15 +157,8 @@ void writeSurfaceAovs(const AovFrame& aov, const TileBuffers* samplePlanes, int 
   for (AovTriangle& t : triangles) t.ready = false;
   for (int y = 0; y < tile.height; ++y)
     for (int x = 0; x < tile.width; ++x) {
-      const int p = TileBuffers::index(x, y);
-      // The nearest sample, as nearestSampleDepth keeps its depth; the
-      // first of equal ones.
-      int nearest = 0;
-      for (int k = 1; k < samples; ++k) {
-        const float depth = samplePlanes[k].depth[p], best = samplePlanes[nearest].depth[p];
-        if (depthGreater ? depth > best : depth < best) nearest = k;
-      }
-      const std::uint32_t id = samplePlanes[nearest].visible[p];
+      const std::uint32_t id =
+          nearestSampleTriangle(samplePlanes, samples, depthGreater, TileBuffers::index(x, y));
       const int px = tile.originX + x, py = tile.originY + y;
       if (id == kNoTriangle) {
         writeClear(aov.aovs, std::size_t(py) * std::size_t(aov.width) + std::size_t(px), out);

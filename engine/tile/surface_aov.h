@@ -62,6 +62,12 @@ struct AovTriangle {
   std::uint32_t primitive = 0, node = kNoId, material = kNoId;
 };
 
+// The tile triangle holding pixel p's nearest sample (the one whose depth Z
+// reports; the lowest sample on a tie), or kNoTriangle: the surface every
+// AOV reports.
+std::uint32_t nearestSampleTriangle(const TileBuffers* samplePlanes, int samples, bool depthGreater,
+                                    int p);
+
 // The AOVs of the tile's pixels into `out`. samplePlanes: the tile's sample
 // planes after its visibility pass; visible: the triangles their ids index,
 // with their mesh triangles in `sources`; `triangles` is working memory.

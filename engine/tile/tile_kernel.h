@@ -101,6 +101,12 @@ struct TileKernels {
                               const SamplePattern& pattern, TileBuffers* samplePlanes);
   // Shading pass: the colour of every pixel of the run, all of one draw.
   void (*shade)(const ShadeState& shade, const ShadeRun& run, TileBuffers& tile);
+  // The lod and anisotropy AOVs of a textured draw's jobs (each at its
+  // tile-local position with its own triangle's planes, rebased as the
+  // shading pass's): the footprint the shading pass takes there and the
+  // level and probe count the draw's filter chooses for it, one float each.
+  void (*footprintLevels)(const ShadeState& shade, const float* planes, const ShadeJob* jobs,
+                          int count, float* lod, float* anisotropy);
 };
 
 // The table for an ISA; the caller has checked isaSupported(isa).

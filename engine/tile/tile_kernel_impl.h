@@ -219,6 +219,17 @@ class BlockLaneCoverage {
 // per lane (the shading pass's pixels of several triangles).
 using LanePlane = TilePlane;
 
+// The exact derivatives of (u, v) at a pixel from the planes of u/w, v/w and
+// 1/w (w = 1 / (1/w) there), by the quotient rule, times the draw's
+// footprint scale: the footprint every analytic lookup takes.
+QUADRA_LANE_INLINE UvDerivatives<L> analyticFootprint(const ShadeState& shade, const F& u,
+                                                      const F& v, const F& w, const LanePlane& invW,
+                                                      const LanePlane& pu, const LanePlane& pv) {
+  const F scale(shade.footprintScale);
+  return {(pu.dx - u * invW.dx) * w * scale, (pv.dx - v * invW.dx) * w * scale,
+          (pu.dy - u * invW.dy) * w * scale, (pv.dy - v * invW.dy) * w * scale};
+}
+
 // The colour of a draw's pixels at (x, y) from their triangles' 1/w and
 // attribute/w planes; the one shading function of the forward path, the
 // masked draws' alpha test and the shading pass, so all three agree bit for
@@ -246,15 +257,13 @@ QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const
         const F u0 = simd::quadBroadcast<0>(u), v0 = simd::quadBroadcast<0>(v);
         d = {simd::quadBroadcast<1>(u) - u0, simd::quadBroadcast<1>(v) - v0,
              simd::quadBroadcast<2>(u) - u0, simd::quadBroadcast<2>(v) - v0};
+        // Supersampled frames filter for the sample spacing (1 otherwise: exact).
+        const F scale(shade.footprintScale);
+        d = {d.dudx * scale, d.dvdx * scale, d.dudy * scale, d.dvdy * scale};
       } else {
-        const LanePlane& pu = attr[layout.texcoord];
-        const LanePlane& pv = attr[layout.texcoord + 1];
-        d = {(pu.dx - u * invW.dx) * w, (pv.dx - v * invW.dx) * w, (pu.dy - u * invW.dy) * w,
-             (pv.dy - v * invW.dy) * w};
+        d = analyticFootprint(shade, u, v, w, invW, attr[layout.texcoord],
+                              attr[layout.texcoord + 1]);
       }
-      // Supersampled frames filter for the sample spacing (1 otherwise: exact).
-      const F scale(shade.footprintScale);
-      d = {d.dudx * scale, d.dvdx * scale, d.dudy * scale, d.dvdy * scale};
       if constexpr (kOutput == ShadeOutput::Derivatives) {
         r = d.dudx, g = d.dvdx, b = d.dudy, a = d.dvdy;
       } else {
@@ -1121,6 +1130,35 @@ bool visibilityAtSamples(const TriangleRecord& t, const Plane* p, const ShadeSta
   return won;
 }
 
+// The lod and anisotropy AOVs of a textured draw's pixels: the footprint
+// shadeColor takes at each job's position and the level its filter reads there.
+void footprintLevels(const ShadeState& s, const float* planes, const ShadeJob* jobs, int count,
+                     float* lod, float* anisotropy) {
+  const int planeCount = 1 + s.attributes.count;
+  const int texcoord = s.attributes.texcoord;
+  for (int first = 0; first < count; first += L::kWidth) {
+    alignas(64) float xs[L::kWidth], ys[L::kWidth];
+    alignas(64) std::uint32_t ids[L::kWidth];
+    for (int k = 0; k < L::kWidth; ++k) {
+      const ShadeJob& job = jobs[first + std::min(k, count - first - 1)];
+      xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
+    }
+    LanePlane p[1 + kMaxShadedAttributes];
+    lanePlanes(planes, ids, planeCount, p);
+    const F x = F::load_aligned(xs), y = F::load_aligned(ys);
+    const F w = F(1.0f) / p[0].at(x, y);
+    const F u = p[1 + texcoord].at(x, y) * w, v = p[2 + texcoord].at(x, y) * w;
+    const UvDerivatives<L> d =
+        analyticFootprint(s, u, v, w, p[0], p[1 + texcoord], p[2 + texcoord]);
+    const FootprintLevel<L> level = footprintLevel<L>(s.texture, u, v, d);
+    alignas(64) float levels[L::kWidth], probes[L::kWidth];
+    level.lod.store_aligned(levels);
+    level.anisotropy.store_aligned(probes);
+    for (int k = 0; k < std::min(L::kWidth, count - first); ++k)
+      lod[first + k] = levels[k], anisotropy[first + k] = probes[k];
+  }
+}
+
 void shade(const ShadeState& s, const ShadeRun& run, TileBuffers& tile) {
   withFeatures(s, [&]<class Feat>() {
     if constexpr (Feat::kAlpha != AlphaMode::Blend) {
@@ -1141,7 +1179,8 @@ const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
                                    &QUADRA_KERNEL_NAMESPACE::orderBlended,
                                    &QUADRA_KERNEL_NAMESPACE::visibility,
                                    &QUADRA_KERNEL_NAMESPACE::visibilityAtSamples,
-                                   &QUADRA_KERNEL_NAMESPACE::shade};
+                                   &QUADRA_KERNEL_NAMESPACE::shade,
+                                   &QUADRA_KERNEL_NAMESPACE::footprintLevels};
   return kernels;
 }
 

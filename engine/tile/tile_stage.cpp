@@ -304,6 +304,26 @@ void shadePlane(const std::vector<Draw>& draws, const TileKernels& kernels,
   }
 }
 
+// s.jobs by run (draw) into s.sortedJobs, in pixel order within each, and
+// each run's first job at s.runJobs[run]: the kernels take one draw at a
+// time. One draw (a dense mesh's tiles): they are in order already. Returns
+// the number of runs.
+std::uint32_t sortJobsByRun(TileScratch& s) {
+  const std::uint32_t runs = assignRuns(s);
+  s.runJobs.assign(runs + 1, 0);
+  if (runs == 1) {
+    s.runJobs[1] = std::uint32_t(s.jobs.size());
+    s.sortedJobs.swap(s.jobs);
+    return runs;
+  }
+  for (const ShadeJob& job : s.jobs) ++s.runJobs[s.runOf[job.triangle] + 1];
+  for (std::uint32_t r = 0; r < runs; ++r) s.runJobs[r + 1] += s.runJobs[r];
+  s.sortedJobs.resize(s.jobs.size());
+  s.groupCursor.assign(s.runJobs.begin(), s.runJobs.end() - 1);
+  for (const ShadeJob& job : s.jobs) s.sortedJobs[s.groupCursor[s.runOf[job.triangle]]++] = job;
+  return runs;
+}
+
 // Multisampled shading, once per pixel and visible triangle. Pixels whose
 // samples one triangle holds (or none) are shaded in plane 0 at their centre
 // like a one-sample tile; only plane 0 holds their colour (fillSamplePlanes
@@ -362,20 +382,7 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   shadePlane(frame.draws, kernels, s.uniformVisible.data(), planes[0], s);
   if (s.jobs.empty()) return;
 
-  // Jobs by run (draw), in pixel order within each: the kernel shades one
-  // draw at a time. One draw (a dense mesh's tiles): they are in order already.
-  const std::uint32_t runs = assignRuns(s);
-  s.runJobs.assign(runs + 1, 0);
-  if (runs == 1) {
-    s.runJobs[1] = std::uint32_t(s.jobs.size());
-    s.sortedJobs.swap(s.jobs);
-  } else {
-    for (const ShadeJob& job : s.jobs) ++s.runJobs[s.runOf[job.triangle] + 1];
-    for (std::uint32_t r = 0; r < runs; ++r) s.runJobs[r + 1] += s.runJobs[r];
-    s.sortedJobs.resize(s.jobs.size());
-    s.groupCursor.assign(s.runJobs.begin(), s.runJobs.end() - 1);
-    for (const ShadeJob& job : s.jobs) s.sortedJobs[s.groupCursor[s.runOf[job.triangle]]++] = job;
-  }
+  const std::uint32_t runs = sortJobsByRun(s);
   s.jobColor.resize(3 * s.sortedJobs.size());
   for (std::uint32_t r = 0; r < runs; ++r) {
     const std::uint32_t first = s.runJobs[r], count = s.runJobs[r + 1] - first;
@@ -555,6 +562,51 @@ void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame
   if (samples > 1) nearestSampleDepth(frame, s);
 }
 
+// The lod and anisotropy AOVs (README "AOVs"): per pixel, the nearest
+// sample's triangle looked up by the kernel at the pixel centre as the
+// shading pass would (TileKernels::footprintLevels), one kernel call per run
+// of a textured draw's pixels; 0 and 0 where no textured surface is.
+void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, TileScratch& s,
+                        Frame& out) {
+  const AovSet set = frame.aov->aovs;
+  const TileBuffers& tile = s.planes[0];
+  if (!s.visibleTriangles.empty()) rebaseShadePlanes(frame.draws, tile, SampleOffset{}, s);
+  s.jobs.clear();
+  for (int y = 0; y < tile.height; ++y)
+    for (int x = 0; x < tile.width; ++x) {
+      const int p = TileBuffers::index(x, y);
+      const std::uint32_t id =
+          nearestSampleTriangle(s.planes.get(), frame.samples.count, frame.depthGreater, p);
+      const std::size_t pixel =
+          std::size_t(tile.originY + y) * std::size_t(out.width) + std::size_t(tile.originX + x);
+      if (hasAov(set, Aov::Lod)) out.lod[pixel] = 0.0f;
+      if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = 0.0f;
+      if (id != kNoTriangle && frame.draws[s.visibleTriangles[id].draw].shade.textured)
+        s.jobs.push_back({float(x), float(y), id, std::uint16_t(p), 0});
+    }
+  if (s.jobs.empty()) return;
+  const std::uint32_t runs = sortJobsByRun(s);
+  const std::size_t count = s.sortedJobs.size();
+  s.jobColor.resize(2 * count);
+  float* const lod = s.jobColor.data();
+  float* const anisotropy = lod + count;
+  for (std::uint32_t r = 0; r < runs; ++r) {
+    const std::uint32_t first = s.runJobs[r], jobs = s.runJobs[r + 1] - first;
+    if (jobs == 0) continue;
+    const std::uint32_t draw = s.visibleTriangles[s.sortedJobs[first].triangle].draw;
+    kernels.footprintLevels(frame.draws[draw].shade, s.shadePlanes.data(), &s.sortedJobs[first],
+                            int(jobs), lod + first, anisotropy + first);
+  }
+  for (std::size_t j = 0; j < count; ++j) {
+    const int p = s.sortedJobs[j].pixel;
+    const std::size_t pixel =
+        std::size_t(tile.originY + TileBuffers::yAt(p)) * std::size_t(out.width) +
+        std::size_t(tile.originX + TileBuffers::xAt(p));
+    if (hasAov(set, Aov::Lod)) out.lod[pixel] = lod[j];
+    if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = anisotropy[j];
+  }
+}
+
 void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out,
                 TileTimes& times) {
   const double start = stageClockMs();
@@ -579,9 +631,11 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
   forwardDraws(frame, s);
   const double rastered = stageClockMs();
   // Before resolveSamples, which folds the samples' depths into plane 0.
-  if (frame.aov)
+  if (frame.aov && (frame.aov->aovs & ~kFootprintAovs) != 0)
     writeSurfaceAovs(*frame.aov, s.planes.get(), samples, frame.depthGreater, s.visibleTriangles,
                      s.visibleSources, s.aovTriangles, out);
+  if (frame.aov && (frame.aov->aovs & kFootprintAovs) != 0)
+    writeFootprintAovs(frame, *frame.kernels.wide, s, out);
   resolveSamples(tileIndex, frame, s, out);
   resolveTile(s.planes[0], out);
   times.raster = (visible - start) + (rastered - shaded);
