@@ -257,6 +257,7 @@ TEST(ReferenceArea, CheckerPlaneConvergesAndMatchesDenseRaysWhereThoseConverge) 
   const Image coarse = tracer.renderArea({.samplesPerAxis = 8, .gaussNodes = 1});
   EXPECT_GT(imageDifference(coarse, fine).psnr, 70.0);
   EXPECT_EQ(stats.sampledCells, 0);
+  EXPECT_EQ(stats.exactArea, 1.0);
   EXPECT_GT(stats.intervals, 1000000);
   const Image rays = tracer.render(64);
   double worst = 0.0;
@@ -279,6 +280,8 @@ TEST(ReferenceArea, OverlappingSurfacesFallBackToTheRays) {
     const Image area = tracer.renderArea({.samplesPerAxis = 16}, &stats);
     EXPECT_GT(stats.sampledCells, 0) << name;
     EXPECT_GT(stats.exactCells, 0) << name;
+    EXPECT_GT(stats.exactArea, 0.5) << name;
+    EXPECT_LT(stats.exactArea, 1.0) << name;
     EXPECT_GT(imageDifference(area, tracer.render(16)).psnr, 40.0) << name;
   }
 }

@@ -134,6 +134,8 @@ struct ReferenceTracer::AreaFrame {
   AreaSettings settings;
   std::map<const Texture*, std::unique_ptr<BilinearIntegral>> tables;
   mutable std::atomic<std::int64_t> exactCells{0}, sampledCells{0}, intervals{0};
+  // Exact area in cells of the deepest level.
+  mutable std::atomic<std::int64_t> exactUnits{0};
 
   // A triangle as the pixel's cells see it.
   struct Candidate {
@@ -410,6 +412,8 @@ struct ReferenceTracer::AreaFrame {
       }
       if (integrable) {
         exactCells.fetch_add(1, std::memory_order_relaxed);
+        exactUnits.fetch_add(std::int64_t(1) << (2 * (settings.maxDepth - depth)),
+                             std::memory_order_relaxed);
         return sum;
       }
     }
@@ -481,6 +485,9 @@ Image ReferenceTracer::renderArea(const AreaSettings& settings, AreaStats* stats
     stats->exactCells = frame.exactCells.load();
     stats->sampledCells = frame.sampledCells.load();
     stats->intervals = frame.intervals.load();
+    stats->exactArea =
+        double(frame.exactUnits.load()) /
+        (double(width_) * height_ * double(std::int64_t(1) << (2 * settings.maxDepth)));
   }
   return image;
 }

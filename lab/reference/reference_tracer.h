@@ -124,7 +124,8 @@ class ReferenceTracer {
   };
   struct AreaStats {
     std::int64_t exactCells = 0, sampledCells = 0;  // leaves of the pixels' cell trees
-    std::int64_t intervals = 0;                     // quadrature intervals integrated
+    double exactArea = 0.0;      // the frame's share integrated exactly (the rest took rays)
+    std::int64_t intervals = 0;  // quadrature intervals integrated
   };
   Image renderArea(const AreaSettings& settings, AreaStats* stats = nullptr) const;
 
