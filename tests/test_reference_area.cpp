@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "lab/image/image_difference.h"
 #include "lab/reference/bilinear_integral.h"
@@ -272,7 +273,10 @@ TEST(ReferenceArea, CheckerPlaneConvergesAndMatchesDenseRaysWhereThoseConverge) 
 // split and the last level takes the point-sampled rays: such a frame stays
 // the point-sampled one but for its exactly integrated cells.
 TEST(ReferenceArea, OverlappingSurfacesFallBackToTheRays) {
-  for (const char* name : {"alpha-quads", "showcase"}) {
+  // The share integrated exactly: alpha-quads' background outside its five
+  // blended quads (measured 0.108 at 96x54), showcase's all but its
+  // silhouettes, blended glass, masked panel and vertex-coloured ball.
+  for (const auto& [name, exactAtLeast] : {std::pair{"alpha-quads", 0.05}, {"showcase", 0.5}}) {
     const Scene scene = makeBuiltinScene(name);
     const int width = 96, height = 54;
     const ReferenceTracer tracer(scene, scene.cameras.at(0), width, height);
@@ -280,7 +284,7 @@ TEST(ReferenceArea, OverlappingSurfacesFallBackToTheRays) {
     const Image area = tracer.renderArea({.samplesPerAxis = 16}, &stats);
     EXPECT_GT(stats.sampledCells, 0) << name;
     EXPECT_GT(stats.exactCells, 0) << name;
-    EXPECT_GT(stats.exactArea, 0.5) << name;
+    EXPECT_GT(stats.exactArea, exactAtLeast) << name;
     EXPECT_LT(stats.exactArea, 1.0) << name;
     EXPECT_GT(imageDifference(area, tracer.render(16)).psnr, 40.0) << name;
   }
