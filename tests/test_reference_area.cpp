@@ -6,6 +6,7 @@
 // that converges.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <utility>
@@ -19,11 +20,12 @@ namespace quadra::ref {
 
 namespace {
 
+// Texels in [0, 1], alpha too, in steps of 1/999.
 Image noiseImage(int width, int height, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> value(0.0f, 1.0f);
+  std::minstd_rand rng(seed);
   Image image(width, height);
-  for (float& v : image.rgba) v = value(rng);
+  std::generate(image.rgba.begin(), image.rgba.end(),
+                [&rng] { return float(rng() % 1000) / 999.0f; });
   return image;
 }
 
@@ -192,20 +194,20 @@ TEST(ReferenceArea, LinearTextureOnAPerspectiveFloorIsTheClosedForm) {
   EXPECT_GT(worst, 1e-5);
 }
 
-// An untextured triangle with one edge across the view: each pixel's alpha is
-// the exact area of its square on the triangle's side of the edge (here from
-// the edge's line equation, by integrating the covered height across x).
-TEST(ReferenceArea, EdgeCoverageIsTheExactPixelArea) {
+// An untextured triangle with a corner in the view: each pixel's alpha is
+// the exact area of its square inside the triangle, here found scanline by
+// scanline (each edge's half-plane cuts a row to an interval) rather than by
+// clipping polygons as renderArea does.
+TEST(ReferenceArea, CoverageIsTheExactPixelArea) {
   Scene scene;
   Mesh mesh;
-  const glm::dvec3 a(-2.7, -7, -2), b(2.9, 7, -2), c(-60, 0, -2);
-  mesh.positions = {glm::vec3(a), glm::vec3(b), glm::vec3(c)};
+  const glm::dvec3 corners[3] = {{-0.31, -0.17, -2}, {5, 9, -2}, {7, -6, -2}};
+  for (const glm::dvec3& p : corners) mesh.positions.push_back(glm::vec3(p));
   mesh.indices = {0, 1, 2};
+  mesh.material = 0;
   scene.meshes.push_back(mesh);
   Material material;
   material.doubleSided = true;
-  mesh.material = 0;
-  scene.meshes[0].material = 0;
   scene.materials.push_back(material);
   scene.instances.push_back(Instance{});
   Camera camera;
@@ -215,31 +217,48 @@ TEST(ReferenceArea, EdgeCoverageIsTheExactPixelArea) {
   ReferenceTracer::AreaStats stats;
   const Image image = tracer.renderArea({.samplesPerAxis = 16}, &stats);
   const double f = 1.0 / std::tan(0.5), aspect = double(width) / height;
-  const auto toWindow = [&](const glm::dvec3& p) {
-    return glm::dvec2((f / aspect * p.x / -p.z + 1.0) * width / 2,
-                      (1.0 - f * p.y / -p.z) * height / 2);
+  glm::dvec2 w[3];
+  for (int k = 0; k < 3; ++k) {
+    // The positions as stored (float), projected.
+    const glm::dvec3 p(mesh.positions[std::size_t(k)]);
+    w[k] = {(f / aspect * p.x / -p.z + 1.0) * width / 2, (1.0 - f * p.y / -p.z) * height / 2};
+  }
+  // Row wy inside the triangle: x in [lo, hi], from each edge's half-plane
+  // (the side its opposite corner lies on).
+  const auto rowInterval = [&](double wy, double& lo, double& hi) {
+    lo = -HUGE_VAL;
+    hi = HUGE_VAL;
+    for (int k = 0; k < 3; ++k) {
+      const glm::dvec2 p = w[k], q = w[(k + 1) % 3], o = w[(k + 2) % 3];
+      const double a = -(q.y - p.y), b = q.x - p.x;  // side(X) = a (X - p).x + b (X - p).y
+      const double sign = a * (o.x - p.x) + b * (o.y - p.y) > 0 ? 1.0 : -1.0;
+      const double sa = sign * a, rest = sign * b * (wy - p.y);  // sa (x - p.x) + rest >= 0
+      if (sa == 0.0) {
+        if (rest < 0.0) hi = -HUGE_VAL;
+      } else if (sa > 0.0) {
+        lo = std::max(lo, p.x - rest / sa);
+      } else {
+        hi = std::min(hi, p.x - rest / sa);
+      }
+    }
   };
-  const glm::dvec2 from = toWindow(a), to = toWindow(b);
-  const bool leftCovered = toWindow(c).x < from.x;  // c lies far to the left of the edge
   int partial = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      // The edge's x at window height wy; the covered width of row wy is
-      // clamp(edgeX - x, 0, 1) (left covered), integrated over the pixel's rows.
       constexpr int kRows = 4096;
       double area = 0.0;
       for (int r = 0; r < kRows; ++r) {
-        const double wy = y + (r + 0.5) / kRows;
-        const double edgeX = from.x + (wy - from.y) / (to.y - from.y) * (to.x - from.x);
-        const double covered = std::clamp(edgeX - x, 0.0, 1.0);
-        area += (leftCovered ? covered : 1.0 - covered) / kRows;
+        double lo, hi;
+        rowInterval(y + (r + 0.5) / kRows, lo, hi);
+        area += std::max(0.0, std::min(hi, x + 1.0) - std::max(lo, double(x))) / kRows;
       }
       partial += area > 0.01 && area < 0.99;
-      // The edge's x is linear in wy, so the midpoint rule is exact but where
-      // the clamp kinks: two rows of 1/4096 at most.
+      // The covered width is piecewise linear in wy: the midpoint rule is
+      // exact but for the rows holding a kink (a corner, or an edge leaving
+      // the square), a few of 1/4096 each.
       ASSERT_NEAR(image.texel(x, y)[3], area, 2e-6) << x << "," << y;
     }
-  EXPECT_GT(partial, 10);
+  EXPECT_GT(partial, 20);
   EXPECT_EQ(stats.sampledCells, 0);
 }
 
