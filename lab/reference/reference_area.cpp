@@ -36,16 +36,16 @@ namespace quadra::ref {
 
 namespace {
 
-// A convex polygon: a triangle clipped by two planes and then by up to
-// eleven lines (a cell's four, another convex polygon's up to nine) has at
-// most 3 + 2 + 4 + 9 vertices.
+// A convex polygon: a triangle clipped by six planes (near, far, the
+// view's sides) and then by up to thirteen lines (a cell's four, another such
+// polygon's nine) has at most 3 + 6 + 4 + 9 vertices.
 struct Polygon {
-  std::array<glm::dvec2, 20> v;
+  std::array<glm::dvec2, 24> v;
   int n = 0;
 };
 
 // Keeps a*x + b*y + c >= 0. Each crossing is interpolated from the vertex
-// inside, so a far vertex outside does not spoil the near one's precision.
+// nearer the line, so a far vertex does not spoil the near one's precision.
 Polygon clipped(const Polygon& in, double a, double b, double c) {
   Polygon out;
   for (int i = 0; i < in.n; ++i) {
@@ -53,8 +53,8 @@ Polygon clipped(const Polygon& in, double a, double b, double c) {
     const double dp = a * p.x + b * p.y + c, dq = a * q.x + b * q.y + c;
     if (dp >= 0.0) out.v[std::size_t(out.n++)] = p;
     if ((dp >= 0.0) != (dq >= 0.0)) {
-      const glm::dvec2 crossing =
-          dp >= 0.0 ? p + (dp / (dp - dq)) * (q - p) : q + (dq / (dq - dp)) * (p - q);
+      const glm::dvec2 crossing = std::fabs(dp) <= std::fabs(dq) ? p + (dp / (dp - dq)) * (q - p)
+                                                                 : q + (dq / (dq - dp)) * (p - q);
       out.v[std::size_t(out.n++)] = crossing;
     }
   }
@@ -112,6 +112,8 @@ constexpr GaussRule kGauss[5] = {
 // Texel coordinates beyond this make a triangle point-sampled: a double then
 // holds them to 2^-12 texel, and the tables' period reduction stays exact.
 constexpr double kMaxTexelCoordinate = 1099511627776.0;  // 2^40
+// View-space coordinates beyond this make a triangle point-sampled (below).
+constexpr double kMaxViewCoordinate = 1e12;
 // Quadrature intervals one cell may take before it is point-sampled instead
 // (a pixel at the horizon of builtin:checker-plane takes ~2.4e5).
 constexpr double kMaxBreakpoints = 1 << 22;
@@ -182,27 +184,56 @@ struct ReferenceTracer::AreaFrame {
     if (instance.degenerate[triangle]) return false;
     const std::uint32_t* corner = &instance.mesh->indices[triangle * 3];
     // Sutherland-Hodgman in view space against -z >= znear and -z <= zfar.
-    std::array<glm::dvec3, 6> poly{}, next{};
+    // A corner beyond 1e12 (huge-1e30's fan and wall) leaves neither the
+    // clipped polygon nor the affine weights (sums of products as large as
+    // its square) digits for the pixels near the eye: such a triangle is
+    // taken as present wherever the screen grid lists it, and point-sampled.
+    for (int k = 0; k < 3; ++k)
+      if (!glm::all(glm::lessThan(glm::abs(instance.viewPositions[corner[k]]),
+                                  glm::dvec3(kMaxViewCoordinate)))) {
+        out.finite = out.integrable = false;
+        out.lo = glm::dvec2(-HUGE_VAL);
+        out.hi = glm::dvec2(HUGE_VAL);
+        return true;
+      }
+    std::array<glm::dvec3, 12> poly{}, next{};
     int n = 3;
     for (int k = 0; k < 3; ++k) poly[std::size_t(k)] = instance.viewPositions[corner[k]];
-    const auto clipDistance = [&](double sign, double bound) {
+    // Keeps distance(v) >= 0, distance affine in v; each crossing from the
+    // vertex nearer the plane, so a far vertex costs no precision.
+    const auto clipBy = [&](const auto& distance) {
       int m = 0;
       for (int i = 0; i < n; ++i) {
         const glm::dvec3 p = poly[std::size_t(i)], q = poly[std::size_t((i + 1) % n)];
-        const double dp = sign * (-p.z - bound), dq = sign * (-q.z - bound);
+        const double dp = distance(p), dq = distance(q);
         if (dp >= 0.0) next[std::size_t(m++)] = p;
         if ((dp >= 0.0) != (dq >= 0.0))
-          next[std::size_t(m++)] =
-              dp >= 0.0 ? p + (dp / (dp - dq)) * (q - p) : q + (dq / (dq - dp)) * (p - q);
+          next[std::size_t(m++)] = std::fabs(dp) <= std::fabs(dq) ? p + (dp / (dp - dq)) * (q - p)
+                                                                  : q + (dq / (dq - dp)) * (p - q);
       }
       n = m;
       poly = next;
     };
-    clipDistance(1.0, tracer.znear_);
-    if (std::isfinite(tracer.zfar_)) clipDistance(-1.0, tracer.zfar_);
-    if (n < 3) return false;
+    clipBy([&](const glm::dvec3& v) { return -v.z - tracer.znear_; });
+    if (std::isfinite(tracer.zfar_))
+      clipBy([&](const glm::dvec3& v) { return tracer.zfar_ + v.z; });
+    // And to the view beyond the window by a pixel, before projecting: a
+    // corner projected 1e30 pixels away would leave the clipped polygon
+    // nothing of its precision (builtin:huge-1e30).
     const bool orthographic = tracer.camera_.type == Camera::Type::Orthographic;
     const double f = 1.0 / std::tan(double(tracer.camera_.yfov) / 2.0);
+    const double xLo = -1.0 - 2.0 / tracer.width_, xHi = 1.0 + 2.0 / tracer.width_;
+    const double yLo = -1.0 - 2.0 / tracer.height_, yHi = 1.0 + 2.0 / tracer.height_;
+    // NDC x = v.x * sx / depth, depth = -v.z (perspective) or 1.
+    const double sx =
+        orthographic ? 1.0 / (double(tracer.camera_.ymag) * tracer.aspect_) : f / tracer.aspect_;
+    const double sy = orthographic ? 1.0 / double(tracer.camera_.ymag) : f;
+    const auto depth = [&](const glm::dvec3& v) { return orthographic ? 1.0 : -v.z; };
+    if (n >= 3) clipBy([&](const glm::dvec3& v) { return v.x * sx - xLo * depth(v); });
+    if (n >= 3) clipBy([&](const glm::dvec3& v) { return xHi * depth(v) - v.x * sx; });
+    if (n >= 3) clipBy([&](const glm::dvec3& v) { return v.y * sy - yLo * depth(v); });
+    if (n >= 3) clipBy([&](const glm::dvec3& v) { return yHi * depth(v) - v.y * sy; });
+    if (n < 3) return false;
     out.screen.n = n;
     out.lo = glm::dvec2(HUGE_VAL);
     out.hi = -out.lo;
@@ -331,7 +362,7 @@ struct ReferenceTracer::AreaFrame {
     const glm::dvec2 qAxis(-pAxis.y, pAxis.x);
     const glm::dvec2 origin = poly.v[0];
     if (!breakpoints(poly, c, origin, pAxis, scratch)) return false;
-    std::array<double, 20> p{}, q{};
+    std::array<double, 24> p{}, q{};
     for (int i = 0; i < poly.n; ++i) {
       p[std::size_t(i)] = glm::dot(poly.v[std::size_t(i)] - origin, pAxis);
       q[std::size_t(i)] = glm::dot(poly.v[std::size_t(i)] - origin, qAxis);
