@@ -115,8 +115,10 @@ class ReferenceTracer {
   // Gauss-Legendre quadrature between every crossing of a texel line by the
   // polygon's edges. Triangles that cannot be integrated so (MASK or BLEND
   // materials, vertex colours, textures whose alpha is read, texture
-  // coordinates beyond 2^40 texels) make their cells split, and the cells of
-  // the last level that still hold them take the S x S grid's rays there.
+  // coordinates beyond 2^40 texels, a corner beyond 1e12 in view space, a
+  // texture whose tables would pass 512 MB) make their cells split, and the
+  // cells of the last level that still hold them take the S x S grid's rays
+  // there.
   struct AreaSettings {
     int samplesPerAxis = 16;  // S: the rays of a point-sampled pixel, per axis
     int gaussNodes = 3;       // per interval between breakpoints, 1-5
