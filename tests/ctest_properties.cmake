@@ -47,3 +47,14 @@ set_tests_properties([=[Soak.ThousandFramesOfAnAnimatedSequenceKeepResidentMemor
 set_tests_properties([=[Cli/StabilityReport.PassesEveryCheck/samples_random_triangles]=]
                      [=[Cli/StabilityReport.PassesEveryCheck/random_triangles]=]
                      PROPERTIES LABELS tsan_repeat)
+
+# The area reference on builtin:checker-plane (a pixel column costs the ~1.2e5
+# texel rows it crosses: 12 s in Release on 2 threads) and on the huge-
+# coordinate scenes (9 s, most of it their 16x16 rays): double-precision lab
+# code whose paths the floor, coverage and overlap cases of
+# tests/test_reference_area.cpp run in milliseconds, so only the Release
+# suite runs them.
+set_tests_properties([=[ReferenceArea.CheckerPlaneConvergesAndMatchesDenseRaysWhereThoseConverge]=]
+                     PROPERTIES COST 12 LABELS heavy_arithmetic)
+set_tests_properties([=[ReferenceArea.HugeCoordinatesTakeTheRaysWhereTheyCannotBeClipped]=]
+                     PROPERTIES COST 9 LABELS heavy_arithmetic)

@@ -4,8 +4,11 @@
 // sample is shaded.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "api/renderer.h"
 #include "lab/image/image_difference.h"
@@ -70,6 +73,71 @@ TEST(Multisampling, ShadingPerSampleResolvesTextureDetail) {
               kHeight, one, sixteen, sixteenPerSample);
   EXPECT_GT(sixteen, one);
   EXPECT_GT(sixteenPerSample, sixteen + 6.0);
+}
+
+// At 4 and 16 samples a sample is shaded at the centre of its own cell of
+// the pixel's 2x2 or 4x4 grid, so the samples' footprints tile the pixel:
+// one sample per cell, each cell the one its position lies in or borders.
+TEST(Multisampling, ShadingOffsetsTakeOneCellEach) {
+  for (const int count : {4, 16}) {
+    const SamplePattern& pattern = samplePattern(count);
+    const int side = count == 4 ? 2 : 4, cell = kSampleUnitsPerPixel / side;
+    std::vector<int> taken(std::size_t(count), 0);
+    for (int k = 0; k < count; ++k) {
+      const SampleOffset at = pattern.offsets[k], centre = shadingOffset(pattern, k);
+      const int cx = (centre.x + kSampleUnitsPerPixel / 2) / cell;
+      const int cy = (centre.y + kSampleUnitsPerPixel / 2) / cell;
+      ASSERT_EQ(centre.x, -kSampleUnitsPerPixel / 2 + cx * cell + cell / 2) << count << " " << k;
+      ASSERT_EQ(centre.y, -kSampleUnitsPerPixel / 2 + cy * cell + cell / 2) << count << " " << k;
+      ++taken[std::size_t(cy * side + cx)];
+      // Within 1/16 pixel of its cell (the closed square), in each axis.
+      EXPECT_LE(std::abs(at.x - centre.x), cell / 2 + 1) << count << " " << k;
+      EXPECT_LE(std::abs(at.y - centre.y), cell / 2 + 1) << count << " " << k;
+    }
+    for (const int n : taken) EXPECT_EQ(n, 1) << count;
+  }
+  for (const int count : {1, 2, 8})
+    for (int k = 0; k < count; ++k) {
+      EXPECT_EQ(shadingOffset(samplePattern(count), k).x, samplePattern(count).offsets[k].x);
+      EXPECT_EQ(shadingOffset(samplePattern(count), k).y, samplePattern(count).offsets[k].y);
+    }
+}
+
+// Inside a plane, 16 samples shaded per sample are the frame at 4x4 the
+// resolution box-downsampled: the same lookups (each cell's centre, a
+// quarter of the pixel's footprint), summed in another order. Shaded at the
+// standard positions instead, each lookup would read the plane up to 3/16
+// pixel away from its cell's centre.
+TEST(Multisampling, SixteenSamplesShadedPerSampleAreTheFrameAtFourTimesTheResolution) {
+  const Scene scene = makeBuiltinScene("checker-plane");
+  const Camera camera = firstCameraOrDefault(scene);
+  const int width = 64, height = 36;
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.filter = Filter::Anisotropic;
+  settings.samples = 16;
+  settings.shadingRate = ShadingRate::Sample;
+  const Frame sixteen = renderOnce(scene, camera, settings);
+  settings.width = 4 * width;
+  settings.height = 4 * height;
+  settings.samples = 1;
+  const Frame large = renderOnce(scene, camera, settings);
+  // Rows below the plane's far edge (the horizon lies at y ~ 14.9), where
+  // every sample of a pixel sees the plane.
+  double worst = 0.0;
+  for (int y = 17; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0.0;
+        for (int j = 0; j < 4; ++j)
+          for (int i = 0; i < 4; ++i)
+            sum +=
+                large.rgba[(std::size_t(4 * y + j) * std::size_t(4 * width) + 4 * x + i) * 4 + c];
+        const double got = sixteen.rgba[(std::size_t(y) * width + x) * 4 + c];
+        worst = std::max(worst, std::fabs(got - sum / 16.0));
+      }
+  EXPECT_LT(worst, 1e-4);
 }
 
 }  // namespace

@@ -76,12 +76,13 @@ TEST(ReportSamples, WritesTheTableTheCsvAndThePlot) {
   EXPECT_EQ(rows, 6);
   EXPECT_EQ(psnr["builtin:showcase"].count("1/any"), 1u);
   EXPECT_EQ(psnr["builtin:showcase"].count("1/pixel"), 0u);
-  // Measured at 96x54 against 8x8 reference rays per pixel: slivers (thin
-  // and tiny untextured triangles: edges are all its error) 20.0 dB at 1
-  // sample, 32.9 dB at 16 either way; showcase 24.1 dB at 1 sample, 32.5 dB
-  // at 16 shaded per sample, but only 25.1 dB at 16 shaded per pixel: its
-  // textures are still filtered for the whole pixel, not averaged over the
-  // samples as the reference's box is, and that is most of its error.
+  // Measured at 96x54 against the area reference (8x8 rays where cells
+  // overlap; 2026-11-28): slivers (thin and tiny untextured triangles: edges
+  // are all its error) 20.0 dB at 1 sample, 33.5 dB at 16 either way;
+  // showcase 24.1 dB at 1 sample, 35.4 dB at 16 shaded per sample, but only
+  // 25.4 dB at 16 shaded per pixel: its textures are still filtered for the
+  // whole pixel, not averaged over the samples as the reference's box is,
+  // and that is most of its error.
   for (const char* rate : {"16/pixel", "16/sample"})
     EXPECT_GT(psnr["builtin:slivers"][rate], psnr["builtin:slivers"]["1/any"] + 6.0) << rate;
   EXPECT_GT(psnr["builtin:showcase"]["16/sample"], psnr["builtin:showcase"]["1/any"] + 6.0);
@@ -104,7 +105,7 @@ TEST(ReportSamples, FilterOptionIsApplied) {
   const auto header = [&](const std::string& filter) {
     const RunResult r =
         run("report samples --scenes builtin:checker-plane --width 32 --height 18 "
-            "--samples 1 --reference-spp 2 --rounds 1 --frames 1 --threads 2 " +
+            "--samples 1 --reference rays --reference-spp 2 --rounds 1 --frames 1 --threads 2 " +
             filter + " --out-dir " + dir.string());
     EXPECT_EQ(r.exitCode, 0) << r.err;
     std::istringstream csv(fileText(dir / "samples.csv"));
@@ -130,6 +131,8 @@ TEST(ReportSamples, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(run("report samples --samples 4,,8" + tail), "--samples: empty entry");
   expectOneLineError(run("report samples --samples 32" + tail), "--samples: '32'");
   expectOneLineError(run("report samples --reference-spp 0" + tail), "--reference-spp");
+  expectOneLineError(run("report samples --reference exact" + tail),
+                     "--reference: unknown reference 'exact' (area, rays)");
   expectOneLineError(
       run("report samples --width 16 --height 16 --scenes builtin:showcase,builtin:nope "
           "--out-dir " +

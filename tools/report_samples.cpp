@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "api/renderer.h"
@@ -29,6 +30,7 @@
 #include "render_options.h"
 #include "report_output.h"
 #include "svg_plot.h"
+#include "window/sample_pattern.h"
 
 namespace quadra {
 namespace {
@@ -38,7 +40,8 @@ namespace fs = std::filesystem;
 constexpr const char* kSamplesUsage =
     R"(usage: quadra report samples [--width W] [--height H] [--threads N] [--isa ISA]
                              [--frames K] [--rounds R] [--scenes LIST] [--samples LIST]
-                             [--filter F] [--aniso N] [--reference-spp N] [--out-dir DIR]
+                             [--filter F] [--aniso N] [--reference-spp N]
+                             [--reference area|rays] [--out-dir DIR]
                              [--allow-path DIR] [--max-memory SIZE]
   --width W --height H  frame size (default 480x270: the reference frames of the
                         default scenes then take 1-8 s each on two threads, ~50 s in
@@ -69,14 +72,18 @@ constexpr const char* kSamplesUsage =
                         glTF sampler's) and the anisotropic maximum (default 16)
   --reference-spp N     the reference's subsamples per pixel axis, N x N per pixel
                         (default 16)
+  --reference KIND      area (default): each pixel's area integrated exactly where its
+                        visible triangles do not overlap on screen (opaque, textured or
+                        not, no vertex colours), the N x N rays elsewhere; rays: the
+                        N x N rays everywhere (point samples of every texture)
   --out-dir DIR         where samples.csv and samples.svg go (default out)
 Shading rates: pixel shades once per pixel and visible triangle (multisampling),
 sample shades every sample (supersampling); at 1 sample they are the same frame,
 rendered once. Each scene is seen through its own first camera, unlit, with its
 samplers' own filters, as `quadra render SCENE --samples N --shading-rate RATE`
 draws it. PSNR (peak 1) and max difference over R, G, B against the reference
-tracer's box-filtered frame (N x N exact ray hits per pixel, level-0 bilinear
-textures).
+tracer's box-filtered frame (exact area integrals or N x N exact ray hits per
+pixel, level-0 bilinear textures).
 )";
 
 // 16 x 16 rays per pixel. Measured against 48 x 48 at 240x135 (PSNR, dB):
@@ -89,6 +96,9 @@ textures).
 // converged. The report prints each scene's half-rate check so that a reader
 // sees where the reference limits a row.
 constexpr int kDefaultReferenceSpp = 16;
+
+// Which reference frame the table is scored against (--reference).
+enum class ReferenceKind { Area, Rays };
 
 // Scenes the default list leaves out, and why (kSamplesUsage says the same).
 // z-fighting's frame is one quad filling the view in front of another: no
@@ -116,6 +126,7 @@ struct SamplesOptions {
   std::string scenes;
   std::vector<int> sampleCounts = {1, 4, 8, 16};
   int referenceSpp = kDefaultReferenceSpp;
+  ReferenceKind reference = ReferenceKind::Area;
   std::string outDir = "out";
   std::optional<Filter> filter;  // unset: the scenes' samplers decide
   int maxAniso = 16;
@@ -143,6 +154,8 @@ std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args)
   });
   addFilterOptions(parser, options.filter, options.maxAniso, options.lodBias);
   parser.integer("--reference-spp", options.referenceSpp, 1, 256);
+  parser.choice("--reference", "reference",
+                {{"area", ReferenceKind::Area}, {"rays", ReferenceKind::Rays}}, options.reference);
   parser.text("--out-dir", options.outDir);
   addAllowPathOption(parser, options.load);
   addMaxMemoryOption(parser, options.load);
@@ -201,6 +214,10 @@ struct SceneResult {
   std::size_t triangles = 0;
   double referenceSeconds = 0.0;
   double referenceCheckPsnr = NAN;  // the half-rate reference against the reference
+  double exactShare = NAN;          // area reference: the share of the area integrated exactly
+  // Per sample count: the tracer's own frame from exact hits and point
+  // lookups at the engine's sample positions, against the reference.
+  std::vector<std::pair<int, ImageDifference>> points;
   std::vector<Measured> rows;
 };
 
@@ -225,17 +242,40 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
   const Camera camera = firstCameraOrDefault(scene);
   const auto referenceStart = std::chrono::steady_clock::now();
   const ref::ReferenceTracer tracer(scene, camera, options.width, options.height);
-  const Image ideal = arena.execute([&] { return tracer.render(options.referenceSpp); });
+  // The area reference at half the rays and fewer quadrature nodes is its
+  // check (below): 2 Gauss nodes against 1 (the midpoint) between breakpoints.
+  const auto referenceFrame = [&](int spp, int gaussNodes, ref::ReferenceTracer::AreaStats* stats) {
+    return arena.execute([&] {
+      return options.reference == ReferenceKind::Rays
+                 ? tracer.render(spp)
+                 : tracer.renderArea({.samplesPerAxis = spp, .gaussNodes = gaussNodes}, stats);
+    });
+  };
+  ref::ReferenceTracer::AreaStats stats;
+  const Image ideal = referenceFrame(options.referenceSpp, 2, &stats);
   result.referenceSeconds = secondsSince(referenceStart);
+  if (options.reference == ReferenceKind::Area) result.exactShare = stats.exactArea;
   // How near the truth the reference is: the PSNR of the same frame at half
-  // the rays per axis against it. A regular grid's errors (at edges, and
-  // texture aliasing) halve per doubling with the same sign, so the
-  // difference then equals the reference's own error; errors less alike
-  // make it larger. The reference's own PSNR is about this or higher, and
-  // rows near it measure the reference as much as the engine.
+  // the rays per axis (and, for the area reference, the midpoint rule
+  // between breakpoints instead of 2 Gauss nodes) against it. A regular grid's errors (at edges,
+  // and texture aliasing) halve per doubling with the same sign, so the difference then equals the
+  // reference's own error; errors less alike make it larger. The reference's own PSNR is about this
+  // or higher, and rows near it measure the reference as much as the engine.
   if (options.referenceSpp >= 2) {
-    const Image coarse = arena.execute([&] { return tracer.render(options.referenceSpp / 2); });
+    const Image coarse = referenceFrame(options.referenceSpp / 2, 1, nullptr);
     result.referenceCheckPsnr = imageDifference(coarse, ideal).psnr;
+  }
+
+  // The best a sampler at those N positions resolves to without filtering
+  // its textures: for untextured scenes the limit of N coverage samples.
+  for (const int count : options.sampleCounts) {
+    const SamplePattern& pattern = samplePattern(count);
+    std::vector<glm::dvec2> offsets;
+    for (int k = 0; k < pattern.count; ++k)
+      offsets.push_back(glm::dvec2(pattern.offsets[k].x, pattern.offsets[k].y) /
+                        double(kSampleUnitsPerPixel));
+    const Image points = arena.execute([&] { return tracer.renderPoints(offsets); });
+    result.points.push_back({count, imageDifference(points, ideal)});
   }
 
   RenderSettings settings;
@@ -414,8 +454,9 @@ int runSamplesReport(const std::vector<std::string>& args) {
   const std::string settings =
       std::to_string(options.width) + "x" + std::to_string(options.height) + ", " +
       std::to_string(renderer.threadCount()) + " threads, isa " + isaName(renderer.isa()) +
-      ", reference " + std::to_string(options.referenceSpp) + "x" +
-      std::to_string(options.referenceSpp) + " per pixel, filter " +
+      ", reference " + (options.reference == ReferenceKind::Area ? "area integrals, else " : "") +
+      std::to_string(options.referenceSpp) + "x" + std::to_string(options.referenceSpp) +
+      " rays per pixel, filter " +
       (options.filter ? filterName(*options.filter) + std::string(" (max aniso ") +
                             std::to_string(options.maxAniso) + ")"
                       : std::string("the samplers'"));
@@ -425,16 +466,38 @@ int runSamplesReport(const std::vector<std::string>& args) {
       << " frames (configurations take turns); PSNR (peak 1) and max diff over R, G, B against "
          "the reference tracer's frame. Shading: pixel = once per pixel and visible triangle, "
          "sample = every sample; at 1 sample the two are one frame.\n\n"
-      << tableText(results) << "\nReference frames: " << options.referenceSpp << "x"
-      << options.referenceSpp << " rays per pixel, " << options.threads
+      << tableText(results) << "\nReference frames: "
+      << (options.reference == ReferenceKind::Area
+              ? "each pixel's area integrated exactly where its visible triangles do not "
+                "overlap on screen, else "
+              : "")
+      << options.referenceSpp << "x" << options.referenceSpp << " rays per pixel, "
+      << options.threads
       << " threads. Check: the PSNR of the same frame traced at half the rays per axis "
-         "against it; the reference's own PSNR is about that or higher, and rows near it "
-         "measure the reference as much as quadra.\n\n"
-         "| scene | triangles | reference s | check dB |\n|---|---:|---:|---:|\n";
+      << (options.reference == ReferenceKind::Area
+              ? "(and 1 Gauss node between breakpoints, not 2) "
+              : "")
+      << "against it; the reference's own PSNR is about that or higher, and rows near it "
+         "measure the reference as much as quadra. Exact: the share of the frame's area "
+         "integrated exactly (the rest took rays).\n\n"
+         "| scene | triangles | reference s | check dB | exact % |\n|---|---:|---:|---:|---:|\n";
   for (const SceneResult& scene : results)
     out << "| " << scene.label << " | " << scene.triangles << " | "
         << format("%.1f", scene.referenceSeconds) << " | "
-        << psnrText(scene.referenceCheckPsnr, "-") << " |\n";
+        << psnrText(scene.referenceCheckPsnr, "-") << " | "
+        << (std::isnan(scene.exactShare) ? std::string("-")
+                                         : format("%.1f", 100.0 * scene.exactShare))
+        << " |\n";
+
+  out << "\nThe reference tracer's own frame from exact hits and level-0 point lookups at "
+         "the engine's N sample positions (no texture filtering), against the reference: "
+         "what N point samples there resolve to at best, for untextured scenes the limit "
+         "of N coverage samples.\n\n| scene | samples | points PSNR dB | max diff |\n"
+         "|---|---:|---:|---:|\n";
+  for (const SceneResult& scene : results)
+    for (const auto& [count, difference] : scene.points)
+      out << "| " << scene.label << " | " << count << " | " << psnrText(difference.psnr) << " | "
+          << format("%.3f", difference.maxAbs) << " |\n";
 
   const fs::path csvPath = outDir / "samples.csv", svgPath = outDir / "samples.svg";
   const std::string csv = csvText(results), svg = svgText(results, settings);

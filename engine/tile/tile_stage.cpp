@@ -428,14 +428,15 @@ void fillSamplePlanes(const TileFrame& frame, TileScratch& s) {
 }
 
 // Shading pass: each pixel's visible triangles once, or with several samples
-// shaded one by one, each plane as a one-sample tile shaded at its sample.
+// shaded one by one, each plane as a one-sample tile shaded where its sample
+// is shaded (shadingOffset: its cell's centre at 4 and 16 samples).
 void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
   if (frame.samples.count > 1 && !frame.shadeSamples) return shadePixels(frame, kernels, s);
   s.allMixed = true;
   if (s.visibleTriangles.empty()) return;
   for (int k = 0; k < frame.samples.count; ++k) {
     TileBuffers& plane = s.planes[k];
-    rebaseShadePlanes(frame.draws, plane, frame.samples.offsets[k], s);
+    rebaseShadePlanes(frame.draws, plane, shadingOffset(frame.samples, k), s);
     shadePlane(frame.draws, kernels, plane.visible, plane, s);
   }
 }
@@ -493,7 +494,8 @@ bool composedInDepthOrder(const ShadeState& shade) {
 }
 
 // Calls draw(triangle, planes, plane) for every sample plane, with the
-// triangle and its first planeCount planes moved to that plane's sample.
+// triangle and its depth plane moved to that plane's sample, and its next
+// planeCount - 1 planes (1/w, attributes) to where the sample is shaded.
 template <class DrawAtSample>
 void forEachSample(const TileFrame& frame, const TileTriangle& t, int planeCount,
                    DrawAtSample&& draw) {
@@ -501,7 +503,9 @@ void forEachSample(const TileFrame& frame, const TileTriangle& t, int planeCount
   Plane moved[2 + kMaxShadedAttributes];
   for (int k = 0; k < frame.samples.count; ++k) {
     const SampleOffset o = frame.samples.offsets[k];
-    for (int j = 0; j < planeCount; ++j) moved[j] = t.planes[j].atSample(o);
+    const SampleOffset shaded = frame.shadeSamples ? shadingOffset(frame.samples, k) : o;
+    if (planeCount > 0) moved[0] = t.planes[0].atSample(o);
+    for (int j = 1; j < planeCount; ++j) moved[j] = t.planes[j].atSample(shaded);
     draw(atSample(*t.triangle, o), moved, k);
   }
 }

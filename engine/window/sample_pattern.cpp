@@ -34,7 +34,21 @@ constexpr SamplePattern kSixteen{16,
                                   {6, 7},
                                   {-7, -8}}};
 
+// Cell centres in 1/16 pixel, sample by sample (sample_pattern.h says how
+// each was chosen; tests/test_multisampling.cpp checks one sample a cell).
+constexpr SampleOffset kFourCells[4] = {{-4, -4}, {4, -4}, {-4, 4}, {4, 4}};
+constexpr SampleOffset kSixteenCells[16] = {{2, 2},  {-2, -2}, {-2, 2}, {2, -2}, {-6, -2}, {2, 6},
+                                            {6, 2},  {6, -6},  {-2, 6}, {2, -6}, {-2, -6}, {-6, 6},
+                                            {-6, 2}, {6, -2},  {6, 6},  {-6, -6}};
+
 }  // namespace
+
+SampleOffset shadingOffset(const SamplePattern& pattern, int k) {
+  QUADRA_CHECK(k >= 0 && k < pattern.count);
+  if (pattern.count == 4) return kFourCells[k];
+  if (pattern.count == 16) return kSixteenCells[k];
+  return pattern.offsets[k];
+}
 
 int SamplePattern::reachSubpixels() const {
   int reach = 0;

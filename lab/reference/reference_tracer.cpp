@@ -382,8 +382,6 @@ glm::dvec2 ReferenceTracer::texCoord(const TracerHit& hit, int set) const {
   return sum;
 }
 
-namespace {
-
 // KHR_texture_transform in double, step by step as the extension defines it
 // (scale, then rotation, then offset), apart from the engine's matrix
 // (TextureTransform::matrix) so that the comparison checks it.
@@ -393,8 +391,6 @@ glm::dvec2 transformed(const TextureTransform& transform, glm::dvec2 uv) {
   uv = glm::dvec2(c * uv.x + s * uv.y, c * uv.y - s * uv.x);
   return uv + glm::dvec2(transform.offset);
 }
-
-}  // namespace
 
 glm::dvec4 ReferenceTracer::surfaceColour(const TracerHit& hit) const {
   const PreparedInstance& instance = instances_[hit.instance];
@@ -465,6 +461,24 @@ Image ReferenceTracer::render(int samplesPerAxis) const {
         for (int c = 0; c < 4; ++c) out[c] = float(sum[c] * weight);
       }
     }
+  });
+  return image;
+}
+
+Image ReferenceTracer::renderPoints(const std::vector<glm::dvec2>& offsets) const {
+  QUADRA_CHECK(!offsets.empty());
+  Image image(width_, height_);
+  const double weight = 1.0 / double(offsets.size());
+  tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<TracerHit> scratch;
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < width_; ++x) {
+        glm::dvec4 sum(0.0);
+        for (const glm::dvec2& offset : offsets)
+          sum += shade(glm::dvec2(x + 0.5, y + 0.5) + offset, scratch);
+        float* out = image.texel(x, y);
+        for (int c = 0; c < 4; ++c) out[c] = float(sum[c] * weight);
+      }
   });
   return image;
 }

@@ -59,6 +59,9 @@ glm::dvec4 sampleBilinear(const Image& image, const SamplerState& sampler, const
 glm::dvec4 sampleBilinearPremultiplied(const Image& image, const SamplerState& sampler,
                                        const glm::dvec2& uv);
 
+// KHR_texture_transform applied to texture coordinates, in double.
+glm::dvec2 transformed(const TextureTransform& transform, glm::dvec2 uv);
+
 // How shade(), nearestHit() and render() find the triangles a primary ray
 // may hit. Both give bit-identical frames; Exhaustive is the plain loop the
 // screen grid is tested against.
@@ -94,6 +97,39 @@ class ReferenceTracer {
   // The whole frame: samplesPerAxis^2 stratified subsamples per pixel, box
   // filtered; premultiplied linear RGBA. Rows run in parallel.
   Image render(int samplesPerAxis) const;
+
+  // Each pixel the mean of its rays through the given points (offsets in
+  // pixels from its centre, y down): what a sampler with exact hits and
+  // point lookups at those positions would resolve to, e.g. the engine's
+  // N-sample pattern (window/sample_pattern.h).
+  Image renderPoints(const std::vector<glm::dvec2>& offsets) const;
+
+  // The same box-filtered frame, integrated over each pixel's area where
+  // that can be done exactly (reference_area.cpp), point-sampled elsewhere.
+  // A cell (the pixel, or a quarter of it, down to maxDepth splits) whose
+  // visible triangles do not overlap on screen is the sum of their exact
+  // integrals over their parts of it: the triangle's screen polygon (near and
+  // far planes clipped in view space, then clipped to the cell), on which the
+  // level-0 bilinear texture is integrated along lines of constant depth
+  // (where the perspective map is affine, BilinearIntegral) and across them by
+  // Gauss-Legendre quadrature between every crossing of a texel line by the
+  // polygon's edges. Triangles that cannot be integrated so (MASK or BLEND
+  // materials, vertex colours, textures whose alpha is read, texture
+  // coordinates beyond 2^40 texels, a corner beyond 1e12 in view space, a
+  // texture whose tables would pass 512 MB) make their cells split, and the
+  // cells of the last level that still hold them take the S x S grid's rays
+  // there.
+  struct AreaSettings {
+    int samplesPerAxis = 16;  // S: the rays of a point-sampled pixel, per axis
+    int gaussNodes = 3;       // per interval between breakpoints, 1-5
+    int maxDepth = 2;         // splits of a pixel into quarters (while S allows)
+  };
+  struct AreaStats {
+    std::int64_t exactCells = 0, sampledCells = 0;  // leaves of the pixels' cell trees
+    double exactArea = 0.0;      // the frame's share integrated exactly (the rest took rays)
+    std::int64_t intervals = 0;  // quadrature intervals integrated
+  };
+  Image renderArea(const AreaSettings& settings, AreaStats* stats = nullptr) const;
 
  private:
   struct PreparedInstance {
@@ -145,6 +181,8 @@ class ReferenceTracer {
   // dot(direction, e1 x e2).
   glm::dvec3 planeWeights(const PreparedInstance& instance, std::size_t triangle,
                           const Ray& ray) const;
+
+  struct AreaFrame;  // reference_area.cpp
 
   const Scene& scene_;
   Camera camera_;
