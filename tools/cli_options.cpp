@@ -191,10 +191,14 @@ void addFilterOptions(CommandOptions& options, std::optional<Filter>& filter, in
 }
 
 void addLodRangeOptions(CommandOptions& options, float& minLod, float& maxLod) {
-  for (auto [name, target] : {std::pair{"--min-lod", &minLod}, std::pair{"--max-lod", &maxLod}})
-    options.value(name, [target](const std::string& option, const std::string& text) {
+  // A named pointer, not a structured binding: clang 14, which builds the
+  // ASan suite, cannot capture a binding.
+  for (const auto& bound : {std::pair{"--min-lod", &minLod}, std::pair{"--max-lod", &maxLod}}) {
+    float* target = bound.second;
+    options.value(bound.first, [target](const std::string& option, const std::string& text) {
       *target = float(parseNumber(option, text));
     });
+  }
 }
 
 void addThreadsOption(CommandOptions& options, int& threads) {
