@@ -151,12 +151,16 @@ void describeRender(const RenderSettings& settings, FrameMetadata& metadata) {
 }
 
 void addCameraOptions(CommandOptions& options, CameraOverrides& overrides) {
-  for (auto [name, target] :
+  // A named pointer, not a structured binding: clang 14, which builds the
+  // ASan suite, cannot capture a binding.
+  for (const auto& bound :
        {std::pair{"--eye", &overrides.eye}, std::pair{"--target", &overrides.target},
-        std::pair{"--up", &overrides.up}})
-    options.value(name, [target](const std::string& option, const std::string& value) {
+        std::pair{"--up", &overrides.up}}) {
+    auto* target = bound.second;
+    options.value(bound.first, [target](const std::string& option, const std::string& value) {
       *target = parseVector(option, value);
     });
+  }
   options.value("--fovy", [&overrides](const std::string& option, const std::string& value) {
     overrides.fovyDegrees = float(parseNumber(option, value));
     if (!(*overrides.fovyDegrees > 0.0f && *overrides.fovyDegrees < 180.0f))
