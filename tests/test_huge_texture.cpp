@@ -16,6 +16,7 @@
 #include "core/parallel.h"
 #include "render_helpers.h"
 #include "sampler_helpers.h"
+#include "sanitizer_build.h"
 
 namespace quadra {
 namespace {
@@ -32,9 +33,7 @@ double physicalMemoryGiB() {
 }
 
 TEST(HugeTexture, SixteenThousandSquaredSamplesExactlyAtTheFarCorner) {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-  GTEST_SKIP() << "16384^2 needs ~7 GiB; not under sanitizers";
-#endif
+  if (kSanitizedBuild) GTEST_SKIP() << "16384^2 needs ~7 GiB; not under sanitizers";
   if (physicalMemoryGiB() < 12.0)
     GTEST_SKIP() << "16384^2 needs ~7 GiB; this machine has " << physicalMemoryGiB() << " GiB";
   static_assert(std::int64_t(kSide) * kSide == kMaxImagePixels, "the largest accepted texture");

@@ -16,6 +16,7 @@
 
 #include "api/renderer.h"
 #include "lab/scene/builtin_scenes.h"
+#include "sanitizer_build.h"
 #include "scene/animation.h"
 #include "scene/gltf_loader.h"
 
@@ -25,11 +26,7 @@ namespace {
 // ASan's quarantine holds freed memory back and TSan keeps shadow state: under
 // them resident memory measures the sanitizer, so the frames are rendered
 // (and checked by it) but the 1% is not.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+constexpr bool kSanitized = kSanitizedBuild;
 
 constexpr int kFrames = 1000;
 constexpr int kSettledFrame = 100;
