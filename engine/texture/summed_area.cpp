@@ -432,23 +432,28 @@ void SummedAreaTable::prefetch(const TextureView& view, const CornerIndices& cor
                      first(corners.n[1], height_, view.wrapV)};
   // Each corner reads entries (m .. m + 2, n .. n + 2): three rows of 96
   // bytes, two cache lines each at most.
+  // Only entries inside the table: a box's bounds may lie outside it, and
+  // forming an address beyond the vector is undefined even for a prefetch
+  // (clang's UBSan pointer-overflow check, SamplerHardCases.*).
+  const auto prefetchEntry = [this](long column, long row, int channel) {
+    if (column >= 0 && row >= 0 && column <= width_ && row <= height_)
+      __builtin_prefetch(entry(column, row) + channel);
+  };
   for (const long row0 : n)
-    for (const long column : m) {
-      if (column < 0 || row0 < 0) continue;
+    for (const long column : m)
       for (long row = row0; row <= row0 + 2; ++row) {
-        __builtin_prefetch(entry(column, row));
-        __builtin_prefetch(entry(column + 2, row) + 3);
+        prefetchEntry(column, row, 0);
+        prefetchEntry(column + 2, row, 3);
       }
-    }
   if (!wrapped) return;
   // The whole columns (the last row) and whole rows (the last column) a
   // wrapped box may count.
   for (const long column : m) {
-    __builtin_prefetch(entry(column, height_));
-    __builtin_prefetch(entry(column + 2, height_) + 3);
+    prefetchEntry(column, height_, 0);
+    prefetchEntry(column + 2, height_, 3);
   }
   for (const long row0 : n)
-    for (long row = row0; row <= row0 + 2; ++row) __builtin_prefetch(entry(width_, row));
+    for (long row = row0; row <= row0 + 2; ++row) prefetchEntry(width_, row, 0);
 }
 
 }  // namespace quadra
