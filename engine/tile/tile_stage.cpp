@@ -324,6 +324,59 @@ std::uint32_t sortJobsByRun(TileScratch& s) {
   return runs;
 }
 
+// shadePixels' jobs: each triangle of a pixel whose samples differ, at the
+// mean of its samples' positions there; those pixels leave uniformVisible,
+// and their samples no triangle holds take the clear colour. Per sample
+// count, so the loops over a pixel's samples unroll (this ran ~130
+// instructions a pixel with the count a variable; callgrind, dense-mesh).
+template <int kSamples>
+void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
+  TileBuffers* const planes = s.planes.get();
+  s.jobs.clear();
+  s.jobs.reserve(s.mixedPixels.size() * 2);
+  // Per set of samples (bit j: sample j), the mean of their offsets in
+  // pixels, the sum scaled once: with 16 samples computed per job instead
+  // (2^16 sets).
+  constexpr bool kTable = kSamples <= 8;
+  float meanX[kTable ? 1 << kSamples : 1], meanY[kTable ? 1 << kSamples : 1];
+  const auto meanOf = [&](std::uint32_t mask, float& x, float& y) {
+    int sumX = 0, sumY = 0, held = 0;
+    for (int j = 0; j < kSamples; ++j) {
+      const int in = int(mask >> j) & 1;
+      sumX += in * frame.samples.offsets[j].x, sumY += in * frame.samples.offsets[j].y;
+      held += in;
+    }
+    const float scale = 1.0f / float(held * kSampleUnitsPerPixel);
+    x = float(sumX) * scale, y = float(sumY) * scale;
+  };
+  if constexpr (kTable)
+    for (std::uint32_t mask = 1; mask < (1u << kSamples); ++mask)
+      meanOf(mask, meanX[mask], meanY[mask]);
+  std::uint32_t ids[kSamples];
+  for (const std::uint16_t p : s.mixedPixels) {
+    s.uniformVisible[p] = kNoTriangle;
+    for (int k = 0; k < kSamples; ++k) ids[k] = planes[k].visible[p];
+    const float x = float(TileBuffers::xAt(p)), y = float(TileBuffers::yAt(p));
+    for (std::uint32_t left = (1u << kSamples) - 1; left != 0;) {
+      const std::uint32_t id = ids[__builtin_ctz(left)];
+      std::uint32_t mask = 0;
+      for (int j = 0; j < kSamples; ++j) mask |= std::uint32_t(ids[j] == id) << j;
+      left &= ~mask;
+      if (id == kNoTriangle) {
+        for (std::uint32_t m = mask; m != 0; m &= m - 1)
+          for (int c = 0; c < 4; ++c) planes[__builtin_ctz(m)].color[c][p] = frame.clearColor[c];
+        continue;
+      }
+      float dx, dy;
+      if constexpr (kTable)
+        dx = meanX[mask], dy = meanY[mask];
+      else
+        meanOf(mask, dx, dy);
+      s.jobs.push_back({x + dx, y + dy, id, p, std::uint16_t(mask)});
+    }
+  }
+}
+
 // Multisampled shading, once per pixel and visible triangle. Pixels whose
 // samples one triangle holds (or none) are shaded in plane 0 at their centre
 // like a one-sample tile; only plane 0 holds their colour (fillSamplePlanes
@@ -348,36 +401,19 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
 
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
   s.uniformVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
-  s.jobs.clear();
-  std::uint32_t ids[kMaxSamples];
-  float
-      meanScale[kMaxSamples + 1];  // per count of samples: their offsets' sum to a mean, in pixels
-  for (int held = 1; held <= kMaxSamples; ++held)
-    meanScale[held] = 1.0f / float(held * kSampleUnitsPerPixel);
-  for (const std::uint16_t p : s.mixedPixels) {
-    s.uniformVisible[p] = kNoTriangle;
-    for (int k = 0; k < samples; ++k) ids[k] = planes[k].visible[p];
-    const float x = float(TileBuffers::xAt(p)), y = float(TileBuffers::yAt(p));
-    for (std::uint32_t left = (1u << samples) - 1; left != 0;) {
-      const int k = __builtin_ctz(left);
-      const std::uint32_t id = ids[k];
-      std::uint32_t mask = 0;
-      for (int j = k; j < samples; ++j) mask |= std::uint32_t(ids[j] == id) << j;
-      left &= ~mask;
-      if (id == kNoTriangle) {
-        for (std::uint32_t m = mask; m != 0; m &= m - 1)
-          for (int c = 0; c < 4; ++c) planes[__builtin_ctz(m)].color[c][p] = frame.clearColor[c];
-        continue;
-      }
-      int sumX = 0, sumY = 0, held = 0;
-      for (std::uint32_t m = mask; m != 0; m &= m - 1, ++held) {
-        const SampleOffset o = frame.samples.offsets[__builtin_ctz(m)];
-        sumX += o.x, sumY += o.y;
-      }
-      const float scale = meanScale[held];
-      s.jobs.push_back(
-          {x + float(sumX) * scale, y + float(sumY) * scale, id, p, std::uint16_t(mask)});
-    }
+  switch (samples) {
+    case 2:
+      collectPixelJobs<2>(frame, s);
+      break;
+    case 4:
+      collectPixelJobs<4>(frame, s);
+      break;
+    case 8:
+      collectPixelJobs<8>(frame, s);
+      break;
+    default:
+      collectPixelJobs<16>(frame, s);
+      break;
   }
   shadePlane(frame.draws, kernels, s.uniformVisible.data(), planes[0], s);
   if (s.jobs.empty()) return;
