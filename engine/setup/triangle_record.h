@@ -22,8 +22,9 @@ struct EdgeFunction {
   }
   // The same edge with each pixel's sample at offset o standing in for its
   // centre. Exact: a and b are multiples of 256, o is in 1/16 pixel.
-  EdgeFunction atSample(SampleOffset o) const {
-    return {a, b, c + (std::int64_t(a) * o.x + std::int64_t(b) * o.y) / kSampleUnitsPerPixel};
+  EdgeFunction atSample(SampleOffset o) const { return {a, b, c + sampleShift(o)}; }
+  std::int64_t sampleShift(SampleOffset o) const {
+    return (std::int64_t(a) * o.x + std::int64_t(b) * o.y) / kSampleUnitsPerPixel;
   }
 };
 

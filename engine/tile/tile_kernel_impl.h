@@ -607,7 +607,14 @@ class BlockDepthTest {
   // Whether the triangle fails the depth test at every sample of the block
   // whose top-left pixel is (bx, by), tile-local. NaN ranges never fail.
   bool hidden(int bx, int by, int block, const TileBuffers& tile) const {
-    const double base = z_.c + z_.dx * bx + z_.dy * by;
+    return hiddenAt(slopeAt(bx, by), block, tile);
+  }
+
+  // hidden() in two parts, for planes that differ only in c (one triangle's
+  // samples): the slopes' part at the block, shared, then each plane's test.
+  double slopeAt(int bx, int by) const { return z_.dx * bx + z_.dy * by; }
+  bool hiddenAt(double slope, int block, const TileBuffers& tile) const {
+    const double base = z_.c + slope;
     switch (compare_) {
       case CompareFunction::Less:
         return base + low_ - margin_ >= tile.blockDepthMax[block];
@@ -1039,7 +1046,7 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
   BlockDepthTest depthTest[kSamples];
   for (int k = 0; k < samples; ++k) {
     const SampleOffset o = pattern.offsets[k];
-    for (int e = 0; e < 3; ++e) shift[k][e] = t.edges[e].atSample(o).c - t.edges[e].c;
+    for (int e = 0; e < 3; ++e) shift[k][e] = t.edges[e].sampleShift(o);
     const Plane depth = planeInTile(p[0].atSample(o), t, tile);
     z[k] = {F(depth.dx), F(depth.dy), F(depth.c)};
     depthTest[k] = BlockDepthTest(depth, s);
@@ -1060,16 +1067,15 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
       const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
       std::int64_t corner[3];
       for (int e = 0; e < 3; ++e) corner[e] = t.edges[e].at(tile.originX + bx, tile.originY + by);
+      const double slope = depthTest[0].slopeAt(bx, by);  // the samples' planes share it
       std::uint32_t tested = 0;  // bit k: sample k may have coverage in the block
       for (int k = 0; k < samples; ++k) {
-        if (depthTest[k].hidden(bx, by, block, planes[k])) continue;
-        bool outside = false;
-        for (int e = 0; e < 3; ++e) {
-          const std::int64_t at = corner[e] + shift[k][e];
-          outside = outside || at + high[e] <= 0;
-          base[k][e] = I(std::int32_t(std::clamp(at, -kClamp, kClamp))) + laneOffset[e];
-        }
-        if (outside) continue;
+        if (depthTest[k].hiddenAt(slope, block, planes[k])) continue;
+        const std::int64_t at[3] = {corner[0] + shift[k][0], corner[1] + shift[k][1],
+                                    corner[2] + shift[k][2]};
+        if (at[0] + high[0] <= 0 || at[1] + high[1] <= 0 || at[2] + high[2] <= 0) continue;
+        for (int e = 0; e < 3; ++e)
+          base[k][e] = I(std::int32_t(std::clamp(at[e], -kClamp, kClamp))) + laneOffset[e];
         tested |= 1u << k;
         low[k] = F(std::numeric_limits<float>::infinity());
         highDepth[k] = F(-std::numeric_limits<float>::infinity());
