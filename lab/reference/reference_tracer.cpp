@@ -56,7 +56,14 @@ glm::dvec4 bilinear(const Image& image, const SamplerState& sampler, const glm::
     const glm::dvec4 t = fetch(image, sampler, x, y);
     return premultiply ? premultipliedTexel(t) : t;
   };
-  const double x = uv.x * image.width - 0.5, y = uv.y * image.height - 0.5;
+  // A non-finite coordinate (a NaN vertex's) reads at 0, as the engine's
+  // samplers do (texture/sample_lanes.h, reduceCoordinate); so does one
+  // beyond 2^62 texels, which has no fraction left and no int64 to floor to.
+  const auto texels = [](double coordinate, int size) {
+    const double x = coordinate * size - 0.5;
+    return std::fabs(x) < 0x1p62 ? x : -0.5;  // NaN fails the test too
+  };
+  const double x = texels(uv.x, image.width), y = texels(uv.y, image.height);
   const double x0 = std::floor(x), y0 = std::floor(y);
   const double fx = x - x0, fy = y - y0;
   const auto ix = std::int64_t(x0), iy = std::int64_t(y0);
