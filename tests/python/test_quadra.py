@@ -18,6 +18,14 @@ import numpy as np
 import quadra
 
 CLI, READ_REFERENCE, GLB, ANIMATED = (sys.argv[1:5] if len(sys.argv) >= 5 else (None,) * 4)
+# The programs this test runs carry their own sanitizer runtime where they
+# have one (clang links it into each executable): the one preloaded into
+# this interpreter for the module (tests/CMakeLists.txt) must not reach them.
+CHILD_ENV = {name: value for name, value in os.environ.items() if name != "LD_PRELOAD"}
+
+
+def run_program(args, **options):
+    return subprocess.run(args, env=CHILD_ENV, **options)
 
 # The C API test's quad (tests/c_api/test_c_api.c): x, y in [-0.5, 0.5] at
 # z = 0, seen orthographically from z = 1 over [-1, 1]^2, near 0.5, far 2.
@@ -212,19 +220,19 @@ class RenderGltfEqualsTheCli(unittest.TestCase):
             self.skipTest("run by CTest with the CLI and read_reference paths")
         with tempfile.TemporaryDirectory() as work:
             exr = os.path.join(work, "cli.exr")
-            subprocess.run([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
-                            "--out", exr], check=True, stdout=subprocess.DEVNULL)
+            run_program([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
+                         "--out", exr], check=True, stdout=subprocess.DEVNULL)
             out = quadra.Renderer(threads=2).render(quadra.load(GLB), width=96, height=72)
             raw = os.path.join(work, "python.raw")
             with open(raw, "wb") as f:
                 f.write(out.color.tobytes() + out.depth.tobytes())
-            judged = subprocess.run([READ_REFERENCE, exr, raw], capture_output=True, text=True)
+            judged = run_program([READ_REFERENCE, exr, raw], capture_output=True, text=True)
             self.assertEqual(judged.returncode, 0, judged.stdout + judged.stderr)
             # The judge can fail: one value off by one ulp is caught.
             out.color[36, 48, 0] = np.nextafter(out.color[36, 48, 0], np.float32(2))
             with open(raw, "wb") as f:
                 f.write(out.color.tobytes() + out.depth.tobytes())
-            judged = subprocess.run([READ_REFERENCE, exr, raw], capture_output=True, text=True)
+            judged = run_program([READ_REFERENCE, exr, raw], capture_output=True, text=True)
             self.assertNotEqual(judged.returncode, 0, judged.stdout)
 
     def test_aovs_equal_the_cli_exr_channels_bit_for_bit(self):
@@ -235,9 +243,9 @@ class RenderGltfEqualsTheCli(unittest.TestCase):
             self.skipTest("run by CTest with the CLI and read_reference paths")
         with tempfile.TemporaryDirectory() as work:
             exr = os.path.join(work, "cli.exr")
-            subprocess.run([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
-                            "--samples", "4", "--aov", "N,P,uv,id,mask", "--out", exr],
-                           check=True, stdout=subprocess.DEVNULL)
+            run_program([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
+                         "--samples", "4", "--aov", "N,P,uv,id,mask", "--out", exr],
+                        check=True, stdout=subprocess.DEVNULL)
             out = quadra.Renderer(threads=2).render(quadra.load(GLB), width=96, height=72,
                                                     samples=4, aovs=("N", "P", "uv", "id", "mask"))
             planes = [(out.color, "R G B A"), (out.normal, "N.X N.Y N.Z"),
@@ -246,8 +254,8 @@ class RenderGltfEqualsTheCli(unittest.TestCase):
                       (out.material_id, "id.material")]
             for array, channels in planes:
                 raw = os.path.join(work, "channels.raw")
-                subprocess.run([READ_REFERENCE, "--channels", exr, raw] + channels.split(),
-                               check=True)
+                run_program([READ_REFERENCE, "--channels", exr, raw] + channels.split(),
+                            check=True)
                 with open(raw, "rb") as f:
                     stored = f.read()
                 self.assertEqual(len(stored), array.nbytes, channels)
@@ -268,9 +276,9 @@ class Animation(unittest.TestCase):
         self.assertAlmostEqual(scene.animation_duration(0), 3.7083, places=3)
         renderer = quadra.Renderer(threads=2)
         with tempfile.TemporaryDirectory() as work:
-            subprocess.run([CLI, "render", ANIMATED, "--width", "64", "--height", "48", "--threads",
-                            "2", "--sequence", "0:2", "--fps", "2", "--out",
-                            os.path.join(work, "f_#.exr")], check=True, stdout=subprocess.DEVNULL)
+            run_program([CLI, "render", ANIMATED, "--width", "64", "--height", "48", "--threads",
+                         "2", "--sequence", "0:2", "--fps", "2", "--out",
+                         os.path.join(work, "f_#.exr")], check=True, stdout=subprocess.DEVNULL)
             colors = []
             for f in range(3):
                 scene.set_animation_time(f / 2)
@@ -279,8 +287,8 @@ class Animation(unittest.TestCase):
                 raw = os.path.join(work, "python.raw")
                 with open(raw, "wb") as file:
                     file.write(out.color.tobytes() + out.depth.tobytes())
-                judged = subprocess.run([READ_REFERENCE, os.path.join(work, f"f_{f}.exr"), raw],
-                                        capture_output=True, text=True)
+                judged = run_program([READ_REFERENCE, os.path.join(work, f"f_{f}.exr"), raw],
+                                     capture_output=True, text=True)
                 self.assertEqual(judged.returncode, 0, f"frame {f}: {judged.stdout}{judged.stderr}")
             self.assertFalse(np.array_equal(colors[0], colors[2]))  # the box moved
 
