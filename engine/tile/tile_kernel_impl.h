@@ -1130,23 +1130,9 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
 
 bool visibilityAtSamples(const TriangleRecord& t, const Plane* p, const ShadeState& s,
                          std::uint32_t id, const SamplePattern& pattern, TileBuffers* planes) {
-  int small = -1;
-  switch (pattern.count) {
-    case 2:
-      small = visibilitySmallAtSamples<2>(t, p, s, id, pattern, planes);
-      break;
-    case 4:
-      small = visibilitySmallAtSamples<4>(t, p, s, id, pattern, planes);
-      break;
-    case 8:
-      small = visibilitySmallAtSamples<8>(t, p, s, id, pattern, planes);
-      break;
-    case 16:
-      small = visibilitySmallAtSamples<16>(t, p, s, id, pattern, planes);
-      break;
-    default:
-      break;  // one sample: the plane's own pass
-  }
+  const int small = withSampleCount(pattern.count, [&](auto samples) {
+    return visibilitySmallAtSamples<decltype(samples)::value>(t, p, s, id, pattern, planes);
+  });
   if (small >= 0) return small == 1;
   // Larger triangles: each plane as a frame of its own, the triangle moved to its sample.
   bool won = false;

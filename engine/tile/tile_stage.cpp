@@ -401,20 +401,7 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
 
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
   s.uniformVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
-  switch (samples) {
-    case 2:
-      collectPixelJobs<2>(frame, s);
-      break;
-    case 4:
-      collectPixelJobs<4>(frame, s);
-      break;
-    case 8:
-      collectPixelJobs<8>(frame, s);
-      break;
-    default:
-      collectPixelJobs<16>(frame, s);
-      break;
-  }
+  withSampleCount(samples, [&](auto count) { collectPixelJobs<decltype(count)::value>(frame, s); });
   shadePlane(frame.draws, kernels, s.uniformVisible.data(), planes[0], s);
   if (s.jobs.empty()) return;
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 namespace quadra {
 
@@ -68,5 +69,21 @@ constexpr bool isSampleCount(int n) {
 
 // The pattern of N samples (isSampleCount(N)); 1 is the pixel centre.
 const SamplePattern& samplePattern(int count);
+
+// visit(std::integral_constant<int, N>()) for a multisample count N (2, 4,
+// 8 or 16), so that loops over a pixel's samples know N when compiled.
+template <class Visit>
+decltype(auto) withSampleCount(int count, Visit&& visit) {
+  switch (count) {
+    case 2:
+      return visit(std::integral_constant<int, 2>());
+    case 4:
+      return visit(std::integral_constant<int, 4>());
+    case 8:
+      return visit(std::integral_constant<int, 8>());
+    default:
+      return visit(std::integral_constant<int, 16>());
+  }
+}
 
 }  // namespace quadra
