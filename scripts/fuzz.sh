@@ -2,13 +2,14 @@
 # The libFuzzer targets (issue 16; tests/fuzz), one command each:
 #   bash scripts/fuzz.sh --list             the target names, one a line
 #   bash scripts/fuzz.sh TARGET SECONDS     run one for SECONDS; non-zero on a finding
-# Installs what is missing, builds the engine and the targets with clang,
-# -fsanitize=fuzzer,address,undefined at -O1 -g in build-fuzz/ (QUADRA_FUZZ),
-# and runs the target on a working corpus in build-fuzz/corpus/TARGET seeded
-# from tests/fuzz/corpus/TARGET (the repository's seeds are never written).
-# A finding (crash, sanitizer report, leak, an input slower than 10 s, over
-# 2 GB of memory) is saved as build-fuzz/findings/TARGET/crash-* (or leak-,
-# timeout-, oom-); keep it as a regression test (docs/testing.md, "Fuzzing").
+# Installs what is missing, builds the target in the ASan+UBSan build
+# (build-asan/: clang, every object instrumented for libFuzzer's coverage;
+# scripts/sanitize.sh), and runs it on a working corpus in
+# build-asan/corpus/TARGET seeded from tests/fuzz/corpus/TARGET (the
+# repository's seeds are never written). A finding (crash, sanitizer report,
+# leak, an input slower than 10 s, over 2 GB of memory) is saved as
+# build-asan/findings/TARGET/crash-* (or leak-, timeout-, oom-); keep it as a
+# regression test (docs/testing.md, "Fuzzing").
 # Extra arguments go to libFuzzer (e.g. -jobs=2, -runs=N).
 set -euo pipefail
 targets=(gltf_json glb image lookups_csv render)
@@ -29,16 +30,8 @@ if [ -z "$target" ] || ! [[ "$seconds" =~ ^[0-9]+$ ]] ||
 fi
 shift 2
 
-bash scripts/install-deps.sh
-build=build-fuzz
-# RelWithDebInfo at -O1: as scripts/sanitize.sh, instrumented -O3 builds
-# slowly and finds nothing more. No -Werror: the GCC Release build holds the
-# code to zero warnings; clang here only needs to build it.
-CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DQUADRA_FUZZ=ON \
-  -DQUADRA_SANITIZE=address,undefined -DQUADRA_BUILD_TESTS=OFF -DQUADRA_BUILD_BENCH=OFF \
-  -DQUADRA_WERROR=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)"
+bash scripts/sanitize.sh asan --build-only "fuzz_$target"
+build=build-asan
 
 corpus=$root/$build/corpus/$target
 findings=$root/$build/findings/$target
