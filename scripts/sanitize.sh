@@ -82,6 +82,8 @@ mkdir -p "$logs"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:log_path=$logs/ubsan"
 export ASAN_OPTIONS="detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1"
 ASAN_OPTIONS+=":check_initialization_order=1:log_path=$logs/asan"
+# lsan.supp names only memory oneTBB allocates and frees itself (see the file).
+export LSAN_OPTIONS="suppressions=$root/scripts/lsan.supp"
 # tsan.supp names only a race that lies wholly inside libtbb (see the file).
 export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:log_path=$logs/tsan"
 TSAN_OPTIONS+=":suppressions=$root/scripts/tsan.supp"
