@@ -30,12 +30,12 @@ set_tests_properties([=[ReferenceTracer/ScreenGrid.FindsTheHitsTheExhaustiveSear
                      [=[ReferenceTracer/ScreenGrid.FindsTheHitsTheExhaustiveSearchFinds/subpixel_plane]=]
                      PROPERTIES LABELS heavy_arithmetic)
 
-# The soak tests (tests/test_soak.cpp): 1,000 frames each; 2.7 s and 0.8 s in
-# Release on 2 threads, estimated at 10x that under ASan.
+# The soak tests (tests/test_soak.cpp): 1,000 frames each in Release (2.7 s
+# and 0.8 s on 2 threads), 150 under a sanitizer.
 set_tests_properties([=[Soak.ThousandFramesOfTexturesAndBlendingKeepResidentMemoryFlat]=]
-                     PROPERTIES COST 27)
+                     PROPERTIES COST 20)
 set_tests_properties([=[Soak.ThousandFramesOfAnAnimatedSequenceKeepResidentMemoryFlat]=]
-                     PROPERTIES COST 8)
+                     PROPERTIES COST 6)
 
 # tsan_repeat: the stability report's random-triangle sections, the longest
 # tests under ThreadSanitizer (~280 s of the 2-core machine, issue 4's
