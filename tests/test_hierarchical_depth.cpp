@@ -17,6 +17,7 @@
 #include "lab/reference/reference_raster.h"
 #include "lab/scene/hard_case_scenes.h"
 #include "render_helpers.h"
+#include "tile/tile_stage.h"
 
 namespace quadra {
 namespace {
@@ -127,6 +128,95 @@ TEST(HierarchicalDepth, OverdrawKeepsTheNearestSampleOnEveryPath) {
         EXPECT_EQ(mismatches, 0) << "first:" << first.str();
       }
     }
+  }
+}
+
+// `count` small triangles over the first tile, each flat in depth and colour,
+// each nearer than the one before when backToFront (else the same triangles
+// in the reverse order); colours[i] is triangle i's colour in the
+// back-to-front order.
+Scene stackOverOneTile(int count, bool backToFront, std::vector<glm::vec4>& colours) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> corner(0.0, 58.0), size(2.0, 6.0);
+  const auto snap = [](double p) { return std::round(p * 256.0) / 256.0; };
+  Mesh mesh;
+  colours.clear();
+  for (int i = 0; i < count; ++i) {
+    const glm::dvec2 a(snap(corner(rng)), snap(corner(rng)));
+    const double w = snap(size(rng)), h = snap(size(rng));
+    const glm::dvec2 window[3] = {a, a + glm::dvec2(w, 0.0), a + glm::dvec2(0.0, h)};
+    // Nearer as i grows, inside the camera's depth range (0.5 to 4).
+    const float z = float(-3.9 + 3.3 * (i + 1) / (count + 1));
+    const glm::vec4 colour(float(i % 61) / 60.0f, float(i / 61 % 59) / 58.0f,
+                           float(i / 3599 % 7) / 6.0f, 1.0f);
+    colours.push_back(colour);
+    for (const glm::dvec2& corner2 : window) {
+      glm::vec3 world = worldFromWindow(corner2.x, corner2.y);
+      world.z = z;
+      mesh.positions.push_back(world);
+      mesh.colors.push_back(colour);
+    }
+  }
+  for (int i = 0; i < count; ++i) {
+    const int source = backToFront ? i : count - 1 - i;
+    for (int k = 0; k < 3; ++k) mesh.indices.push_back(std::uint32_t(3 * source + k));
+  }
+  return doubleSidedMeshScene(std::move(mesh));
+}
+
+// Drawn back to front, every triangle of a stack wins samples and is later
+// overwritten: twice maxVisibleTriangles of them in one tile, so the
+// visibility pass drops the overwritten ones as it goes (tile_stage.cpp
+// dropOverwrittenTriangles) and renumbers the rest. At one sample each pixel
+// must show the last-drawn triangle over its centre, by the reference's
+// coverage; at 1 and 4 samples the frame must be the one the same triangles
+// give drawn front to back, where only the first at a spot ever wins and
+// nothing is dropped.
+TEST(HierarchicalDepth, BackToFrontStacksDropTheirOverwrittenTriangles) {
+  const Camera camera = pixelExactCamera();
+  for (int samples : {1, 4}) {
+    SCOPED_TRACE(::testing::Message() << samples << " samples");
+    const int count = 2 * maxVisibleTriangles(samples) + 1000;
+    std::vector<glm::vec4> colours;
+    const Scene frontToBack = stackOverOneTile(count, false, colours);
+    const Scene backToFront = stackOverOneTile(count, true, colours);
+    RenderSettings settings;
+    settings.width = settings.height = kSize;
+    settings.samples = samples;
+    settings.frameDepth = true;
+    const Frame dropped = renderOnce(backToFront, camera, settings);
+    const Frame kept = renderOnce(frontToBack, camera, settings);
+    EXPECT_TRUE(dropped.rgba == kept.rgba) << "colour differs from the front-to-back frame";
+    EXPECT_TRUE(dropped.depth == kept.depth) << "depth differs from the front-to-back frame";
+    if (samples != 1) continue;
+    // The last triangle drawn over each pixel centre, by the reference.
+    std::vector<int> last(std::size_t(kSize) * kSize, -1);
+    for (const ref::ProjectedTriangle& t : ref::projectScene(backToFront, camera, kSize, kSize)) {
+      const ref::GridTriangle grid = t.grid();
+      double minX = kSize, minY = kSize, maxX = 0.0, maxY = 0.0;
+      for (const ref::ProjectedVertex& v : t.v) {
+        minX = std::min(minX, v.windowExact.x), maxX = std::max(maxX, v.windowExact.x);
+        minY = std::min(minY, v.windowExact.y), maxY = std::max(maxY, v.windowExact.y);
+      }
+      for (int y = std::max(0, int(minY) - 1); y <= std::min(kSize - 1, int(maxY) + 1); ++y)
+        for (int x = std::max(0, int(minX) - 1); x <= std::min(kSize - 1, int(maxX) + 1); ++x)
+          if (ref::coversPixelCentre(grid, x, y)) last[std::size_t(y) * kSize + x] = t.triangle;
+    }
+    int covered = 0, mismatches = 0;
+    for (std::size_t p = 0; p < last.size(); ++p) {
+      const glm::vec4 want = last[p] < 0 ? glm::vec4(0.0f) : colours[std::size_t(last[p])];
+      covered += last[p] >= 0;
+      for (int c = 0; c < 4; ++c)
+        if (std::abs(dropped.rgba[4 * p + std::size_t(c)] - want[c]) > 1e-5f) {
+          if (++mismatches <= 4)
+            ADD_FAILURE() << "pixel (" << p % kSize << "," << p / kSize << ") channel " << c << ": "
+                          << dropped.rgba[4 * p + std::size_t(c)] << ", want " << want[c]
+                          << " (triangle " << last[p] << ")";
+          break;
+        }
+    }
+    EXPECT_GT(covered, 3000) << "the stack should cover most of its tile";
+    EXPECT_EQ(mismatches, 0);
   }
 }
 

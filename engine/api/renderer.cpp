@@ -314,10 +314,11 @@ void chargeFrame(const RenderSettings& settings, int threads, const std::vector<
   budget.charge("the " + size + " frame", pixels * channels * sizeof(float));
   const int ringChannels =
       settings.pixelFilter == PixelFilter::Box ? 0 : (settings.frameCoverage ? 5 : 4);
-  budget.charge("tile memory (" + std::to_string(settings.samples) + " samples, " +
-                    std::to_string(threads) + " threads)",
-                tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height),
-                                settings.samples, threads, ringChannels, draws));
+  budget.charge(
+      "tile memory (" + std::to_string(settings.samples) + " samples, " + std::to_string(threads) +
+          " threads)",
+      tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height), settings.samples,
+                      threads, ringChannels, settings.aovs != 0, draws));
   // The front end's arrays grow with the scene's vertices and triangles,
   // which a file controls through its index count alone (a small vertex
   // buffer indexed millions of times). Charged at what every triangle takes

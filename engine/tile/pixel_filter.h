@@ -59,6 +59,16 @@ struct PixelFilterScratch {
   std::vector<std::uint16_t> mixed;  // pixels whose samples differ, in tile order
 };
 
+// An upper bound on what a PixelFilterScratch holds for `channels` channels
+// (tileMemoryBytes).
+constexpr std::uint64_t pixelFilterScratchBytes(int channels) {
+  constexpr std::uint64_t kSourceSide = kTileSize + 4 * kPixelFilterRadius;
+  constexpr std::uint64_t kSumsSide = kTileSize + 2 * kPixelFilterRadius;
+  return std::uint64_t(channels) * (kSourceSide * kSourceSide + kSumsSide * kSumsSide) *
+             sizeof(float) +
+         2 * std::uint64_t(kTileSize) * kTileSize * sizeof(std::uint16_t);  // mixed, doubling
+}
+
 // What the filter passes of one frame share.
 struct PixelFilterFrame {
   const PixelFilterWeights& weights;

@@ -32,17 +32,25 @@ namespace {
 
 // One task's working memory, reused from tile to tile.
 struct TileScratch {
-  explicit TileScratch(int samples) : planes(new TileBuffers[std::size_t(samples)]) {}
+  explicit TileScratch(int samples) : planes(new TileBuffers[std::size_t(samples)]) {
+    // At their bound from the start, so they never grow past it by doubling
+    // (tileMemoryBytes); pages never written take no memory.
+    visibleTriangles.reserve(std::size_t(maxVisibleTriangles(samples)));
+    shadePlanes.reserve(std::size_t(maxVisibleTriangles(samples)) * kShadePlaneStride);
+  }
   // One per sample (tile_stage.cpp's opening comment). Not value-initialized:
   // every tile clears what it reads.
   std::unique_ptr<TileBuffers[]> planes;
-  std::vector<TileTriangle> visibleTriangles;  // indexed by TileBuffers::visible
-  std::vector<std::uint32_t> visibleSources;   // with AOVs: their mesh triangles
-  std::vector<AovTriangle> aovTriangles;       // with AOVs: writeSurfaceAovs' memory
-  std::vector<TileTriangle> forward;           // forward-path triangles, in order
-  std::vector<float> shadePlanes;              // kShadePlaneStride per visible triangle
-  std::vector<std::uint32_t> runOf;            // per visible triangle: its draw's run
-  std::vector<std::uint32_t> groupRun;  // per lane group: its run, if all its pixels have one
+  // Indexed by TileBuffers::visible: each triangle that won a sample of the
+  // visibility pass, in submission order, at most maxVisibleTriangles.
+  std::vector<TileTriangle> visibleTriangles;
+  std::vector<std::uint32_t> renumbered;      // dropOverwrittenTriangles' map
+  std::vector<std::uint32_t> visibleSources;  // with AOVs: their mesh triangles
+  std::vector<AovTriangle> aovTriangles;      // with AOVs: writeSurfaceAovs' memory
+  std::vector<TileTriangle> forward;          // forward-path triangles, in order
+  std::vector<float> shadePlanes;             // kShadePlaneStride per visible triangle
+  std::vector<std::uint32_t> runOf;           // per visible triangle: its draw's run
+  std::vector<std::uint32_t> groupRun;        // per lane group: its run, if all its pixels have one
   // Per run: where its whole groups and its other pixels start in the lists.
   std::vector<std::uint32_t> runGroups, runPixels, groupCursor, pixelCursor;
   std::vector<std::uint16_t> groupList, pixelList;
@@ -148,6 +156,31 @@ const ShadeState& shadeAtSample(const TileFrame& frame, TileScratch& s, std::uin
   return won;
 }
 
+// Keeps only the visible triangles some sample still holds, renumbered in
+// submission order: triangles drawn back to front each win a sample, and
+// without this a tile's list (and the shading planes rebased for each entry)
+// would grow with the scene instead of with the tile's samples. The order,
+// hence the runs and every bit shaded, is unchanged.
+void dropOverwrittenTriangles(int samples, TileScratch& s) {
+  s.renumbered.assign(s.visibleTriangles.size(), kNoTriangle);
+  for (int k = 0; k < samples; ++k)
+    for (int p = 0; p < TileBuffers::kPixels; ++p)
+      if (const std::uint32_t id = s.planes[k].visible[p]; id != kNoTriangle) s.renumbered[id] = 0;
+  std::uint32_t kept = 0;
+  for (std::size_t i = 0; i < s.visibleTriangles.size(); ++i) {
+    if (s.renumbered[i] == kNoTriangle) continue;
+    s.renumbered[i] = kept;
+    s.visibleTriangles[kept] = s.visibleTriangles[i];
+    if (!s.visibleSources.empty()) s.visibleSources[kept] = s.visibleSources[i];
+    ++kept;
+  }
+  s.visibleTriangles.resize(kept);
+  if (!s.visibleSources.empty()) s.visibleSources.resize(kept);
+  for (int k = 0; k < samples; ++k)
+    for (int p = 0; p < TileBuffers::kPixels; ++p)
+      if (std::uint32_t& id = s.planes[k].visible[p]; id != kNoTriangle) id = s.renumbered[id];
+}
+
 // Visibility pass: every two-pass triangle binned to the tile, in submission
 // order; the forward ones are kept for after the shading pass (the renderer
 // puts every two-pass draw before them). A tile where forward shading wins
@@ -162,6 +195,7 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
   // forward shading would shade every sample.
   const bool allForward =
       samples == 1 && frame.aov == nullptr && forwardWins(tileIndex, draws, chunks);
+  const std::size_t maxVisible = std::size_t(maxVisibleTriangles(samples));
   for (const FrontEndChunk& chunk : chunks) {
     const std::uint32_t begin = chunk.bins.tileStart[tileIndex];
     const std::uint32_t end = chunk.bins.tileStart[tileIndex + 1];
@@ -185,6 +219,7 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
         continue;
       }
       QUADRA_CHECK(s.forward.empty());  // two-pass draws come first
+      if (s.visibleTriangles.size() == maxVisible) dropOverwrittenTriangles(samples, s);
       const auto id = std::uint32_t(s.visibleTriangles.size());
       const TileKernels& kernel = kernels.forWidth(t.maxX - t.minX + 1);
       const bool won = samples == 1 ? kernel.visibility(t, entry.planes, shade, id, firstPlane)
@@ -673,7 +708,7 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
 }  // namespace
 
 std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
-                              int pixelFilterChannels, const std::vector<Draw>& draws) {
+                              int pixelFilterChannels, bool aovs, const std::vector<Draw>& draws) {
   const std::uint64_t slots = std::uint64_t(samples) * TileBuffers::kPixels;
   const bool blended = std::any_of(draws.begin(), draws.end(), [](const Draw& draw) {
     return composedInDepthOrder(draw.shade);
@@ -682,9 +717,27 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
   // counts and the order pass take 13 bytes a sample (blended_fragments.h).
   const std::uint64_t fragments =
       blended ? slots * (2 * BlendedFragments::kMaxPerSample * sizeof(BlendedFragment) + 13) : 0;
-  const std::uint64_t shading = slots * kShadePlaneStride * sizeof(float);
+  // A TileScratch's lists. A vector that grows by doubling or resizing is
+  // counted twice its bound; visibleTriangles and shadePlanes are reserved
+  // at theirs. Per visible triangle: its entry and shading planes, its run,
+  // renumbering, and its run's four list offsets and jobs offset; with
+  // AOVs its source triangle and AovTriangle.
+  const std::uint64_t perTriangle = sizeof(TileTriangle) + kShadePlaneStride * sizeof(float) +
+                                    sizeof(std::uint32_t) + 2 * 6 * sizeof(std::uint32_t) +
+                                    (aovs ? 2 * (sizeof(std::uint32_t) + sizeof(AovTriangle)) : 0);
+  // Shading jobs, at most one per sample slot (a pixel's triangles shaded
+  // once each): the job, its sorted copy and its colour (RGB, or lod and
+  // anisotropy).
+  const std::uint64_t perJob = 2 * (2 * sizeof(ShadeJob) + 3 * sizeof(float));
+  // Per pixel: plane 0's ids copied, the differing samples, the mixed pixels,
+  // the run lists' groups and pixels, and each lane group's run.
+  const std::uint64_t perPixel =
+      2 * (2 * sizeof(std::uint32_t) + 3 * sizeof(std::uint16_t) + sizeof(std::uint32_t));
   const std::uint64_t perWorker =
-      std::uint64_t(samples) * sizeof(TileBuffers) + fragments + shading;
+      std::uint64_t(samples) * (sizeof(TileBuffers) + sizeof(ShadeState)) + fragments +
+      std::uint64_t(maxVisibleTriangles(samples)) * perTriangle + slots * perJob +
+      std::uint64_t(TileBuffers::kPixels) * perPixel +
+      (pixelFilterChannels > 0 ? pixelFilterScratchBytes(pixelFilterChannels) : 0);
   const std::uint64_t rings = std::uint64_t(grid.tileCount()) * kBorderRingPixels *
                               std::uint64_t(pixelFilterChannels) * sizeof(float);
   const int workers = std::clamp(grid.tileCount(), 1, std::max(threads, 1));

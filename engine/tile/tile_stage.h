@@ -61,14 +61,26 @@ struct TileFrame {
 void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
                  std::vector<TileTimes>& times);
 
+// The most triangles a tile's visibility pass keeps as visible at once at
+// `samples` samples: one a sample slot and a plane more. At that, the ones no
+// sample holds any more are dropped (at most one a slot is still held, so a
+// drop frees a plane's worth at least): a scene drawn back to front costs at
+// most `samples` id reads a triangle for it, and a tile's lists stay bounded
+// by its samples whatever the scene.
+constexpr int maxVisibleTriangles(int samples) {
+  return (samples + 1) * TileBuffers::kPixels;
+}
+
 // An upper bound on the memory renderTiles holds at once besides the frame,
 // on `threads` threads: each running task's scratch (a TileBuffers per
-// sample plane, the shading planes of as many visible triangles as samples,
-// and when some draw is composited in depth order the blended fragments at
-// their per-sample bound) and, for a wide pixel filter (channels: 4, or 5
-// with coverage; 0 for the box filter), every tile's border ring. The
-// renderer charges it to its memory budget before the frame is allocated.
+// sample plane; the lists and shading planes of at most maxVisibleTriangles
+// triangles, with aovs their AOV records too; the shading jobs, at
+// most one a sample; when some draw is composited in depth order the blended
+// fragments at their per-sample bound; a wide pixel filter's tile planes)
+// and, for a wide pixel filter (channels: 4, or 5 with coverage; 0 for the
+// box filter), every tile's border ring. The renderer charges it to its
+// memory budget before the frame is allocated.
 std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
-                              int pixelFilterChannels, const std::vector<Draw>& draws);
+                              int pixelFilterChannels, bool aovs, const std::vector<Draw>& draws);
 
 }  // namespace quadra
