@@ -150,8 +150,8 @@ Scene stackOverOneTile(int count, bool backToFront, std::vector<glm::vec4>& colo
     const glm::vec4 colour(float(i % 61) / 60.0f, float(i / 61 % 59) / 58.0f,
                            float(i / 3599 % 7) / 6.0f, 1.0f);
     colours.push_back(colour);
-    for (const glm::dvec2& corner2 : window) {
-      glm::vec3 world = worldFromWindow(corner2.x, corner2.y);
+    for (const glm::dvec2& point : window) {
+      glm::vec3 world = worldFromWindow(point.x, point.y);
       world.z = z;
       mesh.positions.push_back(world);
       mesh.colors.push_back(colour);
