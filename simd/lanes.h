@@ -604,6 +604,68 @@ QUADRA_LANE_INLINE void laneAddresses(const std::uint8_t* const* base, const typ
   for (int k = 0; k < L::kWidth; ++k) out[k] = base[lane[k]] + std::ptrdiff_t(off[k]) * kBytes;
 }
 
+// One register from a quad (4 floats, 16-byte aligned) in each of width / 4
+// places `stride` floats apart: lanes 4k .. 4k + 3 from base + k * stride.
+// The multisample kernels' view of a quad's samples, one quad per sample plane.
+template <class L>
+QUADRA_LANE_INLINE typename L::F loadQuadsStrided(const float* base, std::ptrdiff_t stride) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+  if constexpr (L::kWidth == 16) {
+    const __m512 low = _mm512_insertf32x4(_mm512_castps128_ps512(_mm_load_ps(base)),
+                                          _mm_load_ps(base + stride), 1);
+    return _mm512_insertf32x4(_mm512_insertf32x4(low, _mm_load_ps(base + 2 * stride), 2),
+                              _mm_load_ps(base + 3 * stride), 3);
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (L::kWidth == 8)
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(base)),
+                                _mm_load_ps(base + stride), 1);
+#endif
+  alignas(64) float lanes[L::kWidth];
+  for (int k = 0; k < L::kWidth; ++k) lanes[k] = base[(k / 4) * stride + k % 4];
+  return L::F::load_aligned(lanes);
+}
+
+// The inverse of loadQuadsStrided: lanes 4k .. 4k + 3 to base + k * stride.
+template <class L>
+QUADRA_LANE_INLINE void storeQuadsStrided(const typename L::F& value, float* base,
+                                          std::ptrdiff_t stride) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+  if constexpr (L::kWidth == 16) {
+    _mm_store_ps(base, _mm512_castps512_ps128(value));
+    _mm_store_ps(base + stride, _mm512_extractf32x4_ps(value, 1));
+    _mm_store_ps(base + 2 * stride, _mm512_extractf32x4_ps(value, 2));
+    _mm_store_ps(base + 3 * stride, _mm512_extractf32x4_ps(value, 3));
+    return;
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (L::kWidth == 8) {
+    _mm_store_ps(base, _mm256_castps256_ps128(value));
+    _mm_store_ps(base + stride, _mm256_extractf128_ps(value, 1));
+    return;
+  }
+#endif
+  alignas(64) float lanes[L::kWidth];
+  value.store_aligned(lanes);
+  for (int k = 0; k < L::kWidth; ++k) base[(k / 4) * stride + k % 4] = lanes[k];
+}
+
+// Lane i of the result is perQuad[i / 4]: one value per quad of lanes.
+template <class L>
+QUADRA_LANE_INLINE typename L::F repeatPerQuad(const float* perQuad) {
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+  if constexpr (L::kWidth == 16)  // from registers: a load over four stores waits for them
+    return _mm512_permutexvar_ps(
+        _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
+        _mm512_castps128_ps512(_mm_setr_ps(perQuad[0], perQuad[1], perQuad[2], perQuad[3])));
+#endif
+  alignas(64) float lanes[L::kWidth];
+  for (int k = 0; k < L::kWidth; ++k) lanes[k] = perQuad[k / 4];
+  return L::F::load_aligned(lanes);
+}
+
 // kDoubleWidth int64 values from `values` (register-aligned) as doubles,
 // rounded to nearest like the scalar conversion (cvtsi2sd). AVX-512DQ
 // converts a register (xsimd 8.1's own conversion there does not compile: it

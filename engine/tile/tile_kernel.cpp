@@ -1,4 +1,5 @@
-// The single dispatch point from Isa to kernel tables.
+// The single dispatch point from Isa to kernel tables, and the kernels'
+// helpers that must round the same on every path.
 #include "tile/tile_kernel.h"
 
 namespace quadra {
@@ -15,6 +16,11 @@ const TileKernels& tileKernels(Isa isa) {
       break;
   }
   return tileKernelsScalar();
+}
+
+Plane sampleDepthInTile(const Plane& depth, SampleOffset o, const TriangleRecord& t,
+                        const TileBuffers& tile) {
+  return planeInTile(depth.atSample(o), t, tile);
 }
 
 TileKernelSelection selectTileKernels(Isa isa) {

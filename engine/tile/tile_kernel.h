@@ -34,6 +34,14 @@ inline Plane planeInTile(const Plane& p, const TriangleRecord& t, const TileBuff
   return {p.dx, p.dy, float(c)};
 }
 
+// planeInTile(depth.atSample(o), t, tile): a depth plane moved to sample o
+// and rebased, rounded to float at both steps. Out of line and compiled
+// once: inlined into a loop over samples, GCC 12 vectorized the two steps
+// into one and dropped the float rounding between them (one ulp off the
+// other paths' depths, tile_kernel_impl.h visibilityQuadSamples).
+Plane sampleDepthInTile(const Plane& depth, SampleOffset o, const TriangleRecord& t,
+                        const TileBuffers& tile);
+
 // Shading planes of a tile's triangles, rebased to the tile (the value at
 // tile-local pixel centre (x, y) is c + dx*x + dy*y): per triangle, 1/w and
 // then each attribute/w, kShadePlaneStride floats apart.
@@ -122,6 +130,18 @@ struct TileKernelSelection {
   const TileKernels* narrow = nullptr;
   int narrowBelow = 0;
   const TileKernels& forWidth(int pixels) const { return pixels < narrowBelow ? *narrow : *wide; }
+  // For visibilityAtSamples: a triangle whose box is at most 8x8 pixels
+  // (kQuadSamplesBox) takes the path whose register holds one quad's
+  // samples (lanes == 4 x samples), which tests them all at once, where the
+  // frame has one; others as forWidth.
+  static constexpr int kQuadSamplesBox = 8;
+  const TileKernels& forSamples(int pixelsWide, int pixelsHigh, int samples) const {
+    if (pixelsWide <= kQuadSamplesBox && pixelsHigh <= kQuadSamplesBox) {
+      if (wide->lanes == 4 * samples) return *wide;
+      if (narrow->lanes == 4 * samples) return *narrow;
+    }
+    return forWidth(pixelsWide);
+  }
 };
 TileKernelSelection selectTileKernels(Isa isa);
 

@@ -137,12 +137,14 @@ const ShadeState& shadeAtSample(const TileFrame& frame, TileScratch& s, std::uin
 // moved to its sample; whether it won any. Out of line, so the one-sample
 // loop stays as lean as it was (callgrind: 2% more instructions a frame
 // inlined).
-[[gnu::noinline]] bool visibilityAtSamples(const TileKernels& kernel, const TileTriangle& entry,
-                                           const ShadeState& shade, std::uint32_t id,
-                                           const TileFrame& frame, TileScratch& s) {
+[[gnu::noinline]] bool visibilityAtSamples(const TileTriangle& entry, const ShadeState& shade,
+                                           std::uint32_t id, const TileFrame& frame,
+                                           TileScratch& s) {
+  const TriangleRecord& t = *entry.triangle;
   if (shade.alphaMode != AlphaMode::Mask)
-    return kernel.visibilityAtSamples(*entry.triangle, entry.planes, shade, id, frame.samples,
-                                      s.planes.get());
+    return frame.kernels.forSamples(t.maxX - t.minX + 1, t.maxY - t.minY + 1, frame.samples.count)
+        .visibilityAtSamples(t, entry.planes, shade, id, frame.samples, s.planes.get());
+  const TileKernels& kernel = frame.kernels.forWidth(t.maxX - t.minX + 1);
   // A masked draw's alpha test: its planes moved too, and its cutoff per sample.
   const int planeCount = 2 + shade.attributes.count;
   Plane moved[2 + kMaxShadedAttributes];
@@ -150,8 +152,8 @@ const ShadeState& shadeAtSample(const TileFrame& frame, TileScratch& s, std::uin
   for (int k = 0; k < frame.samples.count; ++k) {
     const SampleOffset o = frame.samples.offsets[k];
     for (int j = 0; j < planeCount; ++j) moved[j] = entry.planes[j].atSample(o);
-    won |= kernel.visibility(atSample(*entry.triangle, o), moved,
-                             shadeAtSample(frame, s, entry.draw, k), id, s.planes[k]);
+    won |= kernel.visibility(atSample(t, o), moved, shadeAtSample(frame, s, entry.draw, k), id,
+                             s.planes[k]);
   }
   return won;
 }
@@ -221,9 +223,9 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
       QUADRA_CHECK(s.forward.empty());  // two-pass draws come first
       if (s.visibleTriangles.size() == maxVisible) dropOverwrittenTriangles(samples, s);
       const auto id = std::uint32_t(s.visibleTriangles.size());
-      const TileKernels& kernel = kernels.forWidth(t.maxX - t.minX + 1);
-      const bool won = samples == 1 ? kernel.visibility(t, entry.planes, shade, id, firstPlane)
-                                    : visibilityAtSamples(kernel, entry, shade, id, frame, s);
+      const bool won = samples == 1 ? kernels.forWidth(t.maxX - t.minX + 1)
+                                          .visibility(t, entry.planes, shade, id, firstPlane)
+                                    : visibilityAtSamples(entry, shade, id, frame, s);
       if (!won) continue;
       s.visibleTriangles.push_back(entry);
       if (frame.aov) s.visibleSources.push_back(chunk.setup.sourceTriangles[index[i]]);
