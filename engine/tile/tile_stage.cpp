@@ -54,9 +54,10 @@ struct TileScratch {
   // Per run: where its whole groups and its other pixels start in the lists.
   std::vector<std::uint32_t> runGroups, runPixels, groupCursor, pixelCursor;
   std::vector<std::uint16_t> groupList, pixelList;
-  // Multisampled shading: plane 0's ids with the pixels whose samples several
-  // triangles share taken out, and those pixels' jobs and their colours.
-  std::vector<std::uint32_t> uniformVisible;
+  // Multisampled shading: plane 0's ids while the pixels whose samples
+  // several triangles share are taken out of it, and those pixels' jobs and
+  // their colours.
+  std::vector<std::uint32_t> planeZeroVisible;
   // The pixels whose samples differ (in colour, once shaded), in tile order;
   // with allMixed, every pixel may.
   std::vector<std::uint32_t> sampleDiffers;
@@ -362,7 +363,7 @@ std::uint32_t sortJobsByRun(TileScratch& s) {
 }
 
 // shadePixels' jobs: each triangle of a pixel whose samples differ, at the
-// mean of its samples' positions there; those pixels leave uniformVisible,
+// mean of its samples' positions there; those pixels leave plane 0's ids,
 // and their samples no triangle holds take the clear colour. Per sample
 // count, so the loops over a pixel's samples unroll (this ran ~130
 // instructions a pixel with the count a variable; callgrind, dense-mesh).
@@ -391,8 +392,8 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
       meanOf(mask, meanX[mask], meanY[mask]);
   std::uint32_t ids[kSamples];
   for (const std::uint16_t p : s.mixedPixels) {
-    s.uniformVisible[p] = kNoTriangle;
     for (int k = 0; k < kSamples; ++k) ids[k] = planes[k].visible[p];
+    planes[0].visible[p] = kNoTriangle;
     const float x = float(TileBuffers::xAt(p)), y = float(TileBuffers::yAt(p));
     for (std::uint32_t left = (1u << kSamples) - 1; left != 0;) {
       const std::uint32_t id = ids[__builtin_ctz(left)];
@@ -430,16 +431,26 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   for (int k = 1; k < samples; ++k)
     for (int p = 0; p < TileBuffers::kPixels; ++p)
       differs[p] |= planes[k].visible[p] ^ planes[0].visible[p];
-  s.mixedPixels.clear();
+  // Without a branch per pixel: a quarter of a dense mesh's pixels differ, at
+  // random, and the mispredictions were most of this loop's time (perf).
+  s.mixedPixels.resize(TileBuffers::kPixels);
+  std::size_t mixed = 0;
+  for (int p = 0; p < TileBuffers::kPixels; ++p) {
+    s.mixedPixels[mixed] = std::uint16_t(p);
+    mixed += differs[p] != 0 ? 1 : 0;
+  }
+  s.mixedPixels.resize(mixed);
   s.allMixed = false;
-  for (int p = 0; p < TileBuffers::kPixels; ++p)
-    if (differs[p] != 0) s.mixedPixels.push_back(std::uint16_t(p));
   if (s.visibleTriangles.empty()) return;
 
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
-  s.uniformVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
+  // Plane 0's ids without the shared pixels while its other pixels are
+  // shaded, so that a one-draw tile takes the kernel's scan of the tile as at
+  // one sample; restored after.
+  s.planeZeroVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
   withSampleCount(samples, [&](auto count) { collectPixelJobs<decltype(count)::value>(frame, s); });
-  shadePlane(frame.draws, kernels, s.uniformVisible.data(), planes[0], s);
+  shadePlane(frame.draws, kernels, planes[0].visible, planes[0], s);
+  for (const std::uint16_t p : s.mixedPixels) planes[0].visible[p] = s.planeZeroVisible[p];
   if (s.jobs.empty()) return;
 
   const std::uint32_t runs = sortJobsByRun(s);
@@ -457,9 +468,12 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   }
   for (std::size_t j = 0; j < s.sortedJobs.size(); ++j) {
     const ShadeJob& job = s.sortedJobs[j];
+    // Read once: the stores below may alias it for the compiler, which
+    // reloaded it after each (a stall a store; perf).
+    const float rgb[3] = {s.jobColor[3 * j], s.jobColor[3 * j + 1], s.jobColor[3 * j + 2]};
     for (std::uint32_t mask = job.samples; mask; mask &= mask - 1) {
       TileBuffers& plane = planes[__builtin_ctz(mask)];
-      for (int c = 0; c < 3; ++c) plane.color[c][job.pixel] = s.jobColor[3 * j + std::size_t(c)];
+      for (int c = 0; c < 3; ++c) plane.color[c][job.pixel] = rgb[c];
       plane.color[3][job.pixel] = 1.0f;  // opaque and masked draws
     }
   }
