@@ -77,13 +77,22 @@ EdgeFunction makeEdge(const SnappedTriangle& s, int p, int q) {
 bool coversASample(const TriangleRecord& t, const SamplePattern& samples) {
   const int span = samples.count == 1 ? 1 : 2;
   if (t.maxX - t.minX > span || t.maxY - t.minY > span) return true;
+  // The edges stepped pixel by pixel from the box's corner, each sample's
+  // shift added once: additions only, where evaluating each edge at each
+  // pixel and sample was 5% of a 4-sample dense-mesh frame (perf).
+  std::int64_t corner[3];
+  for (int e = 0; e < 3; ++e) corner[e] = t.edges[e].at(t.minX, t.minY);
   for (int s = 0; s < samples.count; ++s) {
-    const EdgeFunction e0 = t.edges[0].atSample(samples.offsets[s]),
-                       e1 = t.edges[1].atSample(samples.offsets[s]),
-                       e2 = t.edges[2].atSample(samples.offsets[s]);
-    for (std::int32_t py = t.minY; py <= t.maxY; ++py)
-      for (std::int32_t px = t.minX; px <= t.maxX; ++px)
-        if (e0.at(px, py) > 0 && e1.at(px, py) > 0 && e2.at(px, py) > 0) return true;
+    std::int64_t row[3];
+    for (int e = 0; e < 3; ++e) row[e] = corner[e] + t.edges[e].sampleShift(samples.offsets[s]);
+    for (std::int32_t py = t.minY; py <= t.maxY; ++py) {
+      std::int64_t edge[3] = {row[0], row[1], row[2]};
+      for (std::int32_t px = t.minX; px <= t.maxX; ++px) {
+        if ((edge[0] > 0) & (edge[1] > 0) & (edge[2] > 0)) return true;
+        for (int e = 0; e < 3; ++e) edge[e] += t.edges[e].a;
+      }
+      for (int e = 0; e < 3; ++e) row[e] += t.edges[e].b;
+    }
   }
   return false;
 }
