@@ -1,8 +1,9 @@
 // Setup's cull kernel on every ISA path against a reference written here in
 // int64 and double: each triangle's verdict in setup's order (not finite,
 // beyond one viewport plane, needs clipping, zero area, back face, no pixel
-// centre), including triangles whose two cross-product terms round to the
-// same float, and a kept triangle's pixel-centre box and winding.
+// centre, small and covering no sample), including triangles whose two
+// cross-product terms round to the same float, and a kept triangle's
+// pixel-centre box, winding and sample coverage, at every sample count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,13 +16,15 @@
 namespace quadra {
 namespace {
 
-enum class Verdict { NotFinite, Outside, Clip, Degenerate, BackFace, NoPixel, Keep };
+enum class Verdict { NotFinite, Outside, Clip, Degenerate, BackFace, NoPixel, NoSample, Keep };
 
 struct Expected {
   Verdict verdict;
   std::int64_t area;
   bool productsTie;  // the two terms of the area are the same float
   std::int32_t minX, minY, maxX, maxY;
+  bool small;         // the kernel decides its sample coverage (cull_kernel.h)
+  bool coversSample;  // a sample of a pixel in the box (computed for small ones)
 };
 
 // Pixels whose centre px + 0.5 lies in [lo, hi] (1/256 units), in [0, limit):
@@ -32,8 +35,36 @@ void centresIn(std::int64_t lo, std::int64_t hi, int limit, std::int32_t& first,
   last = std::int32_t(std::min(double(limit - 1), std::floor(double(hi) / kSubpixelScale - 0.5)));
 }
 
+// Whether a triangle (clockwise in y-down window space once its area's sign
+// is known) covers a sample of a pixel of the box: each edge p->q's function
+// dx (Y - yp) - dy (X - xp) at the sample, plus one on a top or left edge, by
+// the definition in int64.
+bool coversSample(const std::int64_t x[3], const std::int64_t y[3], bool negative,
+                  const Expected& e, const SamplePattern& pattern) {
+  int c[3] = {0, 1, 2};
+  if (negative) std::swap(c[1], c[2]);
+  for (std::int64_t py = e.minY; py <= e.maxY; ++py)
+    for (std::int64_t px = e.minX; px <= e.maxX; ++px)
+      for (int s = 0; s < pattern.count; ++s) {
+        constexpr int kUnit = kSubpixelScale / kSampleUnitsPerPixel;
+        const std::int64_t sx =
+            px * kSubpixelScale + kSubpixelScale / 2 + kUnit * pattern.offsets[s].x;
+        const std::int64_t sy =
+            py * kSubpixelScale + kSubpixelScale / 2 + kUnit * pattern.offsets[s].y;
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) {
+          const int p = c[(k + 1) % 3], q = c[(k + 2) % 3];
+          const std::int64_t dx = x[q] - x[p], dy = y[q] - y[p];
+          const bool topLeft = dy < 0 || (dy == 0 && dx > 0);
+          inside = inside && dx * (sy - y[p]) - dy * (sx - x[p]) + (topLeft ? 1 : 0) > 0;
+        }
+        if (inside) return true;
+      }
+  return false;
+}
+
 Expected expect(const TransformedVertices& v, const std::uint32_t* corner, const Viewport& view,
-                FaceCulling faces) {
+                const SamplePattern& pattern, FaceCulling faces) {
   constexpr std::uint8_t kOutsideViewport =
       kOutsideNear | kOutsideFar | kOutsideLeft | kOutsideRight | kOutsideBottom | kOutsideTop;
   const std::uint8_t c0 = v.outcode[corner[0]], c1 = v.outcode[corner[1]],
@@ -44,9 +75,16 @@ Expected expect(const TransformedVertices& v, const std::uint32_t* corner, const
   e.area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
   e.productsTie =
       float(x[1] - x[0]) * float(y[2] - y[0]) == float(x[2] - x[0]) * float(y[1] - y[0]);
-  centresIn(std::min({x[0], x[1], x[2]}), std::max({x[0], x[1], x[2]}), view.width, e.minX, e.maxX);
-  centresIn(std::min({y[0], y[1], y[2]}), std::max({y[0], y[1], y[2]}), view.height, e.minY,
-            e.maxY);
+  const std::int64_t reach = pattern.reachSubpixels();
+  const std::int64_t lowX = std::min({x[0], x[1], x[2]}), highX = std::max({x[0], x[1], x[2]});
+  const std::int64_t lowY = std::min({y[0], y[1], y[2]}), highY = std::max({y[0], y[1], y[2]});
+  centresIn(lowX - reach, highX + reach, view.width, e.minX, e.maxX);
+  centresIn(lowY - reach, highY + reach, view.height, e.minY, e.maxY);
+  e.small = e.maxX - e.minX < kCoverageBox && e.maxY - e.minY < kCoverageBox &&
+            highX - lowX <= kMaxCoverageExtent && highY - lowY <= kMaxCoverageExtent &&
+            !e.productsTie;
+  // Only where some kernel decides it (a big box would take long to walk).
+  e.coversSample = e.small && e.area != 0 && coversSample(x, y, e.area < 0, e, pattern);
   const bool front = (e.area < 0) != faces.frontIsClockwise;
   if ((c0 | c1 | c2) & kNotFinite)
     e.verdict = Verdict::NotFinite;
@@ -60,6 +98,8 @@ Expected expect(const TransformedVertices& v, const std::uint32_t* corner, const
     e.verdict = Verdict::BackFace;
   else if (e.minX > e.maxX || e.minY > e.maxY)
     e.verdict = Verdict::NoPixel;
+  else if (e.small && !e.coversSample)
+    e.verdict = Verdict::NoSample;
   else
     e.verdict = Verdict::Keep;
   return e;
@@ -79,7 +119,7 @@ TEST(CullKernel, EveryPathMatchesTheExactReference) {
   };
   std::uniform_int_distribution<std::int32_t> anywhere(-kLimit, kLimit);
   std::uniform_int_distribution<std::int32_t> onScreen(-512, 2000 * kSubpixelScale);
-  std::uniform_int_distribution<std::int32_t> small(-700, 700);
+  std::uniform_int_distribution<std::int32_t> small(-700, 700), tiny(-150, 150);
   std::uniform_int_distribution<int> codeBit(0, 15);
   int nearTies = 0;  // non-zero areas whose products are equal floats
   for (int t = 0; t < 20000; ++t) {
@@ -87,9 +127,10 @@ TEST(CullKernel, EveryPathMatchesTheExactReference) {
     SubpixelPosition p[3];
     if (kind == 0) {  // anywhere in the guard band
       for (auto& q : p) q = {anywhere(rng), anywhere(rng)};
-    } else if (kind == 1) {  // small, near or across pixel centres
+    } else if (kind == 1) {  // small or tiny, near or across pixel centres and samples
       const SubpixelPosition at{onScreen(rng), onScreen(rng)};
-      for (auto& q : p) q = {at.x + small(rng), at.y + small(rng)};
+      auto& offset = t / 4 % 2 == 0 ? small : tiny;
+      for (auto& q : p) q = {at.x + offset(rng), at.y + offset(rng)};
     } else if (kind == 2) {  // (a+1)(a-1) against a*a: one apart, the same as floats
       const std::int32_t a = std::uniform_int_distribution<std::int32_t>(1 << 20, 1 << 21)(rng);
       const std::int32_t x0 = -a / 2, y0 = -a / 2;
@@ -114,45 +155,64 @@ TEST(CullKernel, EveryPathMatchesTheExactReference) {
                                                              {Isa::Sse2, cullKernelSse2},
                                                              {Isa::Avx2, cullKernelAvx2},
                                                              {Isa::Avx512, cullKernelAvx512}};
+  int smallDropped = 0, smallKept = 0;  // the kernel tested them: covering no sample, or one
   for (const auto& [isa, kernelOf] : kernels) {
     if (!isaSupported(isa)) continue;
     const CullKernel& kernel = kernelOf();
     const std::size_t triangles = indices.size() / 3;
-    for (const FaceCulling faces :
-         {FaceCulling{true, false}, FaceCulling{true, true}, FaceCulling{false, false}}) {
-      for (std::size_t first = 0; first < triangles;) {
-        // Every group size, the short last group included.
-        const int count = int(std::min<std::size_t>(
-            std::size_t(kernel.lanes) - first / std::size_t(kernel.lanes) % 3, triangles - first));
-        CullGroup group;
-        kernel.cull(&indices[3 * first], count, v.subpixel.data(), v.outcode.data(), view, 0, faces,
-                    group);
-        int counted[7] = {};
-        for (int k = 0; k < count; ++k) {
-          const Expected e = expect(v, &indices[3 * (first + k)], view, faces);
-          SCOPED_TRACE(testing::Message() << isaName(isa) << " triangle " << first + k);
-          ++counted[int(e.verdict)];
-          EXPECT_EQ(bool(group.keep >> k & 1), e.verdict == Verdict::Keep);
-          EXPECT_EQ(bool(group.clip >> k & 1), e.verdict == Verdict::Clip);
-          if (e.verdict == Verdict::Keep) {
-            EXPECT_EQ(bool(group.negative >> k & 1), e.area < 0);
-            EXPECT_EQ(group.minX[k], e.minX);
-            EXPECT_EQ(group.minY[k], e.minY);
-            EXPECT_EQ(group.maxX[k], e.maxX);
-            EXPECT_EQ(group.maxY[k], e.maxY);
+    for (const int samples : {1, 2, 4, 8, 16}) {
+      const SamplePattern& pattern = samplePattern(samples);
+      for (const FaceCulling faces :
+           {FaceCulling{true, false}, FaceCulling{true, true}, FaceCulling{false, false}}) {
+        for (std::size_t first = 0; first < triangles;) {
+          // Every group size, the short last group included.
+          const int count = int(std::min<std::size_t>(
+              std::size_t(kernel.lanes) - first / std::size_t(kernel.lanes) % 3,
+              triangles - first));
+          CullGroup group;
+          kernel.cull(&indices[3 * first], count, v.subpixel.data(), v.outcode.data(), view,
+                      pattern, pattern.reachSubpixels(), faces, group);
+          int counted[8] = {};
+          for (int k = 0; k < count; ++k) {
+            const Expected e = expect(v, &indices[3 * (first + k)], view, pattern, faces);
+            SCOPED_TRACE(testing::Message() << isaName(isa) << " triangle " << first + k << ", "
+                                            << samples << " samples");
+            ++counted[int(e.verdict)];
+            EXPECT_EQ(bool(group.keep >> k & 1), e.verdict == Verdict::Keep);
+            EXPECT_EQ(bool(group.clip >> k & 1), e.verdict == Verdict::Clip);
+            if (e.verdict == Verdict::Keep) {
+              EXPECT_EQ(bool(group.negative >> k & 1), e.area < 0);
+              EXPECT_EQ(group.minX[k], e.minX);
+              EXPECT_EQ(group.minY[k], e.minY);
+              EXPECT_EQ(group.maxX[k], e.maxX);
+              EXPECT_EQ(group.maxY[k], e.maxY);
+              // Found covering exactly when it does, for the triangles it tests.
+              if (e.small) {
+                EXPECT_TRUE(group.covers >> k & 1);
+              }
+              if (group.covers >> k & 1) {
+                EXPECT_TRUE(e.coversSample);
+              }
+              smallKept += e.small ? 1 : 0;
+            }
+            smallDropped += e.verdict == Verdict::NoSample ? 1 : 0;
+            if (isa == Isa::Scalar && samples == 1 && e.area != 0 && e.productsTie) ++nearTies;
           }
-          if (isa == Isa::Scalar && e.area != 0 && e.productsTie) ++nearTies;
+          const std::uint32_t beyond = count == 32 ? 0u : ~0u << count;
+          EXPECT_EQ((group.keep | group.clip | group.covers) & beyond, 0u);
+          EXPECT_EQ(group.covers & ~group.keep, 0u);
+          EXPECT_EQ(group.notFinite, counted[int(Verdict::NotFinite)]);
+          EXPECT_EQ(group.outside, counted[int(Verdict::Outside)] + counted[int(Verdict::NoPixel)] +
+                                       counted[int(Verdict::NoSample)]);
+          EXPECT_EQ(group.degenerate, counted[int(Verdict::Degenerate)]);
+          EXPECT_EQ(group.backFace, counted[int(Verdict::BackFace)]);
+          first += std::size_t(count);
         }
-        const std::uint32_t beyond = count == 32 ? 0u : ~0u << count;
-        EXPECT_EQ((group.keep | group.clip) & beyond, 0u);
-        EXPECT_EQ(group.notFinite, counted[int(Verdict::NotFinite)]);
-        EXPECT_EQ(group.outside, counted[int(Verdict::Outside)] + counted[int(Verdict::NoPixel)]);
-        EXPECT_EQ(group.degenerate, counted[int(Verdict::Degenerate)]);
-        EXPECT_EQ(group.backFace, counted[int(Verdict::BackFace)]);
-        first += std::size_t(count);
       }
     }
   }
+  EXPECT_GT(smallDropped, 1000);
+  EXPECT_GT(smallKept, 1000);
   EXPECT_GT(nearTies, 1000);
 }
 

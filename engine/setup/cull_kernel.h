@@ -1,7 +1,8 @@
 // Setup's first step in SIMD lanes: what a group of triangles' outcodes and
 // snapped positions alone decide, one lane per triangle. Most triangles of a
 // dense mesh stop here (back-facing, off screen, between pixel centres' rows
-// and columns), so they cost a few lane operations and no branch each; setup
+// and columns, small and between samples), so they cost a few lane
+// operations and no branch each; setup
 // (triangle_setup.cpp) applies the verdicts in the scalar order and builds
 // only the triangles left. Compiled once per ISA (cull_kernel_isa.cpp.in);
 // every decision is exact, so every path culls the same triangles.
@@ -11,6 +12,7 @@
 
 #include "simd/isa.h"
 #include "vertex/vertex_stage.h"
+#include "window/sample_pattern.h"
 
 namespace quadra {
 
@@ -30,7 +32,21 @@ struct CullGroup {
       maxY[kMaxCullLanes];
   // A kept triangle's area is negative (counter-clockwise with y up).
   std::uint32_t negative = 0;
+  // Kept triangles found to cover a sample. Those of a box up to
+  // kCoverageBox pixels a side and vertices within kMaxCoverageExtent of
+  // each other are tested here (the ones covering none are dropped, counted
+  // outside); setup tests the other small ones.
+  std::uint32_t covers = 0;
 };
+
+// The largest box the kernel tests for sample coverage, in pixels a side: a
+// dense mesh's triangles between samples, which would otherwise cost planes,
+// bins and tile work for nothing, fit in it at every sample count (the
+// pattern's reach widens a box by at most one pixel).
+constexpr int kCoverageBox = 3;
+// ... and the largest extent of its vertices, in 1/256 pixel, so that the
+// test's arithmetic is exact in float (cull_kernel_impl.h).
+constexpr int kMaxCoverageExtent = 4 * 256;
 
 // Which faces a draw drops (a back face is one whose winding is not the
 // front's).
@@ -43,11 +59,11 @@ struct CullKernel {
   int lanes;  // triangles per group
   // Triangles t = 0 .. count-1 (count <= lanes) whose corners
   // indices[3t .. 3t+2] index the vertices' snapped positions and outcodes
-  // (TransformedVertices'). reach (1/256 pixel): how far from a pixel's
-  // centre its samples lie (SamplePattern::reachSubpixels; 0 for one sample).
+  // (TransformedVertices'), each pixel sampled at `samples`; reach is
+  // samples.reachSubpixels(), computed once by the caller.
   void (*cull)(const std::uint32_t* indices, int count, const SubpixelPosition* subpixel,
-               const std::uint8_t* outcode, const Viewport& viewport, int reach, FaceCulling faces,
-               CullGroup& out);
+               const std::uint8_t* outcode, const Viewport& viewport, const SamplePattern& samples,
+               int reach, FaceCulling faces, CullGroup& out);
 };
 
 const CullKernel& cullKernel(Isa isa);

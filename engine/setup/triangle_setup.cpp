@@ -69,13 +69,11 @@ EdgeFunction makeEdge(const SnappedTriangle& s, int p, int q) {
   return e;
 }
 
-// Whether a triangle whose box spans at most 2x2 pixels (3x3 with several
-// samples, whose reach widens every box) covers one of their samples; larger
-// ones are assumed to. A dense mesh has many triangles between pixel centres
-// (about a third of MetalRoughSpheresNoTextures' at 1080p); dropped here,
-// they cost no planes, bins or tile work.
+// Whether a triangle whose box spans at most kCoverageBox pixels a side
+// covers one of their samples (larger ones are assumed to): the small
+// triangles the cull kernel left untested (cull_kernel.h CullGroup::covers).
 bool coversASample(const TriangleRecord& t, const SamplePattern& samples) {
-  const int span = samples.count == 1 ? 1 : 2;
+  constexpr int span = kCoverageBox - 1;
   if (t.maxX - t.minX > span || t.maxY - t.minY > span) return true;
   // The edges stepped pixel by pixel from the box's corner, each sample's
   // shift added once: additions only, where evaluating each edge at each
@@ -133,13 +131,15 @@ struct PlaneSolver {
 };
 
 // Emits a triangle that passed culling (snapped holds its vertices' snapped
-// positions, box and the area's sign what culling found). cornerOf(i) is
+// positions, box, the area's sign and whether it covers a sample what
+// culling found). cornerOf(i) is
 // corner i (a Corner); it is called only once the snapped edges show the
 // triangle covers a pixel centre, so the triangles dropped between pixel
 // centres never touch their attributes.
 template <class CornerOf>
 void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const PixelBox& box,
-              bool negativeArea, std::uint32_t source, const CornerOf& cornerOf) {
+              bool negativeArea, bool coversSample, std::uint32_t source,
+              const CornerOf& cornerOf) {
   TriangleRecord t;
   t.minX = std::int16_t(box.minX), t.minY = std::int16_t(box.minY);
   t.maxX = std::int16_t(box.maxX), t.maxY = std::int16_t(box.maxY);
@@ -148,7 +148,7 @@ void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const Pix
   t.edges[0] = makeEdge(snapped, corner[1], corner[2]);
   t.edges[1] = makeEdge(snapped, corner[2], corner[0]);
   t.edges[2] = makeEdge(snapped, corner[0], corner[1]);
-  if (!coversASample(t, ctx.samples)) {
+  if (!coversSample && !coversASample(t, ctx.samples)) {
     ++ctx.out.counters.outside;
     return;
   }
@@ -189,7 +189,8 @@ void cullAndEmit(const SetupContext& ctx, const std::uint32_t* corners, std::siz
   for (std::size_t first = 0; first < triangles; first += std::size_t(kernel.lanes)) {
     const int count = int(std::min<std::size_t>(std::size_t(kernel.lanes), triangles - first));
     const std::uint32_t* groupCorners = corners + 3 * first;
-    kernel.cull(groupCorners, count, subpixel, outcode, ctx.viewport, reach, faces, group);
+    kernel.cull(groupCorners, count, subpixel, outcode, ctx.viewport, ctx.samples, reach, faces,
+                group);
     n.invalid += std::size_t(group.notFinite);
     n.outside += std::size_t(group.outside);
     n.degenerate += std::size_t(group.degenerate);
@@ -205,7 +206,7 @@ void cullAndEmit(const SetupContext& ctx, const std::uint32_t* corners, std::siz
           {subpixel[index[0]].x, subpixel[index[1]].x, subpixel[index[2]].x},
           {subpixel[index[0]].y, subpixel[index[1]].y, subpixel[index[2]].y}};
       const PixelBox box{group.minX[t], group.minY[t], group.maxX[t], group.maxY[t]};
-      emitKept(ctx, snapped, box, group.negative >> t & 1, sourceOf(index),
+      emitKept(ctx, snapped, box, group.negative >> t & 1, group.covers >> t & 1, sourceOf(index),
                [&](int corner) { return cornerOf(index[corner]); });
     }
   }
