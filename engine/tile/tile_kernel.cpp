@@ -18,9 +18,10 @@ const TileKernels& tileKernels(Isa isa) {
   return tileKernelsScalar();
 }
 
-Plane sampleDepthInTile(const Plane& depth, SampleOffset o, const TriangleRecord& t,
-                        const TileBuffers& tile) {
-  return planeInTile(depth.atSample(o), t, tile);
+void sampleDepthsInTile(const Plane& depth, const SamplePattern& pattern, const TriangleRecord& t,
+                        const TileBuffers& tile, float* c) {
+  for (int k = 0; k < pattern.count; ++k)
+    c[k] = planeInTile(depth.atSample(pattern.offsets[k]), t, tile).c;
 }
 
 TileKernelSelection selectTileKernels(Isa isa) {

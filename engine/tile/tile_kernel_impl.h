@@ -1055,10 +1055,12 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
   std::int64_t shift[kSamples][3];  // each sample's edges minus the centre's
   TilePlane z[kSamples];
   BlockDepthTest depthTest[kSamples];
+  float depthC[kSamples];
+  sampleDepthsInTile(p[0], pattern, t, tile, depthC);
   for (int k = 0; k < samples; ++k) {
     const SampleOffset o = pattern.offsets[k];
     for (int e = 0; e < 3; ++e) shift[k][e] = t.edges[e].sampleShift(o);
-    const Plane depth = sampleDepthInTile(p[0], o, t, tile);
+    const Plane depth{p[0].dx, p[0].dy, depthC[k]};
     z[k] = {F(depth.dx), F(depth.dy), F(depth.c)};
     depthTest[k] = BlockDepthTest(depth, s);
   }
@@ -1169,10 +1171,9 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
     // Per lane: its pixel in the quad and its sample's offset.
     static const LaneOffsets lane;  // lanes 0-3 are one quad's pixels on every path
     float sampleX[kSamples], sampleY[kSamples], depthC[kSamples];
-    for (int k = 0; k < kSamples; ++k) {
+    for (int k = 0; k < kSamples; ++k)
       sampleX[k] = float(pattern.offsets[k].x), sampleY[k] = float(pattern.offsets[k].y);
-      depthC[k] = sampleDepthInTile(p[0], pattern.offsets[k], t, tile).c;
-    }
+    sampleDepthsInTile(p[0], pattern, t, tile, depthC);
     const I laneSampleX = simd::toInt(simd::repeatPerQuad<L>(sampleX));
     const I laneSampleY = simd::toInt(simd::repeatPerQuad<L>(sampleY));
     const I quadX = lane.xi & I(1), quadY = lane.yi;  // lane pixel within its quad
