@@ -20,8 +20,11 @@ const TileKernels& tileKernels(Isa isa) {
 
 void sampleDepthsInTile(const Plane& depth, const SamplePattern& pattern, const TriangleRecord& t,
                         const TileBuffers& tile, float* c) {
+  // A copy: c might alias depth for the compiler, which reloaded depth.c
+  // after each store (perf annotate), a chain through every sample.
+  const Plane plane = depth;
   for (int k = 0; k < pattern.count; ++k)
-    c[k] = planeInTile(depth.atSample(pattern.offsets[k]), t, tile).c;
+    c[k] = planeInTile(plane.atSample(pattern.offsets[k]), t, tile).c;
 }
 
 TileKernelSelection selectTileKernels(Isa isa) {
