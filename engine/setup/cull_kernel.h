@@ -2,10 +2,10 @@
 // snapped positions alone decide, one lane per triangle. Most triangles of a
 // dense mesh stop here (back-facing, off screen, between pixel centres' rows
 // and columns, small and between samples), so they cost a few lane
-// operations and no branch each; setup
-// (triangle_setup.cpp) applies the verdicts in the scalar order and builds
-// only the triangles left. Compiled once per ISA (cull_kernel_isa.cpp.in);
-// every decision is exact, so every path culls the same triangles.
+// operations and no branch each; setup (triangle_setup.cpp) applies the
+// verdicts in the scalar order and builds only the triangles left. Compiled
+// once per ISA (cull_kernel_isa.cpp.in); every decision is exact, so every
+// path culls the same triangles.
 #pragma once
 
 #include <cstdint>

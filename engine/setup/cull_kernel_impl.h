@@ -34,14 +34,14 @@ int lanesSet(std::uint32_t bits) {
   return __builtin_popcount(bits);
 }
 
-// Which of the `tested` triangles cover one of their box's samples (of
-// kCoverageBox pixels a side at most, the box being the triangle's reach at
-// least). Per edge p->q the edge function of window/window_space.h's grid,
-// dx (Y - yp) - dy (X - xp) plus one on top and left edges, at each sample
-// position (X, Y) of each pixel: the deltas are below 2^11 and the positions
-// within 2^11 of the vertices, so every product and sum is an integer below
-// 2^24, exact in float. A triangle of negative area has its edges reversed:
-// deltas of the other sign, the same line.
+// Which of the `tested` triangles (boxes of at most kCoverageBox pixels a
+// side) cover a sample of a pixel of their box. Per edge p->q the edge
+// function of window/window_space.h's grid, dx (Y - yp) - dy (X - xp) plus
+// one on top and left edges, at each sample position (X, Y) of each pixel:
+// the deltas are below 2^11 and the positions within 2^11 of the vertices,
+// so every product and sum is an integer below 2^24, exact in float. A
+// triangle of negative area has its edges reversed: deltas of the other
+// sign, the same line.
 std::uint32_t coveringSamples(const I (&x)[3], const I (&y)[3], const M& negative, const I& minX,
                               const I& minY, const I& maxX, const I& maxY,
                               const SamplePattern& samples, std::uint32_t tested) {
@@ -164,10 +164,7 @@ void cull(const std::uint32_t* indices, int count, const SubpixelPosition* subpi
                  (simd::toFloat(highY - lowY) <= extent)) &
       out.keep & (simd::bits(p < q) | simd::bits(p > q));
   out.covers = 0;
-  if (small != 0) {
-    const I xs[3] = {x0, x1, x2}, ys[3] = {y0, y1, y2};
-    out.covers = coveringSamples(xs, ys, p < q, minX, minY, maxX, maxY, samples, small);
-  }
+  if (small != 0) out.covers = coveringSamples(x, y, p < q, minX, minY, maxX, maxY, samples, small);
   const std::uint32_t noSample = small & ~out.covers;
   out.keep &= ~noSample;
   out.negative = negative & out.keep;

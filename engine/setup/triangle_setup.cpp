@@ -132,10 +132,9 @@ struct PlaneSolver {
 
 // Emits a triangle that passed culling (snapped holds its vertices' snapped
 // positions, box, the area's sign and whether it covers a sample what
-// culling found). cornerOf(i) is
-// corner i (a Corner); it is called only once the snapped edges show the
-// triangle covers a pixel centre, so the triangles dropped between pixel
-// centres never touch their attributes.
+// culling found). cornerOf(i) is corner i (a Corner); it is called only once
+// the triangle is known to cover a sample, so the triangles dropped between
+// samples never touch their attributes.
 template <class CornerOf>
 void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const PixelBox& box,
               bool negativeArea, bool coversSample, std::uint32_t source,
