@@ -65,7 +65,6 @@ struct ShadeJob {
   float x, y;
   std::uint32_t triangle;  // tile triangle id
   std::uint16_t pixel;     // TileBuffers index
-  std::uint16_t samples;   // bit s: the triangle holds sample s
 };
 
 struct ShadeRun {

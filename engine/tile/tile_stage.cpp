@@ -58,14 +58,23 @@ struct TileScratch {
   // several triangles share are taken out of it, and those pixels' jobs and
   // their colours.
   std::vector<std::uint32_t> planeZeroVisible;
-  // The pixels whose samples differ (in colour, once shaded), in tile order;
-  // with allMixed, every pixel may.
+  // The pixels whose samples differ (in colour, once shaded), in tile order.
+  // With allMixed, every pixel may, and each plane holds its sample's
+  // colour; without, only plane 0 holds the colour of the others, and with
+  // the box filter the mixed pixels' too (shadePixels resolved them).
   std::vector<std::uint32_t> sampleDiffers;
   std::vector<std::uint16_t> mixedPixels;
   bool allMixed = false;
   std::vector<ShadeJob> jobs, sortedJobs;
   std::vector<float> jobColor;
   std::vector<std::uint32_t> runJobs;
+  // Per mixed pixel its first job, and per sample of it the job holding the
+  // sample, counted from there (kClearSlot: none), so that the jobs' colours
+  // go to the samples without a loop per job; with several runs, each job's
+  // place in sortedJobs (where its colour is).
+  std::vector<std::uint32_t> pixelFirstJob;
+  std::vector<std::uint8_t> sampleSlot;
+  std::vector<std::uint32_t> sortedAt;
   BlendedFragments blended;  // the forward "over" draws' fragments, per sample
   // With alpha to coverage, one masked draw's state per sample plane
   // (shadeAtSample), for the draw coverageDraw.
@@ -357,21 +366,31 @@ std::uint32_t sortJobsByRun(TileScratch& s) {
   for (const ShadeJob& job : s.jobs) ++s.runJobs[s.runOf[job.triangle] + 1];
   for (std::uint32_t r = 0; r < runs; ++r) s.runJobs[r + 1] += s.runJobs[r];
   s.sortedJobs.resize(s.jobs.size());
+  s.sortedAt.resize(s.jobs.size());
   s.groupCursor.assign(s.runJobs.begin(), s.runJobs.end() - 1);
-  for (const ShadeJob& job : s.jobs) s.sortedJobs[s.groupCursor[s.runOf[job.triangle]]++] = job;
+  for (std::size_t j = 0; j < s.jobs.size(); ++j) {
+    const std::uint32_t at = s.groupCursor[s.runOf[s.jobs[j].triangle]]++;
+    s.sortedJobs[at] = s.jobs[j];
+    s.sortedAt[j] = at;
+  }
   return runs;
 }
 
+// A mixed pixel's sample that no triangle holds (TileScratch::sampleSlot).
+constexpr std::uint8_t kClearSlot = 0xFF;
+
 // shadePixels' jobs: each triangle of a pixel whose samples differ, at the
-// mean of its samples' positions there; those pixels leave plane 0's ids,
-// and their samples no triangle holds take the clear colour. Per sample
-// count, so the loops over a pixel's samples unroll (this ran ~130
-// instructions a pixel with the count a variable; callgrind, dense-mesh).
+// mean of its samples' positions there, and which job holds each sample;
+// those pixels leave plane 0's ids. Per sample count, so the loops over a
+// pixel's samples unroll (this ran ~130 instructions a pixel with the count
+// a variable; callgrind, dense-mesh).
 template <int kSamples>
 void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
   TileBuffers* const planes = s.planes.get();
   s.jobs.clear();
   s.jobs.reserve(s.mixedPixels.size() * 2);
+  s.pixelFirstJob.resize(s.mixedPixels.size());
+  s.sampleSlot.resize(s.mixedPixels.size() * kSamples);
   // Per set of samples (bit j: sample j), the mean of their offsets in
   // pixels, the sum scaled once: with 16 samples computed per job instead
   // (2^16 sets).
@@ -391,26 +410,68 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
     for (std::uint32_t mask = 1; mask < (1u << kSamples); ++mask)
       meanOf(mask, meanX[mask], meanY[mask]);
   std::uint32_t ids[kSamples];
-  for (const std::uint16_t p : s.mixedPixels) {
+  for (std::size_t i = 0; i < s.mixedPixels.size(); ++i) {
+    const std::uint16_t p = s.mixedPixels[i];
     for (int k = 0; k < kSamples; ++k) ids[k] = planes[k].visible[p];
     planes[0].visible[p] = kNoTriangle;
     const float x = float(TileBuffers::xAt(p)), y = float(TileBuffers::yAt(p));
+    const auto firstJob = std::uint32_t(s.jobs.size());
+    s.pixelFirstJob[i] = firstJob;
+    std::uint8_t* const slot = s.sampleSlot.data() + i * kSamples;
     for (std::uint32_t left = (1u << kSamples) - 1; left != 0;) {
       const std::uint32_t id = ids[__builtin_ctz(left)];
+      const std::uint8_t held =
+          id == kNoTriangle ? kClearSlot : std::uint8_t(s.jobs.size() - firstJob);
       std::uint32_t mask = 0;
-      for (int j = 0; j < kSamples; ++j) mask |= std::uint32_t(ids[j] == id) << j;
-      left &= ~mask;
-      if (id == kNoTriangle) {
-        for (std::uint32_t m = mask; m != 0; m &= m - 1)
-          for (int c = 0; c < 4; ++c) planes[__builtin_ctz(m)].color[c][p] = frame.clearColor[c];
-        continue;
+      for (int j = 0; j < kSamples; ++j) {
+        mask |= std::uint32_t(ids[j] == id) << j;
+        slot[j] = ids[j] == id ? held : slot[j];
       }
+      left &= ~mask;
+      if (id == kNoTriangle) continue;
       float dx, dy;
       if constexpr (kTable)
         dx = meanX[mask], dy = meanY[mask];
       else
         meanOf(mask, dx, dy);
-      s.jobs.push_back({x + dx, y + dy, id, p, std::uint16_t(mask)});
+      s.jobs.push_back({x + dx, y + dy, id, p});
+    }
+  }
+}
+
+// The mixed pixels' sample colours: each job's (s.jobColor: RGB, in
+// s.sortedJobs' order) at the samples it holds, the clear colour at those
+// none holds, a pixel at a time (a loop over each job's samples mispredicted
+// about once a pixel; cachegrind, dense-mesh at 4 samples). kResolve:
+// straight to their box-filtered colour in plane 0, summed pairwise as
+// averageSamples sums the planes (the same bits), the other planes' colours
+// never written nor read (dense-mesh at 4 samples: the resolve stage 5.3 ->
+// 3.0 ms a frame at 1 thread, where it is 3.3 at one sample).
+template <int kSamples, bool kSorted, bool kResolve>
+void writeJobColors(const TileFrame& frame, TileScratch& s) {
+  TileBuffers* const planes = s.planes.get();
+  const float* const color = s.jobColor.data();
+  const float weight = 1.0f / float(kSamples);  // a power of two: exact
+  for (std::size_t i = 0; i < s.mixedPixels.size(); ++i) {
+    const std::uint16_t p = s.mixedPixels[i];
+    const std::uint8_t* const slot = s.sampleSlot.data() + i * kSamples;
+    float value[4][kSamples];
+    for (int k = 0; k < kSamples; ++k) {
+      const bool clear = slot[k] == kClearSlot;
+      const std::uint32_t job = clear ? 0 : s.pixelFirstJob[i] + slot[k];
+      const float* const rgb =
+          clear ? &frame.clearColor[0] : color + 3 * std::size_t(kSorted ? s.sortedAt[job] : job);
+      for (int c = 0; c < 3; ++c) value[c][k] = rgb[c];
+      value[3][k] = clear ? frame.clearColor[3] : 1.0f;  // opaque and masked draws
+    }
+    for (int c = 0; c < 4; ++c) {
+      if constexpr (kResolve) {
+        for (int width = 1; width < kSamples; width *= 2)
+          for (int k = 0; k + width < kSamples; k += 2 * width) value[c][k] += value[c][k + width];
+        planes[0].color[c][p] = value[c][0] * weight;
+      } else {
+        for (int k = 0; k < kSamples; ++k) planes[k].color[c][p] = value[c][k];
+      }
     }
   }
 }
@@ -420,8 +481,9 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
 // like a one-sample tile; only plane 0 holds their colour (fillSamplePlanes
 // copies it where something else will draw). Every other pixel's triangles
 // are jobs, each shaded at the mean of its samples' positions (inside the
-// triangle) and written to its samples; its uncovered samples get the clear
-// colour.
+// triangle) and written to its samples, its uncovered samples taking the
+// clear colour; or, box-filtered with no forward draw to come, their mean
+// written to plane 0, the pixel resolved.
 void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
   const int samples = frame.samples.count;
   TileBuffers* const planes = s.planes.get();
@@ -466,17 +528,21 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
     kernels.shade(frame.draws[s.visibleTriangles[s.sortedJobs[first].triangle].draw].shade, run,
                   planes[0]);
   }
-  for (std::size_t j = 0; j < s.sortedJobs.size(); ++j) {
-    const ShadeJob& job = s.sortedJobs[j];
-    // Read once: the stores below may alias it for the compiler, which
-    // reloaded it after each (a stall a store; perf).
-    const float rgb[3] = {s.jobColor[3 * j], s.jobColor[3 * j + 1], s.jobColor[3 * j + 2]};
-    for (std::uint32_t mask = job.samples; mask; mask &= mask - 1) {
-      TileBuffers& plane = planes[__builtin_ctz(mask)];
-      for (int c = 0; c < 3; ++c) plane.color[c][job.pixel] = rgb[c];
-      plane.color[3][job.pixel] = 1.0f;  // opaque and masked draws
-    }
-  }
+  // Box-filtered with nothing drawn after: resolved here.
+  const bool resolve = s.pixelFilter == nullptr && s.forward.empty();
+  withSampleCount(samples, [&](auto count) {
+    constexpr int kSamples = decltype(count)::value;
+    const auto write = [&]<bool kSorted>() {
+      if (resolve)
+        writeJobColors<kSamples, kSorted, true>(frame, s);
+      else
+        writeJobColors<kSamples, kSorted, false>(frame, s);
+    };
+    if (runs == 1)
+      write.template operator()<false>();
+    else
+      write.template operator()<true>();
+  });
 }
 
 // Before forward draws write into a tile shaded per pixel: plane 0's colour
@@ -515,33 +581,23 @@ void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch
   }
 }
 
-// The samples' pixel box filter into plane 0: colour the mean of the
-// samples, summed pairwise (so samples of one colour average to exactly that
-// colour, and a pixel only plane 0 holds needs no sum).
+// The samples' pixel box filter into plane 0, every plane holding its
+// samples' colours: the mean of the samples, summed pairwise as
+// writeJobColors sums a pixel's (so samples of one colour average to exactly
+// that colour).
 void averageSamples(const TileFrame& frame, TileScratch& s) {
   const int samples = frame.samples.count;
   TileBuffers* const planes = s.planes.get();
   const float weight = 1.0f / float(samples);  // a power of two: exact
-  if (s.allMixed) {
-    for (int width = 1; width < samples; width *= 2)
-      for (int k = 0; k + width < samples; k += 2 * width)
-        for (int c = 0; c < 4; ++c) {
-          float* sum = planes[k].color[c];
-          const float* add = planes[k + width].color[c];
-          for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] += add[p];
-        }
-    for (int c = 0; c < 4; ++c)
-      for (int p = 0; p < TileBuffers::kPixels; ++p) planes[0].color[c][p] *= weight;
-  } else {
-    for (const std::uint16_t p : s.mixedPixels)
+  for (int width = 1; width < samples; width *= 2)
+    for (int k = 0; k + width < samples; k += 2 * width)
       for (int c = 0; c < 4; ++c) {
-        float value[kMaxSamples];
-        for (int k = 0; k < samples; ++k) value[k] = planes[k].color[c][p];
-        for (int width = 1; width < samples; width *= 2)
-          for (int k = 0; k + width < samples; k += 2 * width) value[k] += value[k + width];
-        planes[0].color[c][p] = value[0] * weight;
+        float* sum = planes[k].color[c];
+        const float* add = planes[k + width].color[c];
+        for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] += add[p];
       }
-  }
+  for (int c = 0; c < 4; ++c)
+    for (int p = 0; p < TileBuffers::kPixels; ++p) planes[0].color[c][p] *= weight;
 }
 
 // Every filter's depth: the pixel's nearest sample's, into plane 0.
@@ -630,12 +686,7 @@ void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame
                       perPixel ? s.sampleDiffers.data() : nullptr, s.filter, out);
   } else {
     if (frame.coverage) boxCoverage(s.planes.get(), samples, frame.clearDepth, out);
-    // Where many pixels' samples differ (small triangles), whole planes
-    // averaged in lanes cost less than those pixels gathered one by one: the
-    // same sums (samples of one colour average to exactly it).
-    if (samples > 1 && !s.allMixed && s.mixedPixels.size() > TileBuffers::kPixels / 8)
-      fillSamplePlanes(frame, s);
-    if (samples > 1) averageSamples(frame, s);
+    if (samples > 1 && s.allMixed) averageSamples(frame, s);
   }
   if (samples > 1) nearestSampleDepth(frame, s);
 }
@@ -660,7 +711,7 @@ void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, Tile
       if (hasAov(set, Aov::Lod)) out.lod[pixel] = 0.0f;
       if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = 0.0f;
       if (id != kNoTriangle && frame.draws[s.visibleTriangles[id].draw].shade.textured)
-        s.jobs.push_back({float(x), float(y), id, std::uint16_t(p), 0});
+        s.jobs.push_back({float(x), float(y), id, std::uint16_t(p)});
     }
   if (s.jobs.empty()) return;
   const std::uint32_t runs = sortJobsByRun(s);
@@ -742,13 +793,15 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
                                     sizeof(std::uint32_t) + 2 * 6 * sizeof(std::uint32_t) +
                                     (aovs ? 2 * (sizeof(std::uint32_t) + sizeof(AovTriangle)) : 0);
   // Shading jobs, at most one per sample slot (a pixel's triangles shaded
-  // once each): the job, its sorted copy and its colour (RGB, or lod and
-  // anisotropy).
-  const std::uint64_t perJob = 2 * (2 * sizeof(ShadeJob) + 3 * sizeof(float));
-  // Per pixel: plane 0's ids copied, the differing samples, the mixed pixels,
-  // the run lists' groups and pixels, and each lane group's run.
+  // once each): the job, its sorted copy, its place there and its colour
+  // (RGB, or lod and anisotropy); and each slot's job.
+  const std::uint64_t perJob =
+      2 * (2 * sizeof(ShadeJob) + 3 * sizeof(float) + sizeof(std::uint32_t) + sizeof(std::uint8_t));
+  // Per pixel: plane 0's ids copied, the differing samples, the mixed pixels
+  // and their first jobs, the run lists' groups and pixels, and each lane
+  // group's run.
   const std::uint64_t perPixel =
-      2 * (2 * sizeof(std::uint32_t) + 3 * sizeof(std::uint16_t) + sizeof(std::uint32_t));
+      2 * (3 * sizeof(std::uint32_t) + 3 * sizeof(std::uint16_t) + sizeof(std::uint32_t));
   const std::uint64_t perWorker =
       std::uint64_t(samples) * (sizeof(TileBuffers) + sizeof(ShadeState)) + fragments +
       std::uint64_t(maxVisibleTriangles(samples)) * perTriangle + slots * perJob +
