@@ -1193,27 +1193,35 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
     // is skipped where the sample plane nearest the viewer fails against the
     // widest of the planes' bounds there, so every sample fails (its plane is
     // behind that one, and BlockDepthTest's margin grows with |c| no faster
-    // than c moves).
-    const bool farthestFirst = s.depthCompare == CompareFunction::Greater ||
-                               s.depthCompare == CompareFunction::GreaterEqual;
-    const float nearestC = farthestFirst ? *std::max_element(depthC, depthC + kSamples)
-                                         : *std::min_element(depthC, depthC + kSamples);
-    const BlockDepthTest depthTest(Plane{p[0].dx, p[0].dy, nearestC}, s);
+    // than c moves). Only past kHiddenTestQuads quads: for fewer, the test
+    // (doubles, every plane's bounds) cost more than the quads' own depth
+    // tests it spares, nearly all of them passing on a visible mesh
+    // (1080p, 4 samples, 1 thread: raster 52 -> 48.5 ms on
+    // MetalRoughSpheresNoTextures, 33 -> 30.5 on dense-mesh).
+    constexpr int kHiddenTestQuads = 4;
     const int bx0 = x0 / kBlockSize, by0 = y0 / kBlockSize;
-    const int bx1 = (xEnd - 1) / kBlockSize, by1 = (yEnd - 1) / kBlockSize;
     std::uint32_t hiddenBlocks = 0;  // bit 2 * (by - by0) + (bx - bx0)
-    for (int by = by0; by <= by1; ++by)
-      for (int bx = bx0; bx <= bx1; ++bx) {
-        const int block = by * TileBuffers::kBlocksPerRow + bx;
-        float boundMin = planes[0].blockDepthMin[block], boundMax = planes[0].blockDepthMax[block];
-        for (int k = 1; k < kSamples; ++k) {
-          boundMin = std::min(boundMin, planes[k].blockDepthMin[block]);
-          boundMax = std::max(boundMax, planes[k].blockDepthMax[block]);
+    if (((xEnd - x0 + 1) / 2) * ((yEnd - y0 + 1) / 2) > kHiddenTestQuads) {
+      const bool farthestFirst = s.depthCompare == CompareFunction::Greater ||
+                                 s.depthCompare == CompareFunction::GreaterEqual;
+      const float nearestC = farthestFirst ? *std::max_element(depthC, depthC + kSamples)
+                                           : *std::min_element(depthC, depthC + kSamples);
+      const BlockDepthTest depthTest(Plane{p[0].dx, p[0].dy, nearestC}, s);
+      const int bx1 = (xEnd - 1) / kBlockSize, by1 = (yEnd - 1) / kBlockSize;
+      for (int by = by0; by <= by1; ++by)
+        for (int bx = bx0; bx <= bx1; ++bx) {
+          const int block = by * TileBuffers::kBlocksPerRow + bx;
+          float boundMin = planes[0].blockDepthMin[block],
+                boundMax = planes[0].blockDepthMax[block];
+          for (int k = 1; k < kSamples; ++k) {
+            boundMin = std::min(boundMin, planes[k].blockDepthMin[block]);
+            boundMax = std::max(boundMax, planes[k].blockDepthMax[block]);
+          }
+          const double slope = depthTest.slopeAt(bx * kBlockSize, by * kBlockSize);
+          if (depthTest.hiddenBehind(slope, boundMin, boundMax))
+            hiddenBlocks |= 1u << (2 * (by - by0) + (bx - bx0));
         }
-        const double slope = depthTest.slopeAt(bx * kBlockSize, by * kBlockSize);
-        if (depthTest.hiddenBehind(slope, boundMin, boundMax))
-          hiddenBlocks |= 1u << (2 * (by - by0) + (bx - bx0));
-      }
+    }
 
     const F triangleId = simd::asFloat(I(std::int32_t(id)));
     constexpr std::ptrdiff_t kPlaneFloats = sizeof(TileBuffers) / sizeof(float);
