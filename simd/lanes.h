@@ -652,6 +652,46 @@ QUADRA_LANE_INLINE void storeQuadsStrided(const typename L::F& value, float* bas
   for (int k = 0; k < L::kWidth; ++k) base[(k / 4) * stride + k % 4] = lanes[k];
 }
 
+// Lane k of out[j] is records[k][j], j < 3: a float triple per lane (a
+// plane's dx, dy, c) as three registers. Each record must be readable for 4
+// floats (the fourth is loaded and dropped). In registers, 4 lanes a 4x4
+// transpose: through memory, each register's load waited for its lanes'
+// scalar stores.
+template <class L>
+QUADRA_LANE_INLINE void loadTriples(const float* const* records, typename L::F out[3]) {
+#if defined(__SSE2__)
+  if constexpr (!std::is_same_v<L, Lanes<ScalarArch>>) {
+    __m128 quarter[L::kWidth / 4][3];
+    for (int q = 0; q < L::kWidth / 4; ++q) {
+      __m128 a = _mm_loadu_ps(records[4 * q]), b = _mm_loadu_ps(records[4 * q + 1]),
+             c = _mm_loadu_ps(records[4 * q + 2]), d = _mm_loadu_ps(records[4 * q + 3]);
+      _MM_TRANSPOSE4_PS(a, b, c, d);
+      quarter[q][0] = a, quarter[q][1] = b, quarter[q][2] = c;
+    }
+    for (int j = 0; j < 3; ++j) {
+      if constexpr (L::kWidth == 4) {
+        out[j] = quarter[0][j];
+#if defined(__AVX2__)
+      } else if constexpr (L::kWidth == 8) {
+        out[j] = _mm256_insertf128_ps(_mm256_castps128_ps256(quarter[0][j]), quarter[1][j], 1);
+#endif
+#if defined(__AVX512F__) && defined(__AVX512BW__)
+      } else if constexpr (L::kWidth == 16) {
+        const __m512 low =
+            _mm512_insertf32x4(_mm512_castps128_ps512(quarter[0][j]), quarter[1][j], 1);
+        out[j] = _mm512_insertf32x4(_mm512_insertf32x4(low, quarter[2][j], 2), quarter[3][j], 3);
+#endif
+      }
+    }
+    return;
+  }
+#endif
+  alignas(64) float lanes[3][L::kWidth];
+  for (int k = 0; k < L::kWidth; ++k)
+    for (int j = 0; j < 3; ++j) lanes[j][k] = records[k][j];
+  for (int j = 0; j < 3; ++j) out[j] = L::F::load_aligned(lanes[j]);
+}
+
 // Lane i of the result is perQuad[i / 4]: one value per quad of lanes.
 template <class L>
 QUADRA_LANE_INLINE typename L::F repeatPerQuad(const float* perQuad) {

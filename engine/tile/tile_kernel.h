@@ -74,7 +74,7 @@ struct ShadeRun {
   int groupCount = 0;
   const std::uint16_t* pixels = nullptr;  // the other pixels, in tile order
   int pixelCount = 0;
-  const float* planes = nullptr;  // kShadePlaneStride floats per tile triangle
+  const float* planes = nullptr;  // kShadePlaneStride floats per tile triangle, one more after
   // Instead of the above: jobs, whose colours (R, G, B; alpha is 1) go to
   // jobColor, 3 floats each, not to the tile.
   const ShadeJob* jobs = nullptr;

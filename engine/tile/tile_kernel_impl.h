@@ -824,13 +824,13 @@ QUADRA_LANE_INLINE void lanePlanes(const float* table, const std::uint32_t* ids,
       out[j] = {F(planes[3 * j]), F(planes[3 * j + 1]), F(planes[3 * j + 2])};
     return;
   }
-  alignas(64) float lane[3][L::kWidth];
+  const float* plane[L::kWidth];  // each lane's plane j; the table has a float past its end
+  for (int k = 0; k < L::kWidth; ++k) plane[k] = table + std::size_t(ids[k]) * kShadePlaneStride;
   for (int j = 0; j < planeCount; ++j) {
-    for (int k = 0; k < L::kWidth; ++k) {
-      const float* planes = table + std::size_t(ids[k]) * kShadePlaneStride + 3 * j;
-      lane[0][k] = planes[0], lane[1][k] = planes[1], lane[2][k] = planes[2];
-    }
-    out[j] = {F::load_aligned(lane[0]), F::load_aligned(lane[1]), F::load_aligned(lane[2])};
+    F coefficients[3];
+    simd::loadTriples<L>(plane, coefficients);
+    out[j] = {coefficients[0], coefficients[1], coefficients[2]};
+    for (int k = 0; k < L::kWidth; ++k) plane[k] += 3;
   }
 }
 

@@ -36,7 +36,7 @@ struct TileScratch {
     // At their bound from the start, so they never grow past it by doubling
     // (tileMemoryBytes); pages never written take no memory.
     visibleTriangles.reserve(std::size_t(maxVisibleTriangles(samples)));
-    shadePlanes.reserve(std::size_t(maxVisibleTriangles(samples)) * kShadePlaneStride);
+    shadePlanes.reserve(std::size_t(maxVisibleTriangles(samples)) * kShadePlaneStride + 1);
   }
   // One per sample (tile_stage.cpp's opening comment). Not value-initialized:
   // every tile clears what it reads.
@@ -48,9 +48,11 @@ struct TileScratch {
   std::vector<std::uint32_t> visibleSources;  // with AOVs: their mesh triangles
   std::vector<AovTriangle> aovTriangles;      // with AOVs: writeSurfaceAovs' memory
   std::vector<TileTriangle> forward;          // forward-path triangles, in order
-  std::vector<float> shadePlanes;             // kShadePlaneStride per visible triangle
-  std::vector<std::uint32_t> runOf;           // per visible triangle: its draw's run
-  std::vector<std::uint32_t> groupRun;        // per lane group: its run, if all its pixels have one
+  // kShadePlaneStride per visible triangle, and one more float: the
+  // kernels load each plane (3 floats) 4 floats at a time.
+  std::vector<float> shadePlanes;
+  std::vector<std::uint32_t> runOf;     // per visible triangle: its draw's run
+  std::vector<std::uint32_t> groupRun;  // per lane group: its run, if all its pixels have one
   // Per run: where its whole groups and its other pixels start in the lists.
   std::vector<std::uint32_t> runGroups, runPixels, groupCursor, pixelCursor;
   std::vector<std::uint16_t> groupList, pixelList;
@@ -247,7 +249,7 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
 // with each pixel's sample at `offset` standing in for its centre.
 void rebaseShadePlanes(const std::vector<Draw>& draws, const TileBuffers& tile, SampleOffset offset,
                        TileScratch& s) {
-  s.shadePlanes.resize(s.visibleTriangles.size() * kShadePlaneStride);
+  s.shadePlanes.resize(s.visibleTriangles.size() * kShadePlaneStride + 1);
   const bool moved = offset.x != 0 || offset.y != 0;  // else the same bits, cheaper
   for (std::size_t i = 0; i < s.visibleTriangles.size(); ++i) {
     const TileTriangle& v = s.visibleTriangles[i];
