@@ -652,11 +652,10 @@ QUADRA_LANE_INLINE void storeQuadsStrided(const typename L::F& value, float* bas
   for (int k = 0; k < L::kWidth; ++k) base[(k / 4) * stride + k % 4] = lanes[k];
 }
 
-// Lane k of out[j] is records[k][j], j < 3: a float triple per lane (a
-// plane's dx, dy, c) as three registers. Each record must be readable for 4
-// floats (the fourth is loaded and dropped). In registers, 4 lanes a 4x4
-// transpose: through memory, each register's load waited for its lanes'
-// scalar stores.
+// Lane k of out[j] holds the bits of records[k][j], j < 3: a triple per
+// lane (a plane's dx, dy, c; a shading job's x, y) as three registers. Each
+// record must be readable for 4 floats (the fourth is loaded and dropped). In registers, 4 lanes a
+// 4x4 transpose: through memory, each register's load waited for its lanes' scalar stores.
 template <class L>
 QUADRA_LANE_INLINE void loadTriples(const float* const* records, typename L::F out[3]) {
 #if defined(__SSE2__)
@@ -687,8 +686,8 @@ QUADRA_LANE_INLINE void loadTriples(const float* const* records, typename L::F o
   }
 #endif
   alignas(64) float lanes[3][L::kWidth];
-  for (int k = 0; k < L::kWidth; ++k)
-    for (int j = 0; j < 3; ++j) lanes[j][k] = records[k][j];
+  for (int k = 0; k < L::kWidth; ++k)  // a record's floats may be another type's bits
+    for (int j = 0; j < 3; ++j) std::memcpy(&lanes[j][k], records[k] + j, sizeof(float));
   for (int j = 0; j < 3; ++j) out[j] = L::F::load_aligned(lanes[j]);
 }
 

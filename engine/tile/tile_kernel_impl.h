@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -857,11 +858,10 @@ class RunShader {
   }
 
   // R, G, B of the lanes' positions, each with its own triangle's planes.
-  void shadeLanes(const float* xs, const float* ys, const std::uint32_t* ids,
-                  float (*out)[L::kWidth]) const {
+  void shadeLanes(const F& x, const F& y, const std::uint32_t* ids, float (*out)[L::kWidth]) const {
     LanePlane p[1 + kMaxShadedAttributes];
     lanePlanes(run_.planes, ids, planeCount_, p);
-    const Rgba<L> c = Feat::color(shade_, F::load_aligned(xs), F::load_aligned(ys), p[0], p + 1);
+    const Rgba<L> c = Feat::color(shade_, x, y, p[0], p + 1);
     c.r.store_aligned(out[0]);
     c.g.store_aligned(out[1]);
     c.b.store_aligned(out[2]);
@@ -879,7 +879,7 @@ class RunShader {
       ys[k] = float(TileBuffers::yAt(pixel[k]));
       ids[k] = tile_.visible[pixel[k]];
     }
-    shadeLanes(xs, ys, ids, out);
+    shadeLanes(F::load_aligned(xs), F::load_aligned(ys), ids, out);
     for (int k = 0; k < count; ++k) {
       for (int ch = 0; ch < 3; ++ch) tile_.color[ch][pixel[k]] = out[ch][k];
       tile_.color[3][pixel[k]] = 1.0f;
@@ -889,14 +889,19 @@ class RunShader {
   // run_.jobs[first .. first+count) (count 1..kWidth), each at its own
   // position with its own triangle; colours to run_.jobColor.
   void jobs(int first, int count) const {
-    alignas(64) float xs[L::kWidth], ys[L::kWidth];
     alignas(64) float out[3][L::kWidth];
     alignas(64) std::uint32_t ids[L::kWidth];
+    const float* job[L::kWidth];  // x, y and the triangle's bits: simd::loadTriples' records
+    static_assert(offsetof(ShadeJob, x) == 0 && offsetof(ShadeJob, y) == 4 &&
+                  sizeof(ShadeJob) >= 4 * sizeof(float));
     for (int k = 0; k < L::kWidth; ++k) {
-      const ShadeJob& job = run_.jobs[first + std::min(k, count - 1)];
-      xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
+      const ShadeJob& lane = run_.jobs[first + std::min(k, count - 1)];
+      job[k] = reinterpret_cast<const float*>(&lane);
+      ids[k] = lane.triangle;
     }
-    shadeLanes(xs, ys, ids, out);
+    F position[3];
+    simd::loadTriples<L>(job, position);
+    shadeLanes(position[0], position[1], ids, out);
     for (int k = 0; k < count; ++k)
       for (int ch = 0; ch < 3; ++ch) run_.jobColor[3 * (first + k) + ch] = out[ch][k];
   }
