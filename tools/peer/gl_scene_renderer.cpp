@@ -13,6 +13,7 @@
 #include "api/renderer.h"
 #include "core/error.h"
 #include "osmesa_context.h"
+#include "scene/deformation.h"
 #include "texture/image.h"
 #include "texture/mip_chain.h"
 
@@ -206,12 +207,20 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
     const int texcoordSet = std::clamp(material.baseColorTexCoord, 0, 1);
     const bool textured = material.baseColorTexture >= 0 && !mesh.texcoords[texcoordSet].empty();
     const bool vertexColor = !mesh.colors.empty();
-    if (!uploaded[m]) {
-      uploadMesh(mesh, texcoordSet, vertexColor, meshes_[m]);
-      uploaded[m] = true;
-    }
     DrawState draw;
-    draw.mesh = &meshes_[m];
+    if (const VertexDeformer deformer(mesh, instance); deformer.active()) {
+      std::vector<glm::vec3> posed(mesh.positions.size());
+      for (std::size_t i = 0; i < posed.size(); ++i)
+        posed[i] = deformer.position(i, deformer.skinMatrix(i));
+      uploadMesh(mesh, posed, texcoordSet, vertexColor, posedMeshes_.emplace_back());
+      draw.mesh = &posedMeshes_.back();
+    } else {
+      if (!uploaded[m]) {
+        uploadMesh(mesh, mesh.positions, texcoordSet, vertexColor, meshes_[m]);
+        uploaded[m] = true;
+      }
+      draw.mesh = &meshes_[m];
+    }
     draw.program = &programFor(textured, vertexColor, material.alphaMode);
     if (textured) {
       const Texture& texture = scene.textures.at(std::size_t(material.baseColorTexture))
@@ -243,10 +252,12 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
 }
 
 GlSceneRenderer::~GlSceneRenderer() {
-  for (const MeshBuffers& mesh : meshes_) {
+  const auto release = [](const MeshBuffers& mesh) {
     glDeleteVertexArrays(1, &mesh.vertexArray);
     glDeleteBuffers(4, mesh.buffers);
-  }
+  };
+  for (const MeshBuffers& mesh : meshes_) release(mesh);
+  for (const MeshBuffers& mesh : posedMeshes_) release(mesh);
   for (const auto& [texture, id] : textures_) glDeleteTextures(1, &id);
   for (const auto& [variant, program] : programs_) glDeleteProgram(program.id);
   glDeleteFramebuffers(1, &framebuffer_);
@@ -285,8 +296,8 @@ const GlSceneRenderer::Program& GlSceneRenderer::programFor(bool textured, bool 
   return programs_.emplace(variant, program).first->second;
 }
 
-void GlSceneRenderer::uploadMesh(const Mesh& mesh, int texcoordSet, bool vertexColor,
-                                 MeshBuffers& out) {
+void GlSceneRenderer::uploadMesh(const Mesh& mesh, std::span<const glm::vec3> positions,
+                                 int texcoordSet, bool vertexColor, MeshBuffers& out) {
   glGenVertexArrays(1, &out.vertexArray);
   glBindVertexArray(out.vertexArray);
   glGenBuffers(4, out.buffers);
@@ -296,7 +307,7 @@ void GlSceneRenderer::uploadMesh(const Mesh& mesh, int texcoordSet, bool vertexC
     glVertexAttribPointer(GLuint(slot), components, GL_FLOAT, GL_FALSE, 0, nullptr);
     glEnableVertexAttribArray(GLuint(slot));
   };
-  attribute(0, 3, GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data());
+  attribute(0, 3, GLsizeiptr(positions.size() * sizeof(glm::vec3)), positions.data());
   const std::vector<glm::vec2>& texcoords = mesh.texcoords[texcoordSet];
   if (!texcoords.empty())
     attribute(1, 2, GLsizeiptr(texcoords.size() * sizeof(glm::vec2)), texcoords.data());

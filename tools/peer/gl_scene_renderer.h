@@ -13,8 +13,10 @@
 #include <GL/gl.h>
 
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -92,7 +94,9 @@ class GlSceneRenderer {
   };
 
   const Program& programFor(bool textured, bool vertexColor, AlphaMode alphaMode);
-  void uploadMesh(const Mesh& mesh, int texcoordSet, bool vertexColor, MeshBuffers& out);
+  // positions: the mesh's own, or an instance's posed ones.
+  void uploadMesh(const Mesh& mesh, std::span<const glm::vec3> positions, int texcoordSet,
+                  bool vertexColor, MeshBuffers& out);
   GLuint uploadTexture(const Texture& texture);
   void draw(const DrawState& state, const glm::mat4& clipFromModel) const;
 
@@ -101,6 +105,10 @@ class GlSceneRenderer {
   GLuint framebuffer_ = 0, colorBuffer_ = 0, depthBuffer_ = 0;
   std::map<int, Program> programs_;
   std::vector<MeshBuffers> meshes_;  // one per scene mesh
+  // One per skinned or morphed instance, its vertices posed as quadra's
+  // vertex stage poses them (scene/deformation.h); a deque, so that the
+  // draws' pointers stay valid as it grows.
+  std::deque<MeshBuffers> posedMeshes_;
   // One per texture variant the materials read (Texture::forAlpha).
   std::map<const Texture*, GLuint> textures_;
   std::vector<DrawState> draws_;          // one per scene instance
