@@ -443,8 +443,9 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
 
 // The mixed pixels' sample colours: each job's (s.jobColor: RGB, in
 // s.sortedJobs' order) at the samples it holds, the clear colour at those
-// none holds, a pixel at a time (a loop over each job's samples mispredicted
-// about once a pixel; cachegrind, dense-mesh at 4 samples). kResolve:
+// none holds, a pixel at a time, as the resolve needs them (written alone,
+// this ran no faster than the loop over each job's samples it replaced,
+// though cachegrind put a mispredict a pixel in that loop). kResolve:
 // straight to their box-filtered colour in plane 0, summed pairwise as
 // averageSamples sums the planes (the same bits), the other planes' colours
 // never written nor read (dense-mesh at 4 samples: the resolve stage 5.3 ->
