@@ -385,12 +385,16 @@ constexpr std::uint8_t kClearSlot = 0xFF;
 // mean of its samples' positions there, and which job holds each sample;
 // those pixels leave plane 0's ids. Per sample count, so the loops over a
 // pixel's samples unroll (this ran ~130 instructions a pixel with the count
-// a variable; callgrind, dense-mesh).
+// a variable; callgrind, dense-mesh). Without a branch on the number of
+// triangles a pixel holds (2 to kSamples, at random on a dense mesh): a job
+// is written at every sample and kept only at the first sample of its
+// triangle, the next one overwriting it otherwise.
 template <int kSamples>
 void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
   TileBuffers* const planes = s.planes.get();
-  s.jobs.clear();
-  s.jobs.reserve(s.mixedPixels.size() * 2);
+  // Room for a job at every sample; the pages are warm from the last tile,
+  // and the vector only zero-fills past the last tile's jobs.
+  s.jobs.resize(s.mixedPixels.size() * kSamples);
   s.pixelFirstJob.resize(s.mixedPixels.size());
   s.sampleSlot.resize(s.mixedPixels.size() * kSamples);
   // Per set of samples (bit j: sample j), the mean of their offsets in
@@ -411,34 +415,37 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
   if constexpr (kTable)
     for (std::uint32_t mask = 1; mask < (1u << kSamples); ++mask)
       meanOf(mask, meanX[mask], meanY[mask]);
+  ShadeJob* const jobs = s.jobs.data();
+  std::uint32_t jobCount = 0;
   std::uint32_t ids[kSamples];
+  std::uint8_t opens[kSamples];
   for (std::size_t i = 0; i < s.mixedPixels.size(); ++i) {
     const std::uint16_t p = s.mixedPixels[i];
     for (int k = 0; k < kSamples; ++k) ids[k] = planes[k].visible[p];
     planes[0].visible[p] = kNoTriangle;
     const float x = float(TileBuffers::xAt(p)), y = float(TileBuffers::yAt(p));
-    const auto firstJob = std::uint32_t(s.jobs.size());
+    const std::uint32_t firstJob = jobCount;
     s.pixelFirstJob[i] = firstJob;
     std::uint8_t* const slot = s.sampleSlot.data() + i * kSamples;
-    for (std::uint32_t left = (1u << kSamples) - 1; left != 0;) {
-      const std::uint32_t id = ids[__builtin_ctz(left)];
-      const std::uint8_t held =
-          id == kNoTriangle ? kClearSlot : std::uint8_t(s.jobs.size() - firstJob);
-      std::uint32_t mask = 0;
-      for (int j = 0; j < kSamples; ++j) {
-        mask |= std::uint32_t(ids[j] == id) << j;
-        slot[j] = ids[j] == id ? held : slot[j];
-      }
-      left &= ~mask;
-      if (id == kNoTriangle) continue;
-      float dx, dy;
+    for (int k = 0; k < kSamples; ++k) {
+      std::uint32_t same = 0;  // the samples holding sample k's triangle
+      for (int j = 0; j < kSamples; ++j) same |= std::uint32_t(ids[j] == ids[k]) << j;
+      const bool first = (same & ((1u << k) - 1)) == 0;
+      const bool clear = ids[k] == kNoTriangle;
+      // The job sample k opens if it is its triangle's first; it takes its
+      // first's (itself included) without a branch.
+      opens[k] = clear ? kClearSlot : std::uint8_t(jobCount - firstJob);
+      slot[k] = opens[__builtin_ctz(same)];
+      float dx = 0.0f, dy = 0.0f;
       if constexpr (kTable)
-        dx = meanX[mask], dy = meanY[mask];
-      else
-        meanOf(mask, dx, dy);
-      s.jobs.push_back({x + dx, y + dy, id, p});
+        dx = meanX[same], dy = meanY[same];
+      else if (first && !clear)
+        meanOf(same, dx, dy);
+      jobs[jobCount] = {x + dx, y + dy, ids[k], p};
+      jobCount += first && !clear ? 1 : 0;
     }
   }
+  s.jobs.resize(jobCount);
 }
 
 // The mixed pixels' sample colours: each job's (s.jobColor: RGB, in
