@@ -35,12 +35,14 @@ inline Plane planeInTile(const Plane& p, const TriangleRecord& t, const TileBuff
 }
 
 // c[k] = planeInTile(depth.atSample(pattern.offsets[k]), t, tile).c for
-// each sample k: the depth plane moved to each sample and rebased, rounded
-// to float at both steps. Out of line and compiled once: inlined into a
-// loop over samples, GCC 12 vectorized the two steps into one and dropped
-// the float rounding between them (one ulp off the other paths' depths,
-// tile_kernel_impl.h visibilityQuadSamples). All samples in one call: a
-// call per sample was 4% of a 4-sample MetalRoughSpheresNoTextures frame.
+// each sample k of a multisample pattern (2 to 16 samples): the depth plane
+// moved to each sample and rebased, rounded to float at both steps.
+// Compiled once, with the rounding between the steps written out
+// (simd/double_pairs.h): inlined into a loop over samples, GCC 12
+// vectorized the two steps into one and dropped it (one ulp off the other
+// paths' depths, tile_kernel_impl.h visibilityQuadSamples). All samples in
+// one call: a call per sample was 4% of a 4-sample
+// MetalRoughSpheresNoTextures frame.
 void sampleDepthsInTile(const Plane& depth, const SamplePattern& pattern, const TriangleRecord& t,
                         const TileBuffers& tile, float* c);
 
