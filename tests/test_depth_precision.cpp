@@ -2,17 +2,22 @@
 // DepthMode): two parallel quads at view distance D, separated by s, near
 // plane 1e-3 and far 1e6; the nearer (red) quad is drawn second, so a pixel is
 // resolved correctly only if the depth buffer separates the two. Exact means:
-// every pixel red. Reported: the fraction of red pixels per case.
+// every pixel red. Reported: the fraction of red pixels per case. And the
+// depth at each sample of a multisampled pixel, rounded as every path rounds.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <memory>
+#include <random>
 #include <vector>
 
 #include "lab/scene/builtin_scenes.h"
 #include "lab/scene/hard_case_scenes.h"
 #include "render_helpers.h"
+#include "tile/tile_kernel.h"
 
 namespace quadra {
 namespace {
@@ -72,6 +77,40 @@ TEST(DepthPrecision, ReversedDepthDrawsTheSamePicture) {
   EXPECT_LT(worst, 1e-4);
   for (std::size_t i = 0; i < standard.depth.size(); ++i)
     ASSERT_NEAR(reversed.depth[i], 1.0f - standard.depth[i], 1e-6f) << "pixel " << i;
+}
+
+// The small triangles' kernels take each sample's depth from
+// sampleDepthsInTile, the larger ones move the plane (Plane::atSample) and
+// rebase it to the tile (planeInTile) themselves: a triangle's depths must
+// not change with the path it takes, so the two agree to the bit, over
+// random planes (slopes up to 1 a pixel, depths in [0, 1]) and tile offsets.
+TEST(DepthPrecision, EachSampleDepthRoundsAsThePlaneMovedThenRebased) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> slope(-1.0f, 1.0f), depth(0.0f, 1.0f);
+  std::uniform_int_distribution<int> corner(0, 8191);
+  const auto tile = std::make_unique<TileBuffers>();
+  for (const int samples : {2, 4, 8, 16}) {
+    const SamplePattern& pattern = samplePattern(samples);
+    for (int trial = 0; trial < 20000; ++trial) {
+      const float scale = std::ldexp(1.0f, -(trial % 24));  // slopes down to 2^-23 a pixel
+      const Plane plane{slope(random) * scale, slope(random) * scale, depth(random)};
+      TriangleRecord t;
+      t.minX = std::int16_t(corner(random)), t.minY = std::int16_t(corner(random));
+      tile->originX = (t.minX + trial % 64) / kTileSize * kTileSize;
+      tile->originY = (t.minY + trial % 64) / kTileSize * kTileSize;
+      float atSamples[kMaxSamples];
+      sampleDepthsInTile(plane, pattern, t, *tile, atSamples);
+      for (int k = 0; k < samples; ++k) {
+        // volatile: the moved plane's depth is rounded to float before it
+        // is rebased, whatever the compiler does with this loop.
+        volatile float moved = plane.atSample(pattern.offsets[k]).c;
+        const float expected = planeInTile(Plane{plane.dx, plane.dy, moved}, t, *tile).c;
+        ASSERT_EQ(std::memcmp(&expected, &atSamples[k], sizeof(float)), 0)
+            << samples << " samples, sample " << k << ": " << expected << " against "
+            << atSamples[k];
+      }
+    }
+  }
 }
 
 }  // namespace
