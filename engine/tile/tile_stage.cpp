@@ -88,7 +88,8 @@ struct TileScratch {
   PixelFilterScratch filter;
 };
 
-// How far ahead the visibility pass fetches triangle records and planes.
+// How far ahead the visibility pass and the shading planes' rebase fetch
+// triangle records and planes.
 constexpr std::uint32_t kRecordLookahead = 8, kPlaneLookahead = 4;
 
 // Both ends of a run of bytes that may straddle two cache lines.
