@@ -288,16 +288,17 @@ std::string sampleCaseName(const ::testing::TestParamInfo<SampleCase>& info) {
 INSTANTIATE_TEST_SUITE_P(Determinism, EverySampleCount,
                          ::testing::ValuesIn(everySceneAndSampleCount()), sampleCaseName);
 
-// Tiny triangles at 2 and 4 samples take the kernel path whose register holds
-// one quad's samples where an ISA has one (AVX2 at 2, AVX-512 at 4:
-// TileKernelSelection::forSamples), and each sample's lane groups in turn
-// elsewhere (scalar, SSE2): the same bits, with partial quads at the frame's
-// odd right and bottom edges, triangles across tile borders, and the
-// hierarchical depth of both depth directions.
+// Tiny triangles take the kernel path whose registers hold one quad's
+// samples where an ISA has one (TileKernelSelection::quadSampleRegisters:
+// one to four registers, SSE2 at 2 and 4 samples, AVX2 at 2-8, AVX-512 at
+// 4-16), and each sample's lane groups in turn elsewhere (always on the
+// scalar path): the same bits, with partial quads at the frame's odd right
+// and bottom edges, triangles across tile borders, and the hierarchical
+// depth of both depth directions.
 TEST(Determinism, TinyTrianglesAtSamplesAreIdenticalAcrossIsas) {
   for (const std::string name : {"slivers", "subpixel-plane"}) {
     const Scene scene = makeBuiltinScene(name);
-    for (const int samples : {2, 4})
+    for (const int samples : {2, 4, 8})
       for (const DepthMode depth : {DepthMode::Standard, DepthMode::Reversed}) {
         SCOPED_TRACE(name + ", " + std::to_string(samples) + " samples" +
                      (depth == DepthMode::Reversed ? ", reversed depth" : ""));

@@ -134,16 +134,28 @@ struct TileKernelSelection {
   int narrowBelow = 0;
   const TileKernels& forWidth(int pixels) const { return pixels < narrowBelow ? *narrow : *wide; }
   // For visibilityAtSamples: a triangle whose box is at most 8x8 pixels
-  // (kQuadSamplesBox) takes the path whose register holds one quad's
-  // samples (lanes == 4 x samples), which tests them all at once, where the
-  // frame has one; others as forWidth.
+  // (kQuadSamplesBox) takes the path whose registers hold one quad's samples
+  // (quadSampleRegisters), which tests them all at once, where the frame has
+  // one; others as forWidth.
   static constexpr int kQuadSamplesBox = 8;
   const TileKernels& forSamples(int pixelsWide, int pixelsHigh, int samples) const {
     if (pixelsWide <= kQuadSamplesBox && pixelsHigh <= kQuadSamplesBox) {
-      if (wide->lanes == 4 * samples) return *wide;
-      if (narrow->lanes == 4 * samples) return *narrow;
+      if (quadSampleRegisters(wide->isa, wide->lanes, samples) > 0) return *wide;
+      if (quadSampleRegisters(narrow->isa, narrow->lanes, samples) > 0) return *narrow;
     }
     return forWidth(pixelsWide);
+  }
+  // How many registers of `lanes` lanes hold one quad's `samples` samples
+  // on the quad-samples path (lane 4k + j of register r: pixel j of the quad
+  // at sample r * lanes / 4 + k), or 0 where that path is not taken: more
+  // than 4 registers, or more lanes than a quad's samples, left to each
+  // sample's lane groups in turn, as is the scalar path, so that the
+  // cross-ISA tests hold the two ways against each other.
+  static constexpr int kMaxQuadSampleRegisters = 4;
+  static constexpr int quadSampleRegisters(Isa isa, int lanes, int samples) {
+    if (isa == Isa::Scalar || lanes % 4 != 0 || (4 * samples) % lanes != 0) return 0;
+    const int registers = 4 * samples / lanes;
+    return registers <= kMaxQuadSampleRegisters ? registers : 0;
   }
 };
 TileKernelSelection selectTileKernels(Isa isa);

@@ -1146,26 +1146,31 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
   return won ? 1 : 0;
 }
 
-// visibilityAtSamples for a tiny triangle (a box of at most 8x8 pixels: most
-// of a dense mesh's) where a register holds one quad's samples (4 lanes a
-// sample: AVX-512 at 4 samples, AVX2 at 2). Lane 4k + j is pixel j of the
-// quad at sample k, loaded from and stored to plane k a quad (4 floats) at a
-// time, so a quad's samples take one coverage and depth test, where
-// visibilitySmallAtSamples tests each sample's lane group in turn, mostly
-// empty for such a triangle (callgrind, dense-mesh at 4 samples: ~900
-// instructions a triangle there). The same bits: a lane's edge value is the
-// moved edge's (the sample's shift (a/16) ox + (b/16) oy is exact, a and b
-// being multiples of 256) and its depth the moved plane's, rounded as there.
-// Exact in 32 bits without clamping: every lane lies within 10 px of the
-// triangle's vertices on both axes, so |E| < 10 (|a| + |b|) < 2^31
-// (LaneEdges::fits). Returns -1, having done nothing, for other triangles.
+// visibilityAtSamples for a tiny triangle (a box of at most 8x8 pixels:
+// most of a dense mesh's) where kRegisters registers hold one quad's samples
+// (TileKernelSelection::quadSampleRegisters: AVX-512 one at 4 samples, AVX2
+// two). Lane 4k + j of register r is pixel j of the quad at sample
+// r * kWidth / 4 + k, loaded from and stored to that sample's plane a quad
+// (4 floats) at a time, so a quad's samples take one coverage and depth
+// test per register, where visibilitySmallAtSamples tests each sample's
+// lane group in turn, mostly empty for such a triangle (callgrind,
+// dense-mesh at 4 samples: ~900 instructions a triangle there). The same
+// bits: a lane's edge value is the moved edge's (the sample's shift
+// (a/16) ox + (b/16) oy is exact, a and b being multiples of 256) and its
+// depth the moved plane's, rounded as there. Exact in 32 bits without
+// clamping: every lane lies within 10 px of the triangle's vertices on both
+// axes, so |E| < 10 (|a| + |b|) < 2^31 (LaneEdges::fits). Returns -1,
+// having done nothing, for other triangles.
 template <int kSamples>
 int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeState& s,
                           std::uint32_t id, const SamplePattern& pattern, TileBuffers* planes) {
-  if constexpr (L::kWidth != 4 * kSamples) {
+  constexpr int kRegisters =
+      TileKernelSelection::quadSampleRegisters(QUADRA_KERNEL_ISA_ENUM, L::kWidth, kSamples);
+  if constexpr (kRegisters == 0) {
     return -1;
   } else {
     constexpr int kBox = TileKernelSelection::kQuadSamplesBox;
+    constexpr int kSamplesPerRegister = L::kWidth / 4;
     if (t.maxX - t.minX >= kBox || t.maxY - t.minY >= kBox || !LaneEdges::fits(t)) return -1;
     const TileBuffers& tile = planes[0];  // every plane has the tile's origin and size
     const BoxInTile box(t, tile);
@@ -1179,20 +1184,25 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
     for (int k = 0; k < kSamples; ++k)
       sampleX[k] = float(pattern.offsets[k].x), sampleY[k] = float(pattern.offsets[k].y);
     sampleDepthsInTile(p[0], pattern, t, tile, depthC);
-    const I laneSampleX = simd::toInt(simd::repeatPerQuad<L>(sampleX));
-    const I laneSampleY = simd::toInt(simd::repeatPerQuad<L>(sampleY));
     const I quadX = lane.xi & I(1), quadY = lane.yi;  // lane pixel within its quad
     const F quadXf = simd::toFloat(quadX), quadYf = lane.y;
     std::int32_t a[3], b[3];
-    I edge[3];  // at each lane, at the first quad
+    I edge[kRegisters][3];  // at each lane, at the first quad
     for (int e = 0; e < 3; ++e) {
       a[e] = t.edges[e].a, b[e] = t.edges[e].b;
       const std::int64_t corner = t.edges[e].at(tile.originX + x0, tile.originY + y0);
-      edge[e] = I(std::int32_t(corner)) + I(a[e]) * quadX + I(b[e]) * quadY +
-                I(a[e] / kSampleUnitsPerPixel) * laneSampleX +
-                I(b[e] / kSampleUnitsPerPixel) * laneSampleY;
+      const I atQuad = I(std::int32_t(corner)) + I(a[e]) * quadX + I(b[e]) * quadY;
+      for (int r = 0; r < kRegisters; ++r) {
+        const int first = r * kSamplesPerRegister;
+        edge[r][e] =
+            atQuad +
+            I(a[e] / kSampleUnitsPerPixel) * simd::toInt(simd::repeatPerQuad<L>(sampleX + first)) +
+            I(b[e] / kSampleUnitsPerPixel) * simd::toInt(simd::repeatPerQuad<L>(sampleY + first));
+      }
     }
-    const TilePlane z{F(p[0].dx), F(p[0].dy), simd::repeatPerQuad<L>(depthC)};
+    TilePlane z[kRegisters];  // each lane's sample's depth plane
+    for (int r = 0; r < kRegisters; ++r)
+      z[r] = {F(p[0].dx), F(p[0].dy), simd::repeatPerQuad<L>(depthC + r * kSamplesPerRegister)};
 
     // Hierarchical depth over the (up to 2x2) blocks the quads touch: a block
     // is skipped where the sample plane nearest the viewer fails against the
@@ -1230,6 +1240,7 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
 
     const F triangleId = simd::asFloat(I(std::int32_t(id)));
     constexpr std::ptrdiff_t kPlaneFloats = sizeof(TileBuffers) / sizeof(float);
+    constexpr std::ptrdiff_t kRegisterFloats = kSamplesPerRegister * kPlaneFloats;
     F written[2] = {F(std::numeric_limits<float>::infinity()),
                     F(-std::numeric_limits<float>::infinity())};  // the depths written
     std::uint32_t writtenBlocks = 0;
@@ -1238,28 +1249,33 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
         const int blockBit = 2 * (qy / kBlockSize - by0) + (qx / kBlockSize - bx0);
         if (hiddenBlocks >> blockBit & 1u) continue;
         const std::int32_t dx = qx - x0, dy = qy - y0;
-        I value = edge[0] + I(a[0] * dx + b[0] * dy);
-        value = simd::min(value, edge[1] + I(a[1] * dx + b[1] * dy));
-        value = simd::min(value, edge[2] + I(a[2] * dx + b[2] * dy));
-        M cover = simd::toFloat(value) > F(0.0f);  // int to float keeps the sign and zero
+        const I step[3] = {I(a[0] * dx + b[0] * dy), I(a[1] * dx + b[1] * dy),
+                           I(a[2] * dx + b[2] * dy)};
         const F x = quadXf + F(float(qx)), y = quadYf + F(float(qy));
-        if (qx + 2 > tile.width || qy + 2 > tile.height)
-          cover = cover & (x < F(float(tile.width))) & (y < F(float(tile.height)));
-        if (!simd::any(cover)) continue;
+        const bool clipped = qx + 2 > tile.width || qy + 2 > tile.height;
         const int index = TileBuffers::index(qx, qy);
-        float* const depth = planes[0].depth + index;
-        const F zValue = z.at(x, y);
-        const F zOld = simd::loadQuadsStrided<L>(depth, kPlaneFloats);
-        cover = cover & (s.depthGreater ? zValue > zOld : zValue < zOld);
-        if (!simd::any(cover)) continue;
-        simd::storeQuadsStrided<L>(simd::select(cover, zValue, zOld), depth, kPlaneFloats);
-        float* const ids = reinterpret_cast<float*>(planes[0].visible + index);
-        simd::storeQuadsStrided<L>(
-            simd::select(cover, triangleId, simd::loadQuadsStrided<L>(ids, kPlaneFloats)), ids,
-            kPlaneFloats);
-        written[0] = simd::min(written[0], simd::select(cover, zValue, written[0]));
-        written[1] = simd::max(written[1], simd::select(cover, zValue, written[1]));
-        writtenBlocks |= 1u << blockBit;
+        for (int r = 0; r < kRegisters; ++r) {
+          I value = edge[r][0] + step[0];
+          value = simd::min(value, edge[r][1] + step[1]);
+          value = simd::min(value, edge[r][2] + step[2]);
+          M cover = simd::toFloat(value) > F(0.0f);  // int to float keeps the sign and zero
+          if (clipped) cover = cover & (x < F(float(tile.width))) & (y < F(float(tile.height)));
+          if (!simd::any(cover)) continue;
+          float* const depth = planes[0].depth + r * kRegisterFloats + index;
+          const F zValue = z[r].at(x, y);
+          const F zOld = simd::loadQuadsStrided<L>(depth, kPlaneFloats);
+          cover = cover & (s.depthGreater ? zValue > zOld : zValue < zOld);
+          if (!simd::any(cover)) continue;
+          simd::storeQuadsStrided<L>(simd::select(cover, zValue, zOld), depth, kPlaneFloats);
+          float* const ids =
+              reinterpret_cast<float*>(planes[0].visible + index) + r * kRegisterFloats;
+          simd::storeQuadsStrided<L>(
+              simd::select(cover, triangleId, simd::loadQuadsStrided<L>(ids, kPlaneFloats)), ids,
+              kPlaneFloats);
+          written[0] = simd::min(written[0], simd::select(cover, zValue, written[0]));
+          written[1] = simd::max(written[1], simd::select(cover, zValue, written[1]));
+          writtenBlocks |= 1u << blockBit;
+        }
       }
     }
     if (writtenBlocks == 0) return 0;
