@@ -1254,18 +1254,20 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
         const F x = quadXf + F(float(qx)), y = quadYf + F(float(qy));
         const bool clipped = qx + 2 > tile.width || qy + 2 > tile.height;
         const int index = TileBuffers::index(qx, qy);
+        // Without a branch on coverage or the depth test: a tiny triangle's
+        // are at random, and mispredicted they cost more than the loads and
+        // stores (of unchanged values where nothing passes) they would skip.
+        std::uint32_t passed = 0;
         for (int r = 0; r < kRegisters; ++r) {
           I value = edge[r][0] + step[0];
           value = simd::min(value, edge[r][1] + step[1]);
           value = simd::min(value, edge[r][2] + step[2]);
           M cover = simd::toFloat(value) > F(0.0f);  // int to float keeps the sign and zero
           if (clipped) cover = cover & (x < F(float(tile.width))) & (y < F(float(tile.height)));
-          if (!simd::any(cover)) continue;
           float* const depth = planes[0].depth + r * kRegisterFloats + index;
           const F zValue = z[r].at(x, y);
           const F zOld = simd::loadQuadsStrided<L>(depth, kPlaneFloats);
           cover = cover & (s.depthGreater ? zValue > zOld : zValue < zOld);
-          if (!simd::any(cover)) continue;
           simd::storeQuadsStrided<L>(simd::select(cover, zValue, zOld), depth, kPlaneFloats);
           float* const ids =
               reinterpret_cast<float*>(planes[0].visible + index) + r * kRegisterFloats;
@@ -1274,8 +1276,9 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
               kPlaneFloats);
           written[0] = simd::min(written[0], simd::select(cover, zValue, written[0]));
           written[1] = simd::max(written[1], simd::select(cover, zValue, written[1]));
-          writtenBlocks |= 1u << blockBit;
+          passed |= simd::bits(cover);
         }
+        writtenBlocks |= std::uint32_t(passed != 0) << blockBit;
       }
     }
     if (writtenBlocks == 0) return 0;
