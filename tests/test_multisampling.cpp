@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "lab/image/image_difference.h"
 #include "lab/reference/reference_tracer.h"
 #include "lab/scene/builtin_scenes.h"
+#include "lab/scene/hard_case_scenes.h"
 #include "render_helpers.h"
 
 namespace quadra {
@@ -138,6 +140,59 @@ TEST(Multisampling, SixteenSamplesShadedPerSampleAreTheFrameAtFourTimesTheResolu
         worst = std::max(worst, std::fabs(got - sum / 16.0));
       }
   EXPECT_LT(worst, 1e-4);
+}
+
+// Draws of one colour each (untextured, unlit, without vertex colours)
+// shade every sample alike, so shading once per pixel must give the frame
+// that shading each sample gives, to the bit: a pixel whose samples the
+// triangles of one such draw hold, every one, is shaded once in plane 0
+// (tile_stage.cpp wholePixelsOfOneColour), one it shares with another
+// draw or with the clear colour once per triangle. Taking the wrong pixels
+// out (one with a clear sample, or another draw's) moves an edge pixel to
+// one colour. Random triangles, a third of them tiny, in two draws of two
+// colours.
+TEST(Multisampling, OneColourDrawsAreTheFrameShadedPerSample) {
+  Scene scene = randomTrianglesScene(4000, 7);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  Mesh& first = scene.meshes[0];
+  first.texcoords[0].clear();
+  Mesh second;
+  const std::size_t half = first.indices.size() / 6 * 3;
+  second.positions.assign(first.positions.begin() + std::ptrdiff_t(half), first.positions.end());
+  first.positions.resize(half);
+  for (Mesh* mesh : {&first, &second}) {
+    mesh->indices.resize(mesh->positions.size());
+    for (std::size_t i = 0; i < mesh->indices.size(); ++i) mesh->indices[i] = std::uint32_t(i);
+  }
+  scene.materials.resize(2);
+  for (Material& material : scene.materials) {
+    material.baseColorTexture = -1;
+    material.doubleSided = true;
+  }
+  scene.materials[0].baseColorFactor = {0.8f, 0.3f, 0.1f, 1.0f};
+  scene.materials[1].baseColorFactor = {0.1f, 0.45f, 0.9f, 1.0f};
+  second.material = 1;
+  scene.meshes.push_back(std::move(second));
+  scene.instances.push_back({1, scene.instances[0].world});
+  for (const int samples : {2, 4, 8, 16}) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    RenderSettings settings;
+    settings.width = 203;
+    settings.height = 117;
+    settings.samples = samples;
+    const Frame perPixel = renderOnce(scene, firstCameraOrDefault(scene), settings);
+    settings.shadingRate = ShadingRate::Sample;
+    const Frame perSample = renderOnce(scene, firstCameraOrDefault(scene), settings);
+    ASSERT_EQ(perPixel.rgba.size(), perSample.rgba.size());
+    std::size_t differing = 0, edge = 0;
+    for (std::size_t i = 0; i < perPixel.rgba.size(); ++i) {
+      differing += std::memcmp(&perPixel.rgba[i], &perSample.rgba[i], sizeof(float)) != 0;
+      const float value = perPixel.rgba[i];
+      edge += i % 4 == 0 && value != 0.8f && value != 0.1f && value != 0.0f;
+    }
+    EXPECT_EQ(differing, 0u);
+    EXPECT_GT(edge, 100u);  // pixels that mix the colours: the case is there
+  }
 }
 
 }  // namespace

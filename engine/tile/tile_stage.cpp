@@ -67,6 +67,9 @@ struct TileScratch {
   std::vector<std::uint32_t> sampleDiffers;
   std::vector<std::uint16_t> mixedPixels;
   bool allMixed = false;
+  // Per visible triangle id + 1 (so that kNoTriangle wraps to 0): its draw
+  // where that draw shades one colour, else kNoTriangle (wholePixelsOfOneColour).
+  std::vector<std::uint32_t> oneColourDraw;
   std::vector<ShadeJob> jobs, sortedJobs;
   std::vector<float> jobColor;
   std::vector<std::uint32_t> runJobs;
@@ -258,15 +261,20 @@ void rebaseShadePlanes(const std::vector<Draw>& draws, const TileBuffers& tile, 
     // visibility pass over a multisampled tile: fetched ahead as there
     // (MetalRoughSpheresNoTextures at 4 samples: the record loads were half
     // of this loop's time).
-    if (i + kRecordLookahead < triangles)
-      __builtin_prefetch(s.visibleTriangles[i + kRecordLookahead].triangle);
+    if (i + kRecordLookahead < triangles) {
+      const TileTriangle& ahead = s.visibleTriangles[i + kRecordLookahead];
+      if (!draws[ahead.draw].shade.shadesOneColour()) __builtin_prefetch(ahead.triangle);
+    }
     if (i + kPlaneLookahead < triangles) {
       const TileTriangle& ahead = s.visibleTriangles[i + kPlaneLookahead];
-      prefetch(ahead.planes + 1,
-               (1 + std::size_t(draws[ahead.draw].shade.attributes.count)) * sizeof(Plane));
+      const ShadeState& shade = draws[ahead.draw].shade;
+      if (!shade.shadesOneColour())
+        prefetch(ahead.planes + 1, (1 + std::size_t(shade.attributes.count)) * sizeof(Plane));
     }
     const TileTriangle& v = s.visibleTriangles[i];
-    const int planeCount = 1 + draws[v.draw].shade.attributes.count;
+    const ShadeState& shade = draws[v.draw].shade;
+    if (shade.shadesOneColour()) continue;  // its colour reads no plane
+    const int planeCount = 1 + shade.attributes.count;
     float* out = &s.shadePlanes[i * kShadePlaneStride];
     for (int j = 0; j < planeCount; ++j) {
       const Plane q = planeInTile(moved ? v.planes[1 + j].atSample(offset) : v.planes[1 + j],
@@ -461,6 +469,41 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
   s.jobs.resize(jobCount);
 }
 
+// Takes out of the mixed pixels those whose samples the triangles of one
+// draw hold, every one, where that draw shades one colour (unlit, untextured
+// materials: Draw::shadesOneColour): shaded once in plane 0 like a pixel one
+// triangle holds instead of once per triangle. The same bits: the jobs'
+// colours would all be the draw's, and their mean (pairwise sums of equal
+// values, a power-of-two weight) is that colour exactly. The samples keep
+// their triangles' ids (AOVs read them).
+template <int kSamples>
+void wholePixelsOfOneColour(const TileFrame& frame, TileScratch& s) {
+  const std::size_t triangles = s.visibleTriangles.size();
+  s.oneColourDraw.resize(triangles + 1);
+  s.oneColourDraw[0] = kNoTriangle;
+  bool any = false;
+  for (std::size_t i = 0; i < triangles; ++i) {
+    const std::uint32_t draw = s.visibleTriangles[i].draw;
+    const bool oneColour = frame.draws[draw].shade.shadesOneColour();
+    s.oneColourDraw[i + 1] = oneColour ? draw : kNoTriangle;
+    any |= oneColour;
+  }
+  if (!any) return;
+  const TileBuffers* const planes = s.planes.get();
+  const std::uint32_t* const drawOf = s.oneColourDraw.data();
+  std::uint32_t* const differs = s.sampleDiffers.data();
+  std::size_t mixed = 0;
+  for (const std::uint16_t p : s.mixedPixels) {
+    const std::uint32_t draw = drawOf[planes[0].visible[p] + 1];
+    bool whole = draw != kNoTriangle;
+    for (int k = 1; k < kSamples; ++k) whole &= drawOf[planes[k].visible[p] + 1] == draw;
+    s.mixedPixels[mixed] = p;
+    mixed += whole ? 0 : 1;
+    differs[p] = whole ? 0 : differs[p];
+  }
+  s.mixedPixels.resize(mixed);
+}
+
 // The mixed pixels' sample colours: each job's (s.jobColor: RGB, in
 // s.sortedJobs' order) at the samples it holds, the clear colour at those
 // none holds, a pixel at a time, as the resolve needs them (written alone,
@@ -527,6 +570,8 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   s.mixedPixels.resize(mixed);
   s.allMixed = false;
   if (s.visibleTriangles.empty()) return;
+  withSampleCount(samples,
+                  [&](auto count) { wholePixelsOfOneColour<decltype(count)::value>(frame, s); });
 
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
   // Plane 0's ids without the shared pixels while its other pixels are

@@ -89,6 +89,12 @@ struct ShadeState {
   // every such draw before the forward ones.
   bool twoPass = false;
   AttributeLayout attributes;
+  // Whether every pixel the draw shades gets the same colour (its base
+  // colour: no texture, vertex colour or lighting), whichever of its
+  // triangles holds it and wherever.
+  bool shadesOneColour() const {
+    return !textured && !vertexColor && !lit && output == ShadeOutput::Color;
+  }
 };
 
 struct Draw {
