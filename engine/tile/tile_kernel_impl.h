@@ -1180,9 +1180,7 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
 
     // Per lane: its pixel in the quad and its sample's offset.
     static const LaneOffsets lane;  // lanes 0-3 are one quad's pixels on every path
-    float sampleX[kSamples], sampleY[kSamples], depthC[kSamples];
-    for (int k = 0; k < kSamples; ++k)
-      sampleX[k] = float(pattern.offsets[k].x), sampleY[k] = float(pattern.offsets[k].y);
+    float depthC[kSamples];
     sampleDepthsInTile(p[0], pattern, t, tile, depthC);
     const I quadX = lane.xi & I(1), quadY = lane.yi;  // lane pixel within its quad
     const F quadXf = simd::toFloat(quadX), quadYf = lane.y;
@@ -1192,13 +1190,11 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
       a[e] = t.edges[e].a, b[e] = t.edges[e].b;
       const std::int64_t corner = t.edges[e].at(tile.originX + x0, tile.originY + y0);
       const I atQuad = I(std::int32_t(corner)) + I(a[e]) * quadX + I(b[e]) * quadY;
-      for (int r = 0; r < kRegisters; ++r) {
-        const int first = r * kSamplesPerRegister;
+      for (int r = 0; r < kRegisters; ++r)
         edge[r][e] =
             atQuad +
-            I(a[e] / kSampleUnitsPerPixel) * simd::toInt(simd::repeatPerQuad<L>(sampleX + first)) +
-            I(b[e] / kSampleUnitsPerPixel) * simd::toInt(simd::repeatPerQuad<L>(sampleY + first));
-      }
+            I(a[e] / kSampleUnitsPerPixel) * I::load_aligned(pattern.quadLaneX + r * L::kWidth) +
+            I(b[e] / kSampleUnitsPerPixel) * I::load_aligned(pattern.quadLaneY + r * L::kWidth);
     }
     TilePlane z[kRegisters];  // each lane's sample's depth plane
     for (int r = 0; r < kRegisters; ++r)

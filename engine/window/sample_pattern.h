@@ -22,6 +22,11 @@ struct SampleOffset {
 struct SamplePattern {
   int count = 1;
   SampleOffset offsets[kMaxSamples] = {};
+  // Each offset four times over, widened: entry 4k + j is sample k's, for
+  // pixel j of a quad, as the quad-samples kernels take a register of them
+  // per triangle (tile_kernel_impl.h visibilityQuadSamples).
+  alignas(64) std::int32_t quadLaneX[4 * kMaxSamples] = {};
+  alignas(64) std::int32_t quadLaneY[4 * kMaxSamples] = {};
   // The largest |x| or |y| of any offset, in 1/256 pixel: how far beyond a
   // pixel centre a sample reaches.
   int reachSubpixels() const;
