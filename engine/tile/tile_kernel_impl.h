@@ -1236,7 +1236,6 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
 
     const F triangleId = simd::asFloat(I(std::int32_t(id)));
     constexpr std::ptrdiff_t kPlaneFloats = sizeof(TileBuffers) / sizeof(float);
-    constexpr std::ptrdiff_t kRegisterFloats = kSamplesPerRegister * kPlaneFloats;
     F written[2] = {F(std::numeric_limits<float>::infinity()),
                     F(-std::numeric_limits<float>::infinity())};  // the depths written
     std::uint32_t writtenBlocks = 0;
@@ -1260,13 +1259,13 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
           value = simd::min(value, edge[r][2] + step[2]);
           M cover = simd::toFloat(value) > F(0.0f);  // int to float keeps the sign and zero
           if (clipped) cover = cover & (x < F(float(tile.width))) & (y < F(float(tile.height)));
-          float* const depth = planes[0].depth + r * kRegisterFloats + index;
+          TileBuffers& first = planes[r * kSamplesPerRegister];  // the register's first sample
+          float* const depth = first.depth + index;
           const F zValue = z[r].at(x, y);
           const F zOld = simd::loadQuadsStrided<L>(depth, kPlaneFloats);
           cover = cover & (s.depthGreater ? zValue > zOld : zValue < zOld);
           simd::storeQuadsStrided<L>(simd::select(cover, zValue, zOld), depth, kPlaneFloats);
-          float* const ids =
-              reinterpret_cast<float*>(planes[0].visible + index) + r * kRegisterFloats;
+          float* const ids = reinterpret_cast<float*>(first.visible + index);
           simd::storeQuadsStrided<L>(
               simd::select(cover, triangleId, simd::loadQuadsStrided<L>(ids, kPlaneFloats)), ids,
               kPlaneFloats);
