@@ -1,9 +1,8 @@
 // Two doubles a register in the SSE2 baseline, for the per-sample plane
-// arithmetic of baseline files that must round exactly as the scalar code
-// does. Written out rather than left to the vectorizer: GCC 12 vectorized a
-// loop's float narrowing followed by a widening (double -> float -> double)
-// into nothing, dropping the rounding between them (tile_kernel.cpp's
-// sampleDepthsInTile, half its results one ulp off).
+// arithmetic that must round the same in every ISA's files and the tests. Written out rather than
+// left to the vectorizer: GCC 12 vectorized a loop's float narrowing followed by a widening (double
+// -> float -> double) into nothing, dropping the rounding between them (tile/tile_kernel.h's
+// SampleDepths, half its results one ulp off).
 #pragma once
 
 #include <emmintrin.h>
@@ -26,10 +25,8 @@ struct DoublePair {
   QUADRA_DOUBLE_PAIR_INLINE DoublePair roundedToFloat() const {
     return DoublePair(_mm_cvtps_pd(_mm_cvtpd_ps(v)));
   }
-  // Each rounded to float, into two floats of unaligned memory.
-  QUADRA_DOUBLE_PAIR_INLINE void storeAsFloats(float* two) const {
-    _mm_storel_pi(reinterpret_cast<__m64*>(two), _mm_cvtpd_ps(v));
-  }
+  // Each rounded to float, in the low two floats (the high two zero).
+  QUADRA_DOUBLE_PAIR_INLINE __m128 asFloats() const { return _mm_cvtpd_ps(v); }
 };
 
 QUADRA_DOUBLE_PAIR_INLINE DoublePair operator+(DoublePair a, DoublePair b) {

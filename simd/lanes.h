@@ -691,18 +691,27 @@ QUADRA_LANE_INLINE void loadTriples(const float* const* records, typename L::F o
   for (int j = 0; j < 3; ++j) out[j] = L::F::load_aligned(lanes[j]);
 }
 
-// Lane i of the result is perQuad[i / 4]: one value per quad of lanes.
+// Lane i of the result is four[first + i / 4] (first + width / 4 <= 4): a
+// value per quad of lanes, from a register (a load over the stores that
+// built it in memory waits for them).
 template <class L>
-QUADRA_LANE_INLINE typename L::F repeatPerQuad(const float* perQuad) {
+QUADRA_LANE_INLINE typename L::F repeatPerQuad(__m128 four, int first) {
 #if defined(__AVX512F__) && defined(__AVX512BW__)
-  if constexpr (L::kWidth == 16)  // from registers: a load over four stores waits for them
+  if constexpr (L::kWidth == 16)
     return _mm512_permutexvar_ps(
-        _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3),
-        _mm512_castps128_ps512(_mm_setr_ps(perQuad[0], perQuad[1], perQuad[2], perQuad[3])));
+        _mm512_add_epi32(_mm512_set1_epi32(first),
+                         _mm512_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3)),
+        _mm512_castps128_ps512(four));
 #endif
-  alignas(64) float lanes[L::kWidth];
-  for (int k = 0; k < L::kWidth; ++k) lanes[k] = perQuad[k / 4];
-  return L::F::load_aligned(lanes);
+#if defined(__AVX2__)
+  if constexpr (L::kWidth == 8)
+    return _mm256_permutevar8x32_ps(
+        _mm256_castps128_ps256(four),
+        _mm256_add_epi32(_mm256_set1_epi32(first), _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1)));
+#endif
+  alignas(16) float values[4];
+  _mm_store_ps(values, four);
+  return typename L::F(values[first]);  // SSE2 and scalar: one quad
 }
 
 // kDoubleWidth int64 values from `values` (register-aligned) as doubles,

@@ -80,7 +80,7 @@ TEST(DepthPrecision, ReversedDepthDrawsTheSamePicture) {
 }
 
 // The small triangles' kernels take each sample's depth from
-// sampleDepthsInTile, the larger ones move the plane (Plane::atSample) and
+// SampleDepths (sampleDepthsInTile), the larger ones move the plane (Plane::atSample) and
 // rebase it to the tile (planeInTile) themselves: a triangle's depths must
 // not change with the path it takes, so the two agree to the bit, over
 // random planes (slopes up to 1 a pixel, depths in [0, 1]) and tile offsets.
@@ -99,7 +99,9 @@ TEST(DepthPrecision, EachSampleDepthRoundsAsThePlaneMovedThenRebased) {
       tile->originX = (t.minX + trial % 64) / kTileSize * kTileSize;
       tile->originY = (t.minY + trial % 64) / kTileSize * kTileSize;
       float atSamples[kMaxSamples];
-      sampleDepthsInTile(plane, pattern, t, *tile, atSamples);
+      withSampleCount(samples, [&](auto count) {
+        sampleDepthsInTile<decltype(count)::value>(plane, pattern, t, *tile, atSamples);
+      });
       for (int k = 0; k < samples; ++k) {
         // volatile: the moved plane's depth is rounded to float before it
         // is rebased, whatever the compiler does with this loop.

@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "setup/triangle_record.h"
+#include "simd/double_pairs.h"
 #include "simd/isa.h"
 #include "tile/blended_fragments.h"
 #include "tile/tile_buffers.h"
@@ -34,17 +35,50 @@ inline Plane planeInTile(const Plane& p, const TriangleRecord& t, const TileBuff
   return {p.dx, p.dy, float(c)};
 }
 
-// c[k] = planeInTile(depth.atSample(pattern.offsets[k]), t, tile).c for
-// each sample k of a multisample pattern (2 to 16 samples): the depth plane
-// moved to each sample and rebased, rounded to float at both steps.
-// Compiled once, with the rounding between the steps written out
-// (simd/double_pairs.h): inlined into a loop over samples, GCC 12
-// vectorized the two steps into one and dropped it (one ulp off the other
-// paths' depths, tile_kernel_impl.h visibilityQuadSamples). All samples in
-// one call: a call per sample was 4% of a 4-sample
-// MetalRoughSpheresNoTextures frame.
-void sampleDepthsInTile(const Plane& depth, const SamplePattern& pattern, const TriangleRecord& t,
-                        const TileBuffers& tile, float* c);
+// Each sample's depth plane rebased to a tile: c of
+// planeInTile(depth.atSample(pattern.offsets[k]), t, tile), the plane moved
+// to sample k and rebased, rounded to float at both steps, two samples at a
+// time. The rounding between the steps is written out (simd/double_pairs.h):
+// GCC 12 vectorized a scalar loop of them into one step and dropped it (one
+// ulp off the other paths' depths). Always inlined into the kernels that
+// take it per small triangle, where a call computing every sample (with the
+// offsets converted there) was ~6% of a 4-sample
+// MetalRoughSpheresNoTextures frame (perf, AVX2).
+struct SampleDepths {
+  simd::DoublePair dx, dy, c, stepX, stepY;
+  QUADRA_DOUBLE_PAIR_INLINE SampleDepths(const Plane& depth, const TriangleRecord& t,
+                                         const TileBuffers& tile)
+      : dx(depth.dx),
+        dy(depth.dy),
+        c(depth.c),
+        stepX(double(depth.dx) * double(tile.originX - t.minX)),
+        stepY(double(depth.dy) * double(tile.originY - t.minY)) {}
+  // Samples k and k + 1 (k + 1 < kMaxSamples; past the pattern's count an
+  // offset of zero) in the low two floats. The offset in pixels is the
+  // division of Plane::atSample: dividing each product by 16 before their
+  // sum or after it rounds the same.
+  QUADRA_DOUBLE_PAIR_INLINE __m128 pair(const SamplePattern& pattern, int k) const {
+    using simd::DoublePair;
+    const DoublePair shift = dx * DoublePair::load(pattern.pixelOffsetX + k) +
+                             dy * DoublePair::load(pattern.pixelOffsetY + k);
+    const DoublePair moved = (c + shift).roundedToFloat();  // Plane::atSample's rounding
+    return ((moved + stepX) + stepY).asFloats();
+  }
+  // Samples k to k + 3 (k + 3 < kMaxSamples), as pair().
+  QUADRA_DOUBLE_PAIR_INLINE __m128 four(const SamplePattern& pattern, int k) const {
+    return _mm_movelh_ps(pair(pattern, k), pair(pattern, k + 2));
+  }
+};
+
+// c[k] for each of the pattern's kSamples samples (2 to 16), as SampleDepths.
+template <int kSamples>
+QUADRA_DOUBLE_PAIR_INLINE void sampleDepthsInTile(const Plane& depth, const SamplePattern& pattern,
+                                                  const TriangleRecord& t, const TileBuffers& tile,
+                                                  float* c) {
+  const SampleDepths depths(depth, t, tile);
+  for (int k = 0; k < kSamples; k += 2)
+    _mm_storel_pi(reinterpret_cast<__m64*>(c + k), depths.pair(pattern, k));
+}
 
 // Shading planes of a tile's triangles, rebased to the tile (the value at
 // tile-local pixel centre (x, y) is c + dx*x + dy*y): per triangle, 1/w and

@@ -1061,7 +1061,7 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
   TilePlane z[kSamples];
   BlockDepthTest depthTest[kSamples];
   float depthC[kSamples];
-  sampleDepthsInTile(p[0], pattern, t, tile, depthC);
+  sampleDepthsInTile<kSamples>(p[0], pattern, t, tile, depthC);
   for (int k = 0; k < samples; ++k) {
     const SampleOffset o = pattern.offsets[k];
     for (int e = 0; e < 3; ++e) shift[k][e] = t.edges[e].sampleShift(o);
@@ -1180,8 +1180,17 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
 
     // Per lane: its pixel in the quad and its sample's offset.
     static const LaneOffsets lane;  // lanes 0-3 are one quad's pixels on every path
-    float depthC[kSamples];
-    sampleDepthsInTile(p[0], pattern, t, tile, depthC);
+    // Each sample's depth plane, four samples a register of floats, and
+    // each lane's sample's (repeated over the quad's pixels).
+    constexpr int kFours = (kSamples + 3) / 4;
+    const SampleDepths depths(p[0], t, tile);
+    __m128 depthFour[kFours];
+    for (int q = 0; q < kFours; ++q) depthFour[q] = depths.four(pattern, 4 * q);
+    TilePlane z[kRegisters];
+    for (int r = 0; r < kRegisters; ++r) {
+      const int sample = r * kSamplesPerRegister;
+      z[r] = {F(p[0].dx), F(p[0].dy), simd::repeatPerQuad<L>(depthFour[sample / 4], sample % 4)};
+    }
     const I quadX = lane.xi & I(1), quadY = lane.yi;  // lane pixel within its quad
     const F quadXf = simd::toFloat(quadX), quadYf = lane.y;
     std::int32_t a[3], b[3];
@@ -1196,9 +1205,6 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
             I(a[e] / kSampleUnitsPerPixel) * I::load_aligned(pattern.quadLaneX + r * L::kWidth) +
             I(b[e] / kSampleUnitsPerPixel) * I::load_aligned(pattern.quadLaneY + r * L::kWidth);
     }
-    TilePlane z[kRegisters];  // each lane's sample's depth plane
-    for (int r = 0; r < kRegisters; ++r)
-      z[r] = {F(p[0].dx), F(p[0].dy), simd::repeatPerQuad<L>(depthC + r * kSamplesPerRegister)};
 
     // Hierarchical depth over the (up to 2x2) blocks the quads touch: a block
     // is skipped where the sample plane nearest the viewer fails against the
@@ -1215,6 +1221,8 @@ int visibilityQuadSamples(const TriangleRecord& t, const Plane* p, const ShadeSt
     if (((xEnd - x0 + 1) / 2) * ((yEnd - y0 + 1) / 2) > kHiddenTestQuads) {
       const bool farthestFirst = s.depthCompare == CompareFunction::Greater ||
                                  s.depthCompare == CompareFunction::GreaterEqual;
+      alignas(16) float depthC[4 * kFours];
+      for (int q = 0; q < kFours; ++q) _mm_store_ps(depthC + 4 * q, depthFour[q]);
       const float nearestC = farthestFirst ? *std::max_element(depthC, depthC + kSamples)
                                            : *std::min_element(depthC, depthC + kSamples);
       const BlockDepthTest depthTest(Plane{p[0].dx, p[0].dy, nearestC}, s);

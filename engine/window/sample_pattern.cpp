@@ -11,37 +11,41 @@ namespace quadra {
 
 namespace {
 
-constexpr SamplePattern withQuadLanes(SamplePattern pattern) {
-  for (int k = 0; k < pattern.count; ++k)
+// The pattern with the offsets' other forms (SamplePattern's members after them).
+constexpr SamplePattern withDerivedOffsets(SamplePattern pattern) {
+  for (int k = 0; k < pattern.count; ++k) {
     for (int j = 0; j < 4; ++j) {
       pattern.quadLaneX[4 * k + j] = pattern.offsets[k].x;
       pattern.quadLaneY[4 * k + j] = pattern.offsets[k].y;
     }
+    pattern.pixelOffsetX[k] = double(pattern.offsets[k].x) / kSampleUnitsPerPixel;
+    pattern.pixelOffsetY[k] = double(pattern.offsets[k].y) / kSampleUnitsPerPixel;
+  }
   return pattern;
 }
 
-constexpr SamplePattern kOne = withQuadLanes({1, {{0, 0}}});
-constexpr SamplePattern kTwo = withQuadLanes({2, {{4, 4}, {-4, -4}}});
-constexpr SamplePattern kFour = withQuadLanes({4, {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}}});
-constexpr SamplePattern kEight =
-    withQuadLanes({8, {{1, -3}, {-1, 3}, {5, 1}, {-3, -5}, {-5, 5}, {-7, -1}, {3, 7}, {7, -7}}});
-constexpr SamplePattern kSixteen = withQuadLanes({16,
-                                                  {{1, 1},
-                                                   {-1, -3},
-                                                   {-3, 2},
-                                                   {4, -1},
-                                                   {-5, -2},
-                                                   {2, 5},
-                                                   {5, 3},
-                                                   {3, -5},
-                                                   {-2, 6},
-                                                   {0, -7},
-                                                   {-4, -6},
-                                                   {-6, 4},
-                                                   {-8, 0},
-                                                   {7, -4},
-                                                   {6, 7},
-                                                   {-7, -8}}});
+constexpr SamplePattern kOne = withDerivedOffsets({1, {{0, 0}}});
+constexpr SamplePattern kTwo = withDerivedOffsets({2, {{4, 4}, {-4, -4}}});
+constexpr SamplePattern kFour = withDerivedOffsets({4, {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}}});
+constexpr SamplePattern kEight = withDerivedOffsets(
+    {8, {{1, -3}, {-1, 3}, {5, 1}, {-3, -5}, {-5, 5}, {-7, -1}, {3, 7}, {7, -7}}});
+constexpr SamplePattern kSixteen = withDerivedOffsets({16,
+                                                       {{1, 1},
+                                                        {-1, -3},
+                                                        {-3, 2},
+                                                        {4, -1},
+                                                        {-5, -2},
+                                                        {2, 5},
+                                                        {5, 3},
+                                                        {3, -5},
+                                                        {-2, 6},
+                                                        {0, -7},
+                                                        {-4, -6},
+                                                        {-6, 4},
+                                                        {-8, 0},
+                                                        {7, -4},
+                                                        {6, 7},
+                                                        {-7, -8}}});
 
 // Cell centres in 1/16 pixel, sample by sample (sample_pattern.h says how
 // each was chosen; tests/test_multisampling.cpp checks one sample a cell).

@@ -27,6 +27,10 @@ struct SamplePattern {
   // per triangle (tile_kernel_impl.h visibilityQuadSamples).
   alignas(64) std::int32_t quadLaneX[4 * kMaxSamples] = {};
   alignas(64) std::int32_t quadLaneY[4 * kMaxSamples] = {};
+  // Each offset in pixels (1/16 of it, exact), as the sample depth planes
+  // take them (tile/tile_kernel.h SampleDepths); zero past `count`.
+  double pixelOffsetX[kMaxSamples] = {};
+  double pixelOffsetY[kMaxSamples] = {};
   // The largest |x| or |y| of any offset, in 1/256 pixel: how far beyond a
   // pixel centre a sample reaches.
   int reachSubpixels() const;
