@@ -1,7 +1,8 @@
 // Two doubles a register in the SSE2 baseline, for the per-sample plane
-// arithmetic that must round the same in every ISA's files and the tests. Written out rather than
-// left to the vectorizer: GCC 12 vectorized a loop's float narrowing followed by a widening (double
-// -> float -> double) into nothing, dropping the rounding between them (tile/tile_kernel.h's
+// arithmetic that must round the same in every ISA's files and the tests.
+// Written out rather than left to the vectorizer: GCC 12 vectorized a loop's
+// float narrowing followed by a widening (double -> float -> double) into
+// nothing, dropping the rounding between them (tile/tile_kernel.h's
 // SampleDepths, half its results one ulp off).
 #pragma once
 

@@ -79,10 +79,10 @@ TEST(DepthPrecision, ReversedDepthDrawsTheSamePicture) {
     ASSERT_NEAR(reversed.depth[i], 1.0f - standard.depth[i], 1e-6f) << "pixel " << i;
 }
 
-// The small triangles' kernels take each sample's depth from
-// SampleDepths (sampleDepthsInTile), the larger ones move the plane (Plane::atSample) and
-// rebase it to the tile (planeInTile) themselves: a triangle's depths must
-// not change with the path it takes, so the two agree to the bit, over
+// The small triangles' kernels take each sample's depth from SampleDepths
+// (sampleDepthsInTile), the larger ones move the plane (Plane::atSample)
+// and rebase it to the tile (planeInTile) themselves: a triangle's depths
+// must not change with the path it takes, so the two agree to the bit, over
 // random planes (slopes up to 1 a pixel, depths in [0, 1]) and tile offsets.
 TEST(DepthPrecision, EachSampleDepthRoundsAsThePlaneMovedThenRebased) {
   std::mt19937 random(7);
