@@ -15,6 +15,7 @@
 #include "tile/tile_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <memory>
 #include <optional>
@@ -23,6 +24,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/stage_clock.h"
+#include "simd/sample_ids.h"
 #include "tile/blended_fragments.h"
 #include "tile/tile_resolve.h"
 
@@ -465,33 +467,57 @@ void pixelJobs(const std::uint32_t* same, std::uint32_t clear, const SamplePatte
   }
 }
 
+// The pairs of samples pixelJobsKey's bits compare, in bit order: at 4
+// samples simd::fourIdsSharing's.
+template <int kSamples>
+constexpr auto samplePairs() {
+  static_assert(kSamples == 2 || kSamples == 4);
+  if constexpr (kSamples == 2)
+    return std::array<std::array<int, 2>, 1>{{{0, 1}}};
+  else
+    return std::array<std::array<int, 2>, 6>{{{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}, {1, 3}}};
+}
+
 // The table index of a pixel whose samples hold `ids` (up to
-// kMaxTabledSamples): a bit per pair of samples, set where they hold the
-// same triangle, then a bit per sample, set where it holds none.
+// kMaxTabledSamples): a bit per pair of samples (samplePairs), set where
+// they hold the same triangle, then a bit per sample, set where it holds
+// none.
 template <int kSamples>
 std::uint32_t pixelJobsKey(const std::uint32_t* ids) {
-  std::uint32_t key = 0;
-  int bit = 0;
-  for (int j = 0; j < kSamples; ++j)
-    for (int k = j + 1; k < kSamples; ++k) key |= std::uint32_t(ids[j] == ids[k]) << bit++;
-  for (int k = 0; k < kSamples; ++k) key |= std::uint32_t(ids[k] == kNoTriangle) << bit++;
-  return key;
+  if constexpr (kSamples == 4) {
+    return simd::fourIdsSharing(ids[0], ids[1], ids[2], ids[3], kNoTriangle);
+  } else {
+    constexpr auto kPairs = samplePairs<kSamples>();
+    std::uint32_t key = 0;
+    int bit = 0;
+    for (const auto& [j, k] : kPairs) key |= std::uint32_t(ids[j] == ids[k]) << bit++;
+    for (int k = 0; k < kSamples; ++k) key |= std::uint32_t(ids[k] == kNoTriangle) << bit++;
+    return key;
+  }
 }
 
 template <int kSamples>
 void buildPixelJobsTable(const SamplePattern& pattern, MixedPixelTables& tables) {
-  constexpr int kPairs = kSamples * (kSamples - 1) / 2;
-  tables.jobs.resize(std::size_t(1) << (kPairs + kSamples));
+  constexpr auto kPairs = samplePairs<kSamples>();
+  tables.jobs.resize(std::size_t(1) << (kPairs.size() + kSamples));
   for (std::uint32_t key = 0; key < tables.jobs.size(); ++key) {
     std::uint32_t same[kSamples];
     for (int k = 0; k < kSamples; ++k) same[k] = 1u << k;
     int bit = 0;
-    for (int j = 0; j < kSamples; ++j)
-      for (int k = j + 1; k < kSamples; ++k, ++bit)
-        if (key >> bit & 1u) same[j] |= 1u << k, same[k] |= 1u << j;
+    for (const auto& [j, k] : kPairs)
+      if (key >> bit++ & 1u) same[j] |= 1u << k, same[k] |= 1u << j;
     // Keys no pixel has (sharing that is not transitive) get some entry.
-    pixelJobs<kSamples>(same, key >> kPairs, pattern, tables, tables.jobs[key]);
+    pixelJobs<kSamples>(same, key >> kPairs.size(), pattern, tables, tables.jobs[key]);
   }
+}
+
+// What mixedPixelTables holds at `samples` samples.
+std::uint64_t mixedPixelTablesBytes(int samples) {
+  const std::uint64_t sets = samples <= 8 ? std::uint64_t(1) << samples : 0;
+  const int keyBits = samples * (samples - 1) / 2 + samples;  // samplePairs and one a sample
+  const std::uint64_t keys =
+      samples > 1 && samples <= kMaxTabledSamples ? std::uint64_t(1) << keyBits : 0;
+  return sets * 2 * sizeof(float) + keys * sizeof(PixelJobs<kMaxTabledSamples>);
 }
 
 MixedPixelTables mixedPixelTables(const SamplePattern& pattern) {
@@ -556,6 +582,30 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
     jobCount += pixel.count;
   }
   s.jobs.resize(jobCount);
+}
+
+// Where each pixel's samples' ids differ from sample 0's (s.sampleDiffers:
+// the bits of their differences) and the pixels where any does
+// (s.mixedPixels, in tile order): the differences written once, every
+// plane's ids read in one vectorized pass (where a pass a plane read and
+// wrote them kSamples - 1 times), then the list without a branch per pixel
+// (half of a dense mesh's pixels differ, at random, and the mispredictions
+// were most of the list's time; perf).
+template <int kSamples>
+void findMixedPixels(TileScratch& s) {
+  const TileBuffers* const planes = s.planes.get();
+  s.sampleDiffers.resize(TileBuffers::kPixels);
+  std::uint32_t* const differs = s.sampleDiffers.data();
+  for (int p = 0; p < TileBuffers::kPixels; ++p) {
+    std::uint32_t differ = 0;
+    for (int k = 1; k < kSamples; ++k) differ |= planes[k].visible[p] ^ planes[0].visible[p];
+    differs[p] = differ;
+  }
+  s.mixedPixels.resize(TileBuffers::kPixels + 3);
+  std::size_t mixed = 0;
+  for (int p = 0; p < TileBuffers::kPixels; p += 4)
+    mixed = simd::appendNonZeroIndices(differs + p, std::uint16_t(p), s.mixedPixels.data(), mixed);
+  s.mixedPixels.resize(mixed);
 }
 
 // Takes out of the mixed pixels those whose samples the triangles of one
@@ -642,21 +692,7 @@ void writeJobColors(const TileFrame& frame, TileScratch& s) {
 void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
   const int samples = frame.samples.count;
   TileBuffers* const planes = s.planes.get();
-  // Where the planes' ids differ, a plane at a time (vectorizes).
-  s.sampleDiffers.assign(TileBuffers::kPixels, 0);
-  std::uint32_t* const differs = s.sampleDiffers.data();
-  for (int k = 1; k < samples; ++k)
-    for (int p = 0; p < TileBuffers::kPixels; ++p)
-      differs[p] |= planes[k].visible[p] ^ planes[0].visible[p];
-  // Without a branch per pixel: a quarter of a dense mesh's pixels differ, at
-  // random, and the mispredictions were most of this loop's time (perf).
-  s.mixedPixels.resize(TileBuffers::kPixels);
-  std::size_t mixed = 0;
-  for (int p = 0; p < TileBuffers::kPixels; ++p) {
-    s.mixedPixels[mixed] = std::uint16_t(p);
-    mixed += differs[p] != 0 ? 1 : 0;
-  }
-  s.mixedPixels.resize(mixed);
+  withSampleCount(samples, [&](auto count) { findMixedPixels<decltype(count)::value>(s); });
   s.allMixed = false;
   if (s.visibleTriangles.empty()) return;
   withSampleCount(samples,
@@ -966,8 +1002,10 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
       (pixelFilterChannels > 0 ? pixelFilterScratchBytes(pixelFilterChannels) : 0);
   const std::uint64_t rings = std::uint64_t(grid.tileCount()) * kBorderRingPixels *
                               std::uint64_t(pixelFilterChannels) * sizeof(float);
+  // The frame's MixedPixelTables, shared by the workers.
+  const std::uint64_t tables = mixedPixelTablesBytes(samples);
   const int workers = std::clamp(grid.tileCount(), 1, std::max(threads, 1));
-  return std::uint64_t(workers) * perWorker + rings;
+  return std::uint64_t(workers) * perWorker + rings + tables;
 }
 
 void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
