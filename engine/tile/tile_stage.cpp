@@ -60,10 +60,9 @@ struct TileScratch {
   // Per run: where its whole groups and its other pixels start in the lists.
   std::vector<std::uint32_t> runGroups, runPixels, groupCursor, pixelCursor;
   std::vector<std::uint16_t> groupList, pixelList;
-  // Multisampled shading: plane 0's ids while the pixels whose samples
-  // several triangles share are taken out of it, and those pixels' jobs and
-  // their colours.
-  std::vector<std::uint32_t> planeZeroVisible;
+  // Multisampled shading: per mixed pixel, plane 0's id while the pixel is
+  // taken out of that plane (collectPixelJobs).
+  std::vector<std::uint32_t> mixedPlaneZeroIds;
   // The pixels whose samples differ (in colour, once shaded), in tile order.
   // With allMixed, every pixel may, and each plane holds its sample's
   // colour; without, only plane 0 holds the colour of the others, and with
@@ -550,36 +549,36 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
   s.jobs.resize(s.mixedPixels.size() * kSamples);
   s.pixelFirstJob.resize(s.mixedPixels.size());
   s.sampleSlot.resize(s.mixedPixels.size() * kSamples);
-  constexpr bool kTabled = kSamples <= kMaxTabledSamples;
-  PixelJobs<kTabled ? 1 : kSamples> computed;
+  s.mixedPlaneZeroIds.resize(s.mixedPixels.size());
   ShadeJob* const jobs = s.jobs.data();
   std::uint32_t jobCount = 0;
   std::uint32_t ids[kSamples];
-  for (std::size_t i = 0; i < s.mixedPixels.size(); ++i) {
-    const std::uint16_t p = s.mixedPixels[i];
-    for (int k = 0; k < kSamples; ++k) ids[k] = planes[k].visible[p];
-    planes[0].visible[p] = kNoTriangle;
-    const auto& pixel = [&]() -> const auto& {
-      if constexpr (kTabled) {
-        return s.mixedTables->jobs[pixelJobsKey<kSamples>(ids)];
-      } else {
-        std::uint32_t same[kSamples], clear = 0;
-        for (int k = 0; k < kSamples; ++k) {
-          same[k] = 0;
-          for (int j = 0; j < kSamples; ++j) same[k] |= std::uint32_t(ids[j] == ids[k]) << j;
-          clear |= std::uint32_t(ids[k] == kNoTriangle) << k;
-        }
-        pixelJobs<kSamples>(same, clear, frame.samples, *s.mixedTables, computed);
-        return computed;
-      }
-    }
-    ();
+  PixelJobs<kSamples> computed;  // past kMaxTabledSamples
+  const auto write = [&](std::size_t i, std::uint16_t p, const auto& pixel) {
     const float x = float(TileBuffers::xAt(p)), y = float(TileBuffers::yAt(p));
     s.pixelFirstJob[i] = jobCount;
     std::copy_n(pixel.slot, kSamples, s.sampleSlot.data() + i * kSamples);
     for (int j = 0; j < kSamples; ++j)
       jobs[jobCount + j] = {x + pixel.dx[j], y + pixel.dy[j], ids[pixel.firstSample[j]], p};
     jobCount += pixel.count;
+  };
+  for (std::size_t i = 0; i < s.mixedPixels.size(); ++i) {
+    const std::uint16_t p = s.mixedPixels[i];
+    for (int k = 0; k < kSamples; ++k) ids[k] = planes[k].visible[p];
+    s.mixedPlaneZeroIds[i] = ids[0];
+    planes[0].visible[p] = kNoTriangle;
+    if constexpr (kSamples <= kMaxTabledSamples) {
+      write(i, p, s.mixedTables->jobs[pixelJobsKey<kSamples>(ids)]);
+    } else {
+      std::uint32_t same[kSamples], clear = 0;
+      for (int k = 0; k < kSamples; ++k) {
+        same[k] = 0;
+        for (int j = 0; j < kSamples; ++j) same[k] |= std::uint32_t(ids[j] == ids[k]) << j;
+        clear |= std::uint32_t(ids[k] == kNoTriangle) << k;
+      }
+      pixelJobs<kSamples>(same, clear, frame.samples, *s.mixedTables, computed);
+      write(i, p, computed);
+    }
   }
   s.jobs.resize(jobCount);
 }
@@ -699,13 +698,13 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
                   [&](auto count) { wholePixelsOfOneColour<decltype(count)::value>(frame, s); });
 
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
-  // Plane 0's ids without the shared pixels while its other pixels are
+  // Plane 0's ids without the mixed pixels while its other pixels are
   // shaded, so that a one-draw tile takes the kernel's scan of the tile as at
   // one sample; restored after.
-  s.planeZeroVisible.assign(planes[0].visible, planes[0].visible + TileBuffers::kPixels);
   withSampleCount(samples, [&](auto count) { collectPixelJobs<decltype(count)::value>(frame, s); });
   shadePlane(frame.draws, kernels, planes[0].visible, planes[0], s);
-  for (const std::uint16_t p : s.mixedPixels) planes[0].visible[p] = s.planeZeroVisible[p];
+  for (std::size_t i = 0; i < s.mixedPixels.size(); ++i)
+    planes[0].visible[s.mixedPixels[i]] = s.mixedPlaneZeroIds[i];
   if (s.jobs.empty()) return;
 
   const std::uint32_t runs = sortJobsByRun(s);
