@@ -98,12 +98,15 @@ inline std::string loadErrorWithEdit(const std::string& model, const std::string
   if (at != std::string::npos) json.replace(at, from.size(), to);
   const std::filesystem::path path = dir / "edited.gltf";
   std::ofstream(path) << json;
+  std::string error;
   try {
     loadGltf(path.string());
   } catch (const Error& e) {
-    return e.what();
+    error = e.what();
   }
-  return "";
+  std::error_code ignored;
+  std::filesystem::remove_all(dir, ignored);
+  return error;
 }
 
 }  // namespace quadra

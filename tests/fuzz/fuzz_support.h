@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -64,7 +65,8 @@ class ByteReader {
 };
 
 // A folder of this process's own under TMPDIR (libFuzzer's -jobs/-fork
-// workers each get one), made once; the targets write their input there.
+// workers each get one), made once and removed at a normal exit; the
+// targets write their input there.
 inline const std::string& scratchFolder() {
   static const std::string folder = [] {
     const char* tmp = std::getenv("TMPDIR");
@@ -74,6 +76,12 @@ inline const std::string& scratchFolder() {
     if (std::system(command.c_str()) != 0) std::abort();
     return base;
   }();
+  // Registered after `folder` is made, so it runs before `folder` is destroyed.
+  static const bool removedAtExit = std::atexit([] {
+                                      std::error_code ignored;
+                                      std::filesystem::remove_all(scratchFolder(), ignored);
+                                    }) == 0;
+  (void)removedAtExit;
   return folder;
 }
 
