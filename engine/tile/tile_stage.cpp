@@ -254,11 +254,40 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
   }
 }
 
+// How the draws of a tile's visible triangles shade: whether every one
+// shades one colour (Draw::shadesOneColour: no shading plane is read), and
+// whether the triangles are all of one draw (they are in submission order,
+// a draw's consecutive).
+struct TileDrawShading {
+  bool allOneColour = false;
+  bool oneDraw = false;
+};
+
+TileDrawShading tileDrawShading(const std::vector<Draw>& draws, const TileScratch& s) {
+  TileDrawShading out;
+  if (s.visibleTriangles.empty()) return out;
+  out.oneDraw = s.visibleTriangles.front().draw == s.visibleTriangles.back().draw;
+  out.allOneColour = true;
+  std::uint32_t last = kNoTriangle;
+  for (const TileTriangle& v : s.visibleTriangles) {
+    if (v.draw == last) continue;
+    last = v.draw;
+    if (!draws[v.draw].shade.shadesOneColour()) {
+      out.allOneColour = false;
+      break;
+    }
+  }
+  return out;
+}
+
 // Every visible triangle's 1/w and attribute planes, rebased to the tile,
 // with each pixel's sample at `offset` standing in for its centre.
 void rebaseShadePlanes(const std::vector<Draw>& draws, const TileBuffers& tile, SampleOffset offset,
                        TileScratch& s) {
   s.shadePlanes.resize(s.visibleTriangles.size() * kShadePlaneStride + 1);
+  // The loop below would skip every triangle, at a lookup each (~1.5% of a
+  // MetalRoughSpheresNoTextures frame; perf).
+  if (tileDrawShading(draws, s).allOneColour) return;
   const bool moved = offset.x != 0 || offset.y != 0;  // else the same bits, cheaper
   const std::size_t triangles = s.visibleTriangles.size();
   for (std::size_t i = 0; i < triangles; ++i) {
@@ -590,14 +619,26 @@ void collectPixelJobs(const TileFrame& frame, TileScratch& s) {
 // wrote them kSamples - 1 times), then the list without a branch per pixel
 // (half of a dense mesh's pixels differ, at random, and the mispredictions
 // were most of the list's time; perf).
-template <int kSamples>
+// kCoverageOnly: only whether each sample holds a triangle is compared, for a
+// tile whose triangles are all of one draw that shades one colour (those
+// pixels' samples are that colour or the clear colour: the pixels
+// wholePixelsOfOneColour would leave mixed, found without looking a
+// sample's draw up; MetalRoughSpheresNoTextures at 4 samples, where most
+// tiles hold one sphere).
+template <int kSamples, bool kCoverageOnly>
 void findMixedPixels(TileScratch& s) {
   const TileBuffers* const planes = s.planes.get();
   s.sampleDiffers.resize(TileBuffers::kPixels);
   std::uint32_t* const differs = s.sampleDiffers.data();
   for (int p = 0; p < TileBuffers::kPixels; ++p) {
     std::uint32_t differ = 0;
-    for (int k = 1; k < kSamples; ++k) differ |= planes[k].visible[p] ^ planes[0].visible[p];
+    for (int k = 1; k < kSamples; ++k) {
+      if constexpr (kCoverageOnly)
+        differ |= std::uint32_t(planes[k].visible[p] == kNoTriangle) ^
+                  std::uint32_t(planes[0].visible[p] == kNoTriangle);
+      else
+        differ |= planes[k].visible[p] ^ planes[0].visible[p];
+    }
     differs[p] = differ;
   }
   s.mixedPixels.resize(TileBuffers::kPixels + 3);
@@ -619,10 +660,11 @@ void wholePixelsOfOneColour(const TileFrame& frame, TileScratch& s) {
   const std::size_t triangles = s.visibleTriangles.size();
   s.oneColourDraw.resize(triangles + 1);
   s.oneColourDraw[0] = kNoTriangle;
-  bool any = false;
+  bool any = false, oneColour = false;
+  std::uint32_t last = kNoTriangle;
   for (std::size_t i = 0; i < triangles; ++i) {
     const std::uint32_t draw = s.visibleTriangles[i].draw;
-    const bool oneColour = frame.draws[draw].shade.shadesOneColour();
+    if (draw != last) oneColour = frame.draws[draw].shade.shadesOneColour(), last = draw;
     s.oneColourDraw[i + 1] = oneColour ? draw : kNoTriangle;
     any |= oneColour;
   }
@@ -691,11 +733,20 @@ void writeJobColors(const TileFrame& frame, TileScratch& s) {
 void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch& s) {
   const int samples = frame.samples.count;
   TileBuffers* const planes = s.planes.get();
-  withSampleCount(samples, [&](auto count) { findMixedPixels<decltype(count)::value>(s); });
+  const TileDrawShading shading = tileDrawShading(frame.draws, s);
+  const bool oneColourDraw = shading.oneDraw && shading.allOneColour;
+  withSampleCount(samples, [&](auto count) {
+    constexpr int kSamples = decltype(count)::value;
+    if (oneColourDraw)
+      findMixedPixels<kSamples, true>(s);
+    else
+      findMixedPixels<kSamples, false>(s);
+  });
   s.allMixed = false;
   if (s.visibleTriangles.empty()) return;
-  withSampleCount(samples,
-                  [&](auto count) { wholePixelsOfOneColour<decltype(count)::value>(frame, s); });
+  if (!oneColourDraw)
+    withSampleCount(samples,
+                    [&](auto count) { wholePixelsOfOneColour<decltype(count)::value>(frame, s); });
 
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
   // Plane 0's ids without the mixed pixels while its other pixels are
