@@ -3,6 +3,7 @@
 // reference tracer's ideal image, and its one-line errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -47,8 +48,9 @@ TEST(ReportSamples, WritesTheTableTheCsvAndThePlot) {
           dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("filter the samplers'"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("| scene | samples | shading | ms/frame | PSNR dB | max diff |"),
-            std::string::npos)
+  EXPECT_NE(
+      r.out.find("| scene | samples | shading | ms/frame | x 1 sample | PSNR dB | max diff |"),
+      std::string::npos)
       << r.out;
   for (const char* row : {"| builtin:showcase | 1 | any |", "| builtin:showcase | 16 | pixel |",
                           "| builtin:slivers | 16 | sample |"})
@@ -59,17 +61,20 @@ TEST(ReportSamples, WritesTheTableTheCsvAndThePlot) {
   std::getline(csv, line);
   EXPECT_EQ(line,
             "scene,triangles,samples,shading,ms_per_frame,psnr_db,max_abs_diff,reference_s,"
-            "reference_check_db,ms_rounds");
+            "reference_check_db,ms_rounds,ratio_to_1_sample");
   // scene -> "samples/shading" -> PSNR
   std::map<std::string, std::map<std::string, double>> psnr;
   int rows = 0;
   while (std::getline(csv, line)) {
     const std::vector<std::string> f = csvFields(line);
-    ASSERT_EQ(f.size(), 10u) << line;
+    ASSERT_EQ(f.size(), 11u) << line;
     ++rows;
     EXPECT_GT(std::stod(f[4]), 0.0) << line;
     EXPECT_GT(std::stod(f[8]), 0.0) << "the reference is checked: " << line;
     EXPECT_EQ(occurrences(f[9], ";"), 1u) << "one time per round: " << line;
+    if (f[2] == "1") {
+      EXPECT_EQ(f[10], "1.000") << "each round's 1-sample run over itself";
+    }
     psnr[f[0]][f[2] + "/" + f[3]] = std::stod(f[5]);
   }
   // Per scene: 1 sample once, 16 samples at each rate; in ascending order.
@@ -121,6 +126,46 @@ TEST(ReportSamples, FilterOptionIsApplied) {
   EXPECT_NE(anisoPsnr, nearestPsnr) << "the filter reaches the frames";
 }
 
+// --reference none: the times alone, and each configuration's cost over the
+// 1-sample run of its own round, recomputed here from the CSV's per-round
+// times.
+TEST(ReportSamples, WithoutAReferenceTheTimesAndTheirRatiosToOneSample) {
+  const fs::path dir = testDir() / "report_samples_times";
+  fs::remove_all(dir);
+  const RunResult r =
+      run("report samples --scenes builtin:slivers --width 64 --height 36 --samples 4,1 "
+          "--reference none --rounds 3 --frames 1 --threads 2 --out-dir " +
+          dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("no reference"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| builtin:slivers | 1 | any |"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("Reference frames"), std::string::npos) << "no reference table";
+  EXPECT_FALSE(fs::exists(dir / "samples.svg")) << "nothing to plot";
+  std::istringstream csv(fileText(dir / "samples.csv"));
+  std::string line;
+  std::getline(csv, line);
+  std::vector<double> oneSample;  // per round
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    const std::vector<std::string> f = csvFields(line);
+    ASSERT_EQ(f.size(), 11u) << line;
+    ++rows;
+    for (int k : {5, 6, 7, 8}) EXPECT_EQ(f[std::size_t(k)], "-") << "not scored: " << line;
+    std::vector<double> rounds;
+    std::istringstream times(f[9]);
+    for (std::string t; std::getline(times, t, ';');) rounds.push_back(std::stod(t));
+    ASSERT_EQ(rounds.size(), 3u) << line;
+    if (f[2] == "1") oneSample = rounds;  // the first row: the fewest samples
+    ASSERT_EQ(oneSample.size(), 3u) << "the 1-sample row comes first";
+    std::vector<double> ratios;
+    for (std::size_t k = 0; k < 3; ++k) ratios.push_back(rounds[k] / oneSample[k]);
+    std::sort(ratios.begin(), ratios.end());
+    // The CSV rounds times to 4 figures and the ratio to 3 decimals.
+    EXPECT_NEAR(std::stod(f[10]), ratios[1], 2e-3 * ratios[1] + 1e-3) << line;
+  }
+  EXPECT_EQ(rows, 3) << "1 sample, 4 per pixel, 4 per sample";
+}
+
 TEST(ReportSamples, BadOptionsAreOneLineErrorsAndWriteNothing) {
   const fs::path dir = testDir() / "report_samples_never";
   fs::remove_all(dir);
@@ -132,7 +177,7 @@ TEST(ReportSamples, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(run("report samples --samples 32" + tail), "--samples: '32'");
   expectOneLineError(run("report samples --reference-spp 0" + tail), "--reference-spp");
   expectOneLineError(run("report samples --reference exact" + tail),
-                     "--reference: unknown reference 'exact' (area, rays)");
+                     "--reference: unknown reference 'exact' (area, rays, none)");
   expectOneLineError(
       run("report samples --width 16 --height 16 --scenes builtin:showcase,builtin:nope "
           "--out-dir " +

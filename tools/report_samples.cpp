@@ -41,7 +41,7 @@ constexpr const char* kSamplesUsage =
     R"(usage: quadra report samples [--width W] [--height H] [--threads N] [--isa ISA]
                              [--frames K] [--rounds R] [--scenes LIST] [--samples LIST]
                              [--filter F] [--aniso N] [--reference-spp N]
-                             [--reference area|rays] [--out-dir DIR]
+                             [--reference area|rays|none] [--out-dir DIR]
                              [--allow-path DIR] [--max-memory SIZE]
   --width W --height H  frame size (default 480x270: the reference frames of the
                         default scenes then take 1-8 s each on two threads, ~50 s in
@@ -75,7 +75,9 @@ constexpr const char* kSamplesUsage =
   --reference KIND      area (default): each pixel's area integrated exactly where its
                         visible triangles do not overlap on screen (opaque, textured or
                         not, no vertex colours), the N x N rays elsewhere; rays: the
-                        N x N rays everywhere (point samples of every texture)
+                        N x N rays everywhere (point samples of every texture); none:
+                        no reference, the times alone (no PSNR, no plot), for the cost
+                        of samples at sizes whose reference would take hours
   --out-dir DIR         where samples.csv and samples.svg go (default out)
 Shading rates: pixel shades once per pixel and visible triangle (multisampling),
 sample shades every sample (supersampling); at 1 sample they are the same frame,
@@ -83,7 +85,9 @@ rendered once. Each scene is seen through its own first camera, unlit, with its
 samplers' own filters, as `quadra render SCENE --samples N --shading-rate RATE`
 draws it. PSNR (peak 1) and max difference over R, G, B against the reference
 tracer's box-filtered frame (exact area integrals or N x N exact ray hits per
-pixel, level-0 bilinear textures).
+pixel, level-0 bilinear textures). "x 1 sample": the median over the rounds of
+a run's time over the same round's 1-sample run (with 1 in --samples), the
+cost of the samples with the machine's drift between rounds divided out.
 )";
 
 // 16 x 16 rays per pixel. Measured against 48 x 48 at 240x135 (PSNR, dB):
@@ -97,8 +101,9 @@ pixel, level-0 bilinear textures).
 // sees where the reference limits a row.
 constexpr int kDefaultReferenceSpp = 16;
 
-// Which reference frame the table is scored against (--reference).
-enum class ReferenceKind { Area, Rays };
+// Which reference frame the table is scored against (--reference); None
+// scores nothing.
+enum class ReferenceKind { Area, Rays, None };
 
 // Scenes the default list leaves out, and why (kSamplesUsage says the same).
 // z-fighting's frame is one quad filling the view in front of another: no
@@ -154,8 +159,10 @@ std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args)
   });
   addFilterOptions(parser, options.filter, options.maxAniso, options.lodBias);
   parser.integer("--reference-spp", options.referenceSpp, 1, 256);
-  parser.choice("--reference", "reference",
-                {{"area", ReferenceKind::Area}, {"rays", ReferenceKind::Rays}}, options.reference);
+  parser.choice(
+      "--reference", "reference",
+      {{"area", ReferenceKind::Area}, {"rays", ReferenceKind::Rays}, {"none", ReferenceKind::None}},
+      options.reference);
   parser.text("--out-dir", options.outDir);
   addAllowPathOption(parser, options.load);
   addMaxMemoryOption(parser, options.load);
@@ -204,10 +211,20 @@ std::vector<Configuration> configurations(const std::vector<int>& sampleCounts) 
 
 struct Measured {
   Configuration configuration;
-  std::vector<double> runMs;  // each round's median frame time
-  ImageDifference difference;
+  std::vector<double> runMs;             // each round's median frame time
+  ImageDifference difference{NAN, NAN};  // NaN: not scored (--reference none)
   double ms() const { return summarizeFrameTimes(runMs).median; }
 };
+
+// The median over the rounds of `row`'s run over the same round's run of
+// `base`: a ratio of runs close in time, where a ratio of the medians would
+// take in the shared machine's drift between rounds.
+double medianRatio(const Measured& row, const Measured& base) {
+  std::vector<double> ratios;
+  for (std::size_t r = 0; r < row.runMs.size() && r < base.runMs.size(); ++r)
+    ratios.push_back(row.runMs[r] / base.runMs[r]);
+  return summarizeFrameTimes(ratios).median;
+}
 
 struct SceneResult {
   std::string label;
@@ -219,6 +236,9 @@ struct SceneResult {
   // lookups at the engine's sample positions, against the reference.
   std::vector<std::pair<int, ImageDifference>> points;
   std::vector<Measured> rows;
+  // Per row: its time over the 1-sample row's, round by round (NaN without
+  // a 1-sample row).
+  std::vector<double> ratioToOneSample;
 };
 
 Image imageOf(Frame frame) {
@@ -240,20 +260,22 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
   result.label = argument;
   result.triangles = scene.triangleCount();
   const Camera camera = firstCameraOrDefault(scene);
+  const bool scored = options.reference != ReferenceKind::None;
   const auto referenceStart = std::chrono::steady_clock::now();
-  const ref::ReferenceTracer tracer(scene, camera, options.width, options.height);
+  std::optional<ref::ReferenceTracer> tracer;
+  if (scored) tracer.emplace(scene, camera, options.width, options.height);
   // The area reference at half the rays and fewer quadrature nodes is its
   // check (below): 2 Gauss nodes against 1 (the midpoint) between breakpoints.
   const auto referenceFrame = [&](int spp, int gaussNodes, ref::ReferenceTracer::AreaStats* stats) {
     return arena.execute([&] {
       return options.reference == ReferenceKind::Rays
-                 ? tracer.render(spp)
-                 : tracer.renderArea({.samplesPerAxis = spp, .gaussNodes = gaussNodes}, stats);
+                 ? tracer->render(spp)
+                 : tracer->renderArea({.samplesPerAxis = spp, .gaussNodes = gaussNodes}, stats);
     });
   };
   ref::ReferenceTracer::AreaStats stats;
-  const Image ideal = referenceFrame(options.referenceSpp, 2, &stats);
-  result.referenceSeconds = secondsSince(referenceStart);
+  const Image ideal = scored ? referenceFrame(options.referenceSpp, 2, &stats) : Image{};
+  result.referenceSeconds = scored ? secondsSince(referenceStart) : NAN;
   if (options.reference == ReferenceKind::Area) result.exactShare = stats.exactArea;
   // How near the truth the reference is: the PSNR of the same frame at half
   // the rays per axis (and, for the area reference, the midpoint rule
@@ -261,20 +283,20 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
   // and texture aliasing) halve per doubling with the same sign, so the difference then equals the
   // reference's own error; errors less alike make it larger. The reference's own PSNR is about this
   // or higher, and rows near it measure the reference as much as the engine.
-  if (options.referenceSpp >= 2) {
+  if (scored && options.referenceSpp >= 2) {
     const Image coarse = referenceFrame(options.referenceSpp / 2, 1, nullptr);
     result.referenceCheckPsnr = imageDifference(coarse, ideal).psnr;
   }
 
   // The best a sampler at those N positions resolves to without filtering
   // its textures: for untextured scenes the limit of N coverage samples.
-  for (const int count : options.sampleCounts) {
+  for (const int count : scored ? options.sampleCounts : std::vector<int>{}) {
     const SamplePattern& pattern = samplePattern(count);
     std::vector<glm::dvec2> offsets;
     for (int k = 0; k < pattern.count; ++k)
       offsets.push_back(glm::dvec2(pattern.offsets[k].x, pattern.offsets[k].y) /
                         double(kSampleUnitsPerPixel));
-    const Image points = arena.execute([&] { return tracer.renderPoints(offsets); });
+    const Image points = arena.execute([&] { return tracer->renderPoints(offsets); });
     result.points.push_back({count, imageDifference(points, ideal)});
   }
 
@@ -291,7 +313,9 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
     settings.shadingRate = c.rate;
     Frame frame;
     renderer.render(scene, camera, settings, frame);  // warm-up, and the frame scored
-    result.rows.push_back({c, {}, imageDifference(imageOf(std::move(frame)), ideal)});
+    Measured row{c, {}};
+    if (scored) row.difference = imageDifference(imageOf(std::move(frame)), ideal);
+    result.rows.push_back(row);
   }
   // Round r starts at configuration r, so no configuration always runs first
   // (after the reference) or always follows the same neighbour's caches.
@@ -309,6 +333,10 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
       }
       row.runMs.push_back(summarizeFrameTimes(times).median);
     }
+  const Measured& first = result.rows.front();  // the fewest samples
+  for (const Measured& row : result.rows)
+    result.ratioToOneSample.push_back(first.configuration.samples == 1 ? medianRatio(row, first)
+                                                                       : NAN);
   return result;
 }
 
@@ -317,30 +345,42 @@ std::string psnrText(double psnr, const char* nanText = "nan") {
   return std::isnan(psnr) ? nanText : std::isinf(psnr) ? "inf" : format("%.2f", psnr);
 }
 
+std::string ratioText(double ratio) {
+  return std::isnan(ratio) ? "-" : format("%.3f", ratio);
+}
+
 std::string tableText(const std::vector<SceneResult>& results) {
   std::ostringstream out;
-  out << "| scene | samples | shading | ms/frame | PSNR dB | max diff |\n"
-         "|---|---:|---|---:|---:|---:|\n";
+  out << "| scene | samples | shading | ms/frame | x 1 sample | PSNR dB | max diff |\n"
+         "|---|---:|---|---:|---:|---:|---:|\n";
   for (const SceneResult& scene : results)
-    for (const Measured& row : scene.rows)
+    for (std::size_t k = 0; k < scene.rows.size(); ++k) {
+      const Measured& row = scene.rows[k];
+      const bool scored = !std::isnan(row.difference.maxAbs);
       out << "| " << scene.label << " | " << row.configuration.samples << " | "
           << row.configuration.rateName() << " | " << figures(row.ms()) << " | "
-          << psnrText(row.difference.psnr) << " | " << format("%.3f", row.difference.maxAbs)
-          << " |\n";
+          << ratioText(scene.ratioToOneSample[k]) << " | "
+          << (scored ? psnrText(row.difference.psnr) : "-") << " | "
+          << (scored ? format("%.3f", row.difference.maxAbs) : "-") << " |\n";
+    }
   return out.str();
 }
 
 std::string csvText(const std::vector<SceneResult>& results) {
   std::ostringstream csv;
   csv << "scene,triangles,samples,shading,ms_per_frame,psnr_db,max_abs_diff,reference_s,"
-         "reference_check_db,ms_rounds\n";
+         "reference_check_db,ms_rounds,ratio_to_1_sample\n";
   for (const SceneResult& scene : results)
-    for (const Measured& row : scene.rows) {
+    for (std::size_t k = 0; k < scene.rows.size(); ++k) {
+      const Measured& row = scene.rows[k];
+      const bool scored = !std::isnan(row.difference.maxAbs);
       csv << scene.label << ',' << scene.triangles << ',' << row.configuration.samples << ','
           << row.configuration.rateName() << ',' << format("%.4g", row.ms()) << ','
-          << psnrText(row.difference.psnr) << ',' << format("%.4g", row.difference.maxAbs) << ','
-          << format("%.3g", scene.referenceSeconds) << ','
-          << psnrText(scene.referenceCheckPsnr, "-") << ',' << joined(row.runMs, "%.4g") << '\n';
+          << (scored ? psnrText(row.difference.psnr) : "-") << ','
+          << (scored ? format("%.4g", row.difference.maxAbs) : "-") << ','
+          << (scored ? format("%.3g", scene.referenceSeconds) : "-") << ','
+          << psnrText(scene.referenceCheckPsnr, "-") << ',' << joined(row.runMs, "%.4g") << ','
+          << ratioText(scene.ratioToOneSample[k]) << '\n';
     }
   return csv.str();
 }
@@ -451,22 +491,38 @@ int runSamplesReport(const std::vector<std::string>& args) {
   }
   progress("");
 
+  const bool scored = options.reference != ReferenceKind::None;
   const std::string settings =
       std::to_string(options.width) + "x" + std::to_string(options.height) + ", " +
       std::to_string(renderer.threadCount()) + " threads, isa " + isaName(renderer.isa()) +
-      ", reference " + (options.reference == ReferenceKind::Area ? "area integrals, else " : "") +
-      std::to_string(options.referenceSpp) + "x" + std::to_string(options.referenceSpp) +
-      " rays per pixel, filter " +
+      (scored ? ", reference " +
+                    std::string(options.reference == ReferenceKind::Area ? "area integrals, else "
+                                                                         : "") +
+                    std::to_string(options.referenceSpp) + "x" +
+                    std::to_string(options.referenceSpp) + " rays per pixel"
+              : std::string(", no reference")) +
+      ", filter " +
       (options.filter ? filterName(*options.filter) + std::string(" (max aniso ") +
                             std::to_string(options.maxAniso) + ")"
                       : std::string("the samplers'"));
   std::ostringstream out;
   out << "Samples per pixel at " << settings << ". ms/frame: the median over " << options.rounds
       << " rounds of each run's median of " << options.frames
-      << " frames (configurations take turns); PSNR (peak 1) and max diff over R, G, B against "
-         "the reference tracer's frame. Shading: pixel = once per pixel and visible triangle, "
-         "sample = every sample; at 1 sample the two are one frame.\n\n"
-      << tableText(results) << "\nReference frames: "
+      << " frames (configurations take turns); x 1 sample: the median over the rounds of a "
+         "run's time over the same round's 1-sample run; "
+      << (scored ? "PSNR (peak 1) and max diff over R, G, B against the reference tracer's frame"
+                 : "no PSNR (--reference none)")
+      << ". Shading: pixel = once per pixel and visible triangle, sample = every sample; at 1 "
+         "sample the two are one frame.\n\n"
+      << tableText(results);
+  const fs::path csvPath = outDir / "samples.csv", svgPath = outDir / "samples.svg";
+  if (!scored) {
+    // Nothing to plot against: the table and the CSV only.
+    writeText(csvPath, csvText(results));
+    std::cout << out.str() << "\nquadra wrote " << csvPath.string() << "\n";
+    return 0;
+  }
+  out << "\nReference frames: "
       << (options.reference == ReferenceKind::Area
               ? "each pixel's area integrated exactly where its visible triangles do not "
                 "overlap on screen, else "
@@ -499,7 +555,6 @@ int runSamplesReport(const std::vector<std::string>& args) {
       out << "| " << scene.label << " | " << count << " | " << psnrText(difference.psnr) << " | "
           << format("%.3f", difference.maxAbs) << " |\n";
 
-  const fs::path csvPath = outDir / "samples.csv", svgPath = outDir / "samples.svg";
   const std::string csv = csvText(results), svg = svgText(results, settings);
   writeText(csvPath, csv);
   writeText(svgPath, svg);
