@@ -211,8 +211,11 @@ std::vector<Configuration> configurations(const std::vector<int>& sampleCounts) 
 
 struct Measured {
   Configuration configuration;
-  std::vector<double> runMs;             // each round's median frame time
-  ImageDifference difference{NAN, NAN};  // NaN: not scored (--reference none)
+  std::vector<double> runMs;  // each round's median frame time
+  ImageDifference difference;
+  // Its time over the 1-sample row's, round by round (medianRatio); NaN
+  // without a 1-sample row.
+  double ratioToOneSample = NAN;
   double ms() const { return summarizeFrameTimes(runMs).median; }
 };
 
@@ -236,9 +239,7 @@ struct SceneResult {
   // lookups at the engine's sample positions, against the reference.
   std::vector<std::pair<int, ImageDifference>> points;
   std::vector<Measured> rows;
-  // Per row: its time over the 1-sample row's, round by round (NaN without
-  // a 1-sample row).
-  std::vector<double> ratioToOneSample;
+  bool scored = true;  // against a reference (not --reference none)
 };
 
 Image imageOf(Frame frame) {
@@ -260,7 +261,7 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
   result.label = argument;
   result.triangles = scene.triangleCount();
   const Camera camera = firstCameraOrDefault(scene);
-  const bool scored = options.reference != ReferenceKind::None;
+  const bool scored = result.scored = options.reference != ReferenceKind::None;
   const auto referenceStart = std::chrono::steady_clock::now();
   std::optional<ref::ReferenceTracer> tracer;
   if (scored) tracer.emplace(scene, camera, options.width, options.height);
@@ -290,7 +291,8 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
 
   // The best a sampler at those N positions resolves to without filtering
   // its textures: for untextured scenes the limit of N coverage samples.
-  for (const int count : scored ? options.sampleCounts : std::vector<int>{}) {
+  for (const int count : options.sampleCounts) {
+    if (!scored) break;
     const SamplePattern& pattern = samplePattern(count);
     std::vector<glm::dvec2> offsets;
     for (int k = 0; k < pattern.count; ++k)
@@ -313,7 +315,8 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
     settings.shadingRate = c.rate;
     Frame frame;
     renderer.render(scene, camera, settings, frame);  // warm-up, and the frame scored
-    Measured row{c, {}};
+    Measured row;
+    row.configuration = c;
     if (scored) row.difference = imageDifference(imageOf(std::move(frame)), ideal);
     result.rows.push_back(row);
   }
@@ -334,9 +337,8 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
       row.runMs.push_back(summarizeFrameTimes(times).median);
     }
   const Measured& first = result.rows.front();  // the fewest samples
-  for (const Measured& row : result.rows)
-    result.ratioToOneSample.push_back(first.configuration.samples == 1 ? medianRatio(row, first)
-                                                                       : NAN);
+  if (first.configuration.samples == 1)
+    for (Measured& row : result.rows) row.ratioToOneSample = medianRatio(row, first);
   return result;
 }
 
@@ -354,15 +356,12 @@ std::string tableText(const std::vector<SceneResult>& results) {
   out << "| scene | samples | shading | ms/frame | x 1 sample | PSNR dB | max diff |\n"
          "|---|---:|---|---:|---:|---:|---:|\n";
   for (const SceneResult& scene : results)
-    for (std::size_t k = 0; k < scene.rows.size(); ++k) {
-      const Measured& row = scene.rows[k];
-      const bool scored = !std::isnan(row.difference.maxAbs);
+    for (const Measured& row : scene.rows)
       out << "| " << scene.label << " | " << row.configuration.samples << " | "
           << row.configuration.rateName() << " | " << figures(row.ms()) << " | "
-          << ratioText(scene.ratioToOneSample[k]) << " | "
-          << (scored ? psnrText(row.difference.psnr) : "-") << " | "
-          << (scored ? format("%.3f", row.difference.maxAbs) : "-") << " |\n";
-    }
+          << ratioText(row.ratioToOneSample) << " | "
+          << (scene.scored ? psnrText(row.difference.psnr) : "-") << " | "
+          << (scene.scored ? format("%.3f", row.difference.maxAbs) : "-") << " |\n";
   return out.str();
 }
 
@@ -371,16 +370,15 @@ std::string csvText(const std::vector<SceneResult>& results) {
   csv << "scene,triangles,samples,shading,ms_per_frame,psnr_db,max_abs_diff,reference_s,"
          "reference_check_db,ms_rounds,ratio_to_1_sample\n";
   for (const SceneResult& scene : results)
-    for (std::size_t k = 0; k < scene.rows.size(); ++k) {
-      const Measured& row = scene.rows[k];
-      const bool scored = !std::isnan(row.difference.maxAbs);
+    for (const Measured& row : scene.rows) {
+      const bool scored = scene.scored;
       csv << scene.label << ',' << scene.triangles << ',' << row.configuration.samples << ','
           << row.configuration.rateName() << ',' << format("%.4g", row.ms()) << ','
           << (scored ? psnrText(row.difference.psnr) : "-") << ','
           << (scored ? format("%.4g", row.difference.maxAbs) : "-") << ','
           << (scored ? format("%.3g", scene.referenceSeconds) : "-") << ','
           << psnrText(scene.referenceCheckPsnr, "-") << ',' << joined(row.runMs, "%.4g") << ','
-          << ratioText(scene.ratioToOneSample[k]) << '\n';
+          << ratioText(row.ratioToOneSample) << '\n';
     }
   return csv.str();
 }

@@ -281,13 +281,14 @@ TileDrawShading tileDrawShading(const std::vector<Draw>& draws, const TileScratc
 }
 
 // Every visible triangle's 1/w and attribute planes, rebased to the tile,
-// with each pixel's sample at `offset` standing in for its centre.
+// with each pixel's sample at `offset` standing in for its centre. None
+// where every draw shades one colour (TileDrawShading::allOneColour): the
+// loop would skip each triangle, at a lookup each (~1.5% of a
+// MetalRoughSpheresNoTextures frame; perf).
 void rebaseShadePlanes(const std::vector<Draw>& draws, const TileBuffers& tile, SampleOffset offset,
-                       TileScratch& s) {
+                       bool allOneColour, TileScratch& s) {
   s.shadePlanes.resize(s.visibleTriangles.size() * kShadePlaneStride + 1);
-  // The loop below would skip every triangle, at a lookup each (~1.5% of a
-  // MetalRoughSpheresNoTextures frame; perf).
-  if (tileDrawShading(draws, s).allOneColour) return;
+  if (allOneColour) return;
   const bool moved = offset.x != 0 || offset.y != 0;  // else the same bits, cheaper
   const std::size_t triangles = s.visibleTriangles.size();
   for (std::size_t i = 0; i < triangles; ++i) {
@@ -748,7 +749,7 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
     withSampleCount(samples,
                     [&](auto count) { wholePixelsOfOneColour<decltype(count)::value>(frame, s); });
 
-  rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, s);
+  rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, shading.allOneColour, s);
   // Plane 0's ids without the mixed pixels while its other pixels are
   // shaded, so that a one-draw tile takes the kernel's scan of the tile as at
   // one sample; restored after.
@@ -817,9 +818,10 @@ void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch
   if (frame.samples.count > 1 && !frame.shadeSamples) return shadePixels(frame, kernels, s);
   s.allMixed = true;
   if (s.visibleTriangles.empty()) return;
+  const bool allOneColour = tileDrawShading(frame.draws, s).allOneColour;
   for (int k = 0; k < frame.samples.count; ++k) {
     TileBuffers& plane = s.planes[k];
-    rebaseShadePlanes(frame.draws, plane, shadingOffset(frame.samples, k), s);
+    rebaseShadePlanes(frame.draws, plane, shadingOffset(frame.samples, k), allOneColour, s);
     shadePlane(frame.draws, kernels, plane.visible, plane, s);
   }
 }
@@ -942,7 +944,9 @@ void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, Tile
                         Frame& out) {
   const AovSet set = frame.aov->aovs;
   const TileBuffers& tile = s.planes[0];
-  if (!s.visibleTriangles.empty()) rebaseShadePlanes(frame.draws, tile, SampleOffset{}, s);
+  if (!s.visibleTriangles.empty())
+    rebaseShadePlanes(frame.draws, tile, SampleOffset{},
+                      tileDrawShading(frame.draws, s).allOneColour, s);
   s.jobs.clear();
   for (int y = 0; y < tile.height; ++y)
     for (int x = 0; x < tile.width; ++x) {
