@@ -238,11 +238,19 @@ QUADRA_LANE_INLINE UvDerivatives<L> analyticFootprint(const ShadeState& shade, c
 // (lanes in quad order, helper lanes included); otherwise the derivatives are
 // the planes' own at each pixel centre: with U = u/w and W = 1/w, u = U/W and
 // du/dx = (U_x - u W_x) / W.
+// Whether shadeColor reads 1/w and the attribute planes: all but a draw of
+// one colour (ShadeState::shadesOneColour, at run time).
+constexpr bool readsPlanes(bool textured, bool vertexColor, bool lit, ShadeOutput output) {
+  return textured || vertexColor || lit || output != ShadeOutput::Color;
+}
+
 template <bool kTextured, bool kVertexColor, bool kLit, bool kQuad, ShadeOutput kOutput>
 QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const F& y,
                                       const LanePlane& invW, const LanePlane* attr) {
-  // Perspective-correct: a = (a/w) / (1/w), with one exact division.
-  const F w = F(1.0f) / invW.at(x, y);
+  // Perspective-correct: a = (a/w) / (1/w), with one exact division. A
+  // colour that reads no plane reads no 1/w either (RunShader gathers none).
+  F w(1.0f);
+  if constexpr (readsPlanes(kTextured, kVertexColor, kLit, kOutput)) w = F(1.0f) / invW.at(x, y);
   const auto attribute = [&](int index) { return attr[index].at(x, y) * w; };
   const AttributeLayout& layout = shade.attributes;
   F r = F(shade.baseColor.r), g = F(shade.baseColor.g), b = F(shade.baseColor.b),
@@ -302,6 +310,9 @@ struct Features {
                         kQuad = kQuad_;
   static constexpr AlphaMode kAlpha = kAlpha_;
   static constexpr ShadeOutput kOutput = kOutput_;
+  // RunShader gathers the planes of a draw whose colour reads them, and the
+  // tile stage rebases them (rebaseShadePlanes) for those draws alone.
+  static constexpr bool kReadsPlanes = readsPlanes(kTextured, kVertexColor, kLit, kOutput);
   static Rgba<L> color(const ShadeState& s, const F& x, const F& y, const LanePlane& invW,
                        const LanePlane* attr) {
     return shadeColor<kTextured, kVertexColor, kLit, kQuad, kOutput>(s, x, y, invW, attr);
@@ -847,7 +858,8 @@ class RunShader {
   void group(int first) const {
     static const LaneOffsets lane;  // const after construction; per ISA namespace
     LanePlane p[1 + kMaxShadedAttributes];
-    lanePlanes(run_.planes, tile_.visible + first, planeCount_, p);
+    if constexpr (Feat::kReadsPlanes)
+      lanePlanes(run_.planes, tile_.visible + first, planeCount_, p);
     const F x = lane.x + F(float(TileBuffers::xAt(first)));
     const F y = lane.y + F(float(TileBuffers::yAt(first)));
     const Rgba<L> c = Feat::color(shade_, x, y, p[0], p + 1);
@@ -860,7 +872,7 @@ class RunShader {
   // R, G, B of the lanes' positions, each with its own triangle's planes.
   void shadeLanes(const F& x, const F& y, const std::uint32_t* ids, float (*out)[L::kWidth]) const {
     LanePlane p[1 + kMaxShadedAttributes];
-    lanePlanes(run_.planes, ids, planeCount_, p);
+    if constexpr (Feat::kReadsPlanes) lanePlanes(run_.planes, ids, planeCount_, p);
     const Rgba<L> c = Feat::color(shade_, x, y, p[0], p + 1);
     c.r.store_aligned(out[0]);
     c.g.store_aligned(out[1]);

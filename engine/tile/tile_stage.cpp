@@ -281,14 +281,16 @@ TileDrawShading tileDrawShading(const std::vector<Draw>& draws, const TileScratc
 }
 
 // Every visible triangle's 1/w and attribute planes, rebased to the tile,
-// with each pixel's sample at `offset` standing in for its centre. None
-// where every draw shades one colour (TileDrawShading::allOneColour): the
-// loop would skip each triangle, at a lookup each (~1.5% of a
-// MetalRoughSpheresNoTextures frame; perf).
+// with each pixel's sample at `offset` standing in for its centre, where its
+// draw's colour reads them (the kernels gather no plane of a draw that
+// shades one colour). None where every draw shades one colour
+// (TileDrawShading::allOneColour): the loop would skip each triangle, at a
+// lookup each (~1.5% of a MetalRoughSpheresNoTextures frame; perf), and
+// sizing the table zero-filled it (~0.4% at 4 samples; callgrind).
 void rebaseShadePlanes(const std::vector<Draw>& draws, const TileBuffers& tile, SampleOffset offset,
                        bool allOneColour, TileScratch& s) {
-  s.shadePlanes.resize(s.visibleTriangles.size() * kShadePlaneStride + 1);
   if (allOneColour) return;
+  s.shadePlanes.resize(s.visibleTriangles.size() * kShadePlaneStride + 1);
   const bool moved = offset.x != 0 || offset.y != 0;  // else the same bits, cheaper
   const std::size_t triangles = s.visibleTriangles.size();
   for (std::size_t i = 0; i < triangles; ++i) {

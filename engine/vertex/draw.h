@@ -91,7 +91,9 @@ struct ShadeState {
   AttributeLayout attributes;
   // Whether every pixel the draw shades gets the same colour (its base
   // colour: no texture, vertex colour or lighting), whichever of its
-  // triangles holds it and wherever.
+  // triangles holds it and wherever. The tile kernels' readsPlanes is the
+  // same test on their template parameters: such a draw's planes are
+  // neither rebased nor gathered for shading.
   bool shadesOneColour() const {
     return !textured && !vertexColor && !lit && output == ShadeOutput::Color;
   }
