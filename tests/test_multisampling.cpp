@@ -150,7 +150,10 @@ TEST(Multisampling, SixteenSamplesShadedPerSampleAreTheFrameAtFourTimesTheResolu
 // draw or with the clear colour once per triangle. Taking the wrong pixels
 // out (one with a clear sample, or another draw's) moves an edge pixel to
 // one colour. Random triangles, a third of them tiny, in two draws of two
-// colours.
+// colours, and in one draw alone, whose tiles' mixed pixels are found by
+// coverage and written from one shaded colour (tile_stage.cpp
+// writeCoverageColors); with the box filter (mixed pixels resolved as they
+// are shaded) and Blackman-Harris (every sample's colour kept).
 TEST(Multisampling, OneColourDrawsAreTheFrameShadedPerSample) {
   Scene scene = randomTrianglesScene(4000, 7);
   ASSERT_EQ(scene.meshes.size(), 1u);
@@ -172,27 +175,33 @@ TEST(Multisampling, OneColourDrawsAreTheFrameShadedPerSample) {
   scene.materials[0].baseColorFactor = {0.8f, 0.3f, 0.1f, 1.0f};
   scene.materials[1].baseColorFactor = {0.1f, 0.45f, 0.9f, 1.0f};
   second.material = 1;
+  const Scene oneDraw = scene;
   scene.meshes.push_back(std::move(second));
   scene.instances.push_back({1, scene.instances[0].world});
-  for (const int samples : {2, 4, 8, 16}) {
-    SCOPED_TRACE(std::to_string(samples) + " samples");
-    RenderSettings settings;
-    settings.width = 203;
-    settings.height = 117;
-    settings.samples = samples;
-    const Frame perPixel = renderOnce(scene, firstCameraOrDefault(scene), settings);
-    settings.shadingRate = ShadingRate::Sample;
-    const Frame perSample = renderOnce(scene, firstCameraOrDefault(scene), settings);
-    ASSERT_EQ(perPixel.rgba.size(), perSample.rgba.size());
-    std::size_t differing = 0, edge = 0;
-    for (std::size_t i = 0; i < perPixel.rgba.size(); ++i) {
-      differing += std::memcmp(&perPixel.rgba[i], &perSample.rgba[i], sizeof(float)) != 0;
-      const float value = perPixel.rgba[i];
-      edge += i % 4 == 0 && value != 0.8f && value != 0.1f && value != 0.0f;
-    }
-    EXPECT_EQ(differing, 0u);
-    EXPECT_GT(edge, 100u);  // pixels that mix the colours: the case is there
-  }
+  for (const Scene* draws : {static_cast<const Scene*>(&scene), &oneDraw})
+    for (const PixelFilter filter : {PixelFilter::Box, PixelFilter::BlackmanHarris})
+      for (const int samples : {2, 4, 8, 16}) {
+        SCOPED_TRACE(std::to_string(draws->meshes.size()) + " draws, " +
+                     (filter == PixelFilter::Box ? "box, " : "Blackman-Harris, ") +
+                     std::to_string(samples) + " samples");
+        RenderSettings settings;
+        settings.width = 203;
+        settings.height = 117;
+        settings.samples = samples;
+        settings.pixelFilter = filter;
+        const Frame perPixel = renderOnce(*draws, firstCameraOrDefault(*draws), settings);
+        settings.shadingRate = ShadingRate::Sample;
+        const Frame perSample = renderOnce(*draws, firstCameraOrDefault(*draws), settings);
+        ASSERT_EQ(perPixel.rgba.size(), perSample.rgba.size());
+        std::size_t differing = 0, edge = 0;
+        for (std::size_t i = 0; i < perPixel.rgba.size(); ++i) {
+          differing += std::memcmp(&perPixel.rgba[i], &perSample.rgba[i], sizeof(float)) != 0;
+          const float value = perPixel.rgba[i];
+          edge += i % 4 == 0 && value != 0.8f && value != 0.1f && value != 0.0f;
+        }
+        EXPECT_EQ(differing, 0u);
+        EXPECT_GT(edge, 100u);  // pixels that mix the colours: the case is there
+      }
 }
 
 }  // namespace

@@ -687,6 +687,23 @@ void wholePixelsOfOneColour(const TileFrame& frame, TileScratch& s) {
   s.mixedPixels.resize(mixed);
 }
 
+// Pixel p's colour from its samples' (premultiplied RGBA), kResolve: box
+// filtered into plane 0, summed pairwise as averageSamples sums the planes
+// (the same bits); else each into its own plane.
+template <int kSamples, bool kResolve>
+void writeSampleColors(float (&value)[4][kSamples], std::uint16_t p, TileBuffers* planes) {
+  const float weight = 1.0f / float(kSamples);  // a power of two: exact
+  for (int c = 0; c < 4; ++c) {
+    if constexpr (kResolve) {
+      for (int width = 1; width < kSamples; width *= 2)
+        for (int k = 0; k + width < kSamples; k += 2 * width) value[c][k] += value[c][k + width];
+      planes[0].color[c][p] = value[c][0] * weight;
+    } else {
+      for (int k = 0; k < kSamples; ++k) planes[k].color[c][p] = value[c][k];
+    }
+  }
+}
+
 // The mixed pixels' sample colours: each job's (s.jobColor: RGB, in
 // s.sortedJobs' order) at the samples it holds, the clear colour at those
 // none holds, a pixel at a time, as the resolve needs them (written alone,
@@ -698,11 +715,8 @@ void wholePixelsOfOneColour(const TileFrame& frame, TileScratch& s) {
 // 3.0 ms a frame at 1 thread, where it is 3.3 at one sample).
 template <int kSamples, bool kSorted, bool kResolve>
 void writeJobColors(const TileFrame& frame, TileScratch& s) {
-  TileBuffers* const planes = s.planes.get();
   const float* const color = s.jobColor.data();
-  const float weight = 1.0f / float(kSamples);  // a power of two: exact
   for (std::size_t i = 0; i < s.mixedPixels.size(); ++i) {
-    const std::uint16_t p = s.mixedPixels[i];
     const std::uint8_t* const slot = s.sampleSlot.data() + i * kSamples;
     float value[4][kSamples];
     for (int k = 0; k < kSamples; ++k) {
@@ -713,15 +727,28 @@ void writeJobColors(const TileFrame& frame, TileScratch& s) {
       for (int c = 0; c < 3; ++c) value[c][k] = rgb[c];
       value[3][k] = clear ? frame.clearColor[3] : 1.0f;  // opaque and masked draws
     }
-    for (int c = 0; c < 4; ++c) {
-      if constexpr (kResolve) {
-        for (int width = 1; width < kSamples; width *= 2)
-          for (int k = 0; k + width < kSamples; k += 2 * width) value[c][k] += value[c][k + width];
-        planes[0].color[c][p] = value[c][0] * weight;
-      } else {
-        for (int k = 0; k < kSamples; ++k) planes[k].color[c][p] = value[c][k];
-      }
+    writeSampleColors<kSamples, kResolve>(value, s.mixedPixels[i], s.planes.get());
+  }
+}
+
+// A mixed pixel's sample colours where the tile's triangles are all of one
+// draw that shades one colour (TileDrawShading): `color` (RGB, the kernel's
+// for that draw) at the samples a triangle holds, the clear colour at the
+// others, as writeJobColors would write them from that draw's jobs, every
+// one of that colour; the jobs are neither collected, sorted nor shaded
+// (most of MetalRoughSpheresNoTextures' tiles at 4 samples, where each
+// holds one sphere).
+template <int kSamples, bool kResolve>
+void writeCoverageColors(const TileFrame& frame, const float* color, TileScratch& s) {
+  TileBuffers* const planes = s.planes.get();
+  for (const std::uint16_t p : s.mixedPixels) {
+    float value[4][kSamples];
+    for (int k = 0; k < kSamples; ++k) {
+      const bool clear = planes[k].visible[p] == kNoTriangle;
+      for (int c = 0; c < 3; ++c) value[c][k] = clear ? frame.clearColor[c] : color[c];
+      value[3][k] = clear ? frame.clearColor[3] : 1.0f;  // opaque and masked draws
     }
+    writeSampleColors<kSamples, kResolve>(value, p, planes);
   }
 }
 
@@ -755,10 +782,43 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   // Plane 0's ids without the mixed pixels while its other pixels are
   // shaded, so that a one-draw tile takes the kernel's scan of the tile as at
   // one sample; restored after.
-  withSampleCount(samples, [&](auto count) { collectPixelJobs<decltype(count)::value>(frame, s); });
+  if (oneColourDraw) {
+    s.mixedPlaneZeroIds.resize(s.mixedPixels.size());
+    for (std::size_t i = 0; i < s.mixedPixels.size(); ++i) {
+      s.mixedPlaneZeroIds[i] = planes[0].visible[s.mixedPixels[i]];
+      planes[0].visible[s.mixedPixels[i]] = kNoTriangle;
+    }
+  } else {
+    withSampleCount(samples,
+                    [&](auto count) { collectPixelJobs<decltype(count)::value>(frame, s); });
+  }
   shadePlane(frame.draws, kernels, planes[0].visible, planes[0], s);
   for (std::size_t i = 0; i < s.mixedPixels.size(); ++i)
     planes[0].visible[s.mixedPixels[i]] = s.mixedPlaneZeroIds[i];
+  // Box-filtered with nothing drawn after: resolved here.
+  const bool resolve = s.pixelFilter == nullptr && s.forward.empty();
+  if (oneColourDraw) {
+    if (s.mixedPixels.empty()) return;
+    // The draw's colour, from the kernel: one job, at a mixed pixel's centre
+    // with one of the tile's triangles (its colour is the same at any).
+    const std::uint16_t p = s.mixedPixels[0];
+    const ShadeJob job{float(TileBuffers::xAt(p)), float(TileBuffers::yAt(p)), 0, p};
+    float color[3];
+    ShadeRun run;
+    run.planes = s.shadePlanes.data();
+    run.jobs = &job;
+    run.jobCount = 1;
+    run.jobColor = color;
+    kernels.shade(frame.draws[s.visibleTriangles[0].draw].shade, run, planes[0]);
+    withSampleCount(samples, [&](auto count) {
+      constexpr int kSamples = decltype(count)::value;
+      if (resolve)
+        writeCoverageColors<kSamples, true>(frame, color, s);
+      else
+        writeCoverageColors<kSamples, false>(frame, color, s);
+    });
+    return;
+  }
   if (s.jobs.empty()) return;
 
   const std::uint32_t runs = sortJobsByRun(s);
@@ -774,8 +834,6 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
     kernels.shade(frame.draws[s.visibleTriangles[s.sortedJobs[first].triangle].draw].shade, run,
                   planes[0]);
   }
-  // Box-filtered with nothing drawn after: resolved here.
-  const bool resolve = s.pixelFilter == nullptr && s.forward.empty();
   withSampleCount(samples, [&](auto count) {
     constexpr int kSamples = decltype(count)::value;
     const auto write = [&]<bool kSorted>() {
