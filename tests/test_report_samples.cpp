@@ -61,13 +61,13 @@ TEST(ReportSamples, WritesTheTableTheCsvAndThePlot) {
   std::getline(csv, line);
   EXPECT_EQ(line,
             "scene,triangles,samples,shading,ms_per_frame,psnr_db,max_abs_diff,reference_s,"
-            "reference_check_db,ms_rounds,ratio_to_1_sample");
+            "reference_check_db,ms_rounds,ratio_to_1_sample,ratio_low,ratio_high");
   // scene -> "samples/shading" -> PSNR
   std::map<std::string, std::map<std::string, double>> psnr;
   int rows = 0;
   while (std::getline(csv, line)) {
     const std::vector<std::string> f = csvFields(line);
-    ASSERT_EQ(f.size(), 11u) << line;
+    ASSERT_EQ(f.size(), 13u) << line;
     ++rows;
     EXPECT_GT(std::stod(f[4]), 0.0) << line;
     EXPECT_GT(std::stod(f[8]), 0.0) << "the reference is checked: " << line;
@@ -75,6 +75,8 @@ TEST(ReportSamples, WritesTheTableTheCsvAndThePlot) {
     if (f[2] == "1") {
       EXPECT_EQ(f[10], "1.000") << "each round's 1-sample run over itself";
     }
+    EXPECT_EQ(f[11], "-") << "no interval from 2 rounds: " << line;
+    EXPECT_EQ(f[12], "-") << line;
     psnr[f[0]][f[2] + "/" + f[3]] = std::stod(f[5]);
   }
   // Per scene: 1 sample once, 16 samples at each rate; in ascending order.
@@ -128,13 +130,14 @@ TEST(ReportSamples, FilterOptionIsApplied) {
 
 // --reference none: the times alone, and each configuration's cost over the
 // 1-sample run of its own round, recomputed here from the CSV's per-round
-// times.
+// times; its bootstrap interval holds the median and lies within the
+// rounds' ratios (every resample's median does).
 TEST(ReportSamples, WithoutAReferenceTheTimesAndTheirRatiosToOneSample) {
   const fs::path dir = testDir() / "report_samples_times";
   fs::remove_all(dir);
   const RunResult r =
       run("report samples --scenes builtin:slivers --width 64 --height 36 --samples 4,1 "
-          "--reference none --rounds 3 --frames 1 --threads 2 --out-dir " +
+          "--reference none --rounds 5 --frames 1 --threads 2 --out-dir " +
           dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("no reference"), std::string::npos) << r.out;
@@ -148,22 +151,34 @@ TEST(ReportSamples, WithoutAReferenceTheTimesAndTheirRatiosToOneSample) {
   int rows = 0;
   while (std::getline(csv, line)) {
     const std::vector<std::string> f = csvFields(line);
-    ASSERT_EQ(f.size(), 11u) << line;
+    ASSERT_EQ(f.size(), 13u) << line;
     ++rows;
     for (int k : {5, 6, 7, 8}) EXPECT_EQ(f[std::size_t(k)], "-") << "not scored: " << line;
     std::vector<double> rounds;
     std::istringstream times(f[9]);
     for (std::string t; std::getline(times, t, ';');) rounds.push_back(std::stod(t));
-    ASSERT_EQ(rounds.size(), 3u) << line;
+    ASSERT_EQ(rounds.size(), 5u) << line;
     if (f[2] == "1") oneSample = rounds;  // the first row: the fewest samples
-    ASSERT_EQ(oneSample.size(), 3u) << "the 1-sample row comes first";
+    ASSERT_EQ(oneSample.size(), 5u) << "the 1-sample row comes first";
     std::vector<double> ratios;
-    for (std::size_t k = 0; k < 3; ++k) ratios.push_back(rounds[k] / oneSample[k]);
+    for (std::size_t k = 0; k < 5; ++k) ratios.push_back(rounds[k] / oneSample[k]);
     std::sort(ratios.begin(), ratios.end());
-    // The CSV rounds times to 4 figures and the ratio to 3 decimals.
-    EXPECT_NEAR(std::stod(f[10]), ratios[1], 2e-3 * ratios[1] + 1e-3) << line;
+    // The CSV rounds times to 4 figures and the ratios to 3 decimals.
+    const auto tolerance = [](double ratio) { return 2e-3 * ratio + 1e-3; };
+    const double median = std::stod(f[10]), low = std::stod(f[11]), high = std::stod(f[12]);
+    EXPECT_NEAR(median, ratios[2], tolerance(ratios[2])) << line;
+    EXPECT_LE(low, median) << line;
+    EXPECT_GE(high, median) << line;
+    EXPECT_GE(low, ratios.front() - tolerance(ratios.front())) << line;
+    EXPECT_LE(high, ratios.back() + tolerance(ratios.back())) << line;
+    if (f[2] == "1") {
+      EXPECT_EQ(f[11] + "," + f[12], "1.000,1.000") << line;
+    }
   }
   EXPECT_EQ(rows, 3) << "1 sample, 4 per pixel, 4 per sample";
+  EXPECT_NE(r.out.find("| builtin:slivers | 1 | any | "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" | 1.000 [1.00, 1.00] | "), std::string::npos)
+      << "the table's interval: " << r.out;
 }
 
 TEST(ReportSamples, BadOptionsAreOneLineErrorsAndWriteNothing) {

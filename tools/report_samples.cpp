@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -87,7 +88,10 @@ draws it. PSNR (peak 1) and max difference over R, G, B against the reference
 tracer's box-filtered frame (exact area integrals or N x N exact ray hits per
 pixel, level-0 bilinear textures). "x 1 sample": the median over the rounds of
 a run's time over the same round's 1-sample run (with 1 in --samples), the
-cost of the samples with the machine's drift between rounds divided out.
+cost of the samples with the machine's drift between rounds divided out; in
+brackets (from 3 rounds), a 95% bootstrap interval of that median: the 2.5th
+and 97.5th percentiles of the medians of 4000 resamples of the rounds' ratios,
+drawn from a fixed seed (CSV ratio_low, ratio_high).
 )";
 
 // 16 x 16 rays per pixel. Measured against 48 x 48 at 240x135 (PSNR, dB):
@@ -213,20 +217,35 @@ struct Measured {
   Configuration configuration;
   std::vector<double> runMs;  // each round's median frame time
   ImageDifference difference;
-  // Its time over the 1-sample row's, round by round (medianRatio); NaN
-  // without a 1-sample row.
-  double ratioToOneSample = NAN;
+  // Its time over the 1-sample row's, round by round: their median and its
+  // bootstrap interval (RatioToOneSample); NaN without a 1-sample row.
+  double ratioToOneSample = NAN, ratioLow = NAN, ratioHigh = NAN;
   double ms() const { return summarizeFrameTimes(runMs).median; }
 };
 
 // The median over the rounds of `row`'s run over the same round's run of
-// `base`: a ratio of runs close in time, where a ratio of the medians would
-// take in the shared machine's drift between rounds.
-double medianRatio(const Measured& row, const Measured& base) {
+// `base` (a ratio of runs close in time, where a ratio of the medians would
+// take in the shared machine's drift between rounds), and from 3 rounds a
+// 95% bootstrap interval of it: the 2.5th and 97.5th percentiles of the
+// medians of kResamples resamples of the rounds' ratios, with replacement,
+// drawn from a fixed seed so that a CSV's interval follows from its rounds.
+void setRatioToOneSample(Measured& row, const Measured& base) {
   std::vector<double> ratios;
   for (std::size_t r = 0; r < row.runMs.size() && r < base.runMs.size(); ++r)
     ratios.push_back(row.runMs[r] / base.runMs[r]);
-  return summarizeFrameTimes(ratios).median;
+  row.ratioToOneSample = summarizeFrameTimes(ratios).median;
+  if (ratios.size() < 3) return;
+  constexpr int kResamples = 4000;
+  std::mt19937 random(20261130u);
+  std::uniform_int_distribution<std::size_t> pick(0, ratios.size() - 1);
+  std::vector<double> medians, resample(ratios.size());
+  for (int i = 0; i < kResamples; ++i) {
+    for (double& ratio : resample) ratio = ratios[pick(random)];
+    medians.push_back(summarizeFrameTimes(resample).median);
+  }
+  std::sort(medians.begin(), medians.end());
+  row.ratioLow = medians[kResamples / 40];
+  row.ratioHigh = medians[kResamples - 1 - kResamples / 40];
 }
 
 struct SceneResult {
@@ -338,7 +357,7 @@ SceneResult measureScene(const std::string& argument, const Scene& scene,
     }
   const Measured& first = result.rows.front();  // the fewest samples
   if (first.configuration.samples == 1)
-    for (Measured& row : result.rows) row.ratioToOneSample = medianRatio(row, first);
+    for (Measured& row : result.rows) setRatioToOneSample(row, first);
   return result;
 }
 
@@ -351,6 +370,14 @@ std::string ratioText(double ratio) {
   return std::isnan(ratio) ? "-" : format("%.3f", ratio);
 }
 
+// The table's "x 1 sample": the median ratio and, where there is one, its
+// interval.
+std::string ratioCell(const Measured& row) {
+  if (std::isnan(row.ratioLow)) return ratioText(row.ratioToOneSample);
+  return ratioText(row.ratioToOneSample) + " [" + format("%.2f", row.ratioLow) + ", " +
+         format("%.2f", row.ratioHigh) + "]";
+}
+
 std::string tableText(const std::vector<SceneResult>& results) {
   std::ostringstream out;
   out << "| scene | samples | shading | ms/frame | x 1 sample | PSNR dB | max diff |\n"
@@ -358,9 +385,8 @@ std::string tableText(const std::vector<SceneResult>& results) {
   for (const SceneResult& scene : results)
     for (const Measured& row : scene.rows)
       out << "| " << scene.label << " | " << row.configuration.samples << " | "
-          << row.configuration.rateName() << " | " << figures(row.ms()) << " | "
-          << ratioText(row.ratioToOneSample) << " | "
-          << (scene.scored ? psnrText(row.difference.psnr) : "-") << " | "
+          << row.configuration.rateName() << " | " << figures(row.ms()) << " | " << ratioCell(row)
+          << " | " << (scene.scored ? psnrText(row.difference.psnr) : "-") << " | "
           << (scene.scored ? format("%.3f", row.difference.maxAbs) : "-") << " |\n";
   return out.str();
 }
@@ -368,7 +394,7 @@ std::string tableText(const std::vector<SceneResult>& results) {
 std::string csvText(const std::vector<SceneResult>& results) {
   std::ostringstream csv;
   csv << "scene,triangles,samples,shading,ms_per_frame,psnr_db,max_abs_diff,reference_s,"
-         "reference_check_db,ms_rounds,ratio_to_1_sample\n";
+         "reference_check_db,ms_rounds,ratio_to_1_sample,ratio_low,ratio_high\n";
   for (const SceneResult& scene : results)
     for (const Measured& row : scene.rows) {
       const bool scored = scene.scored;
@@ -378,7 +404,8 @@ std::string csvText(const std::vector<SceneResult>& results) {
           << (scored ? format("%.4g", row.difference.maxAbs) : "-") << ','
           << (scored ? format("%.3g", scene.referenceSeconds) : "-") << ','
           << psnrText(scene.referenceCheckPsnr, "-") << ',' << joined(row.runMs, "%.4g") << ','
-          << ratioText(row.ratioToOneSample) << '\n';
+          << ratioText(row.ratioToOneSample) << ',' << ratioText(row.ratioLow) << ','
+          << ratioText(row.ratioHigh) << '\n';
     }
   return csv.str();
 }
@@ -507,7 +534,8 @@ int runSamplesReport(const std::vector<std::string>& args) {
   out << "Samples per pixel at " << settings << ". ms/frame: the median over " << options.rounds
       << " rounds of each run's median of " << options.frames
       << " frames (configurations take turns); x 1 sample: the median over the rounds of a "
-         "run's time over the same round's 1-sample run; "
+         "run's time over the same round's 1-sample run, in brackets a 95% bootstrap "
+         "interval of that median; "
       << (scored ? "PSNR (peak 1) and max diff over R, G, B against the reference tracer's frame"
                  : "no PSNR (--reference none)")
       << ". Shading: pixel = once per pixel and visible triangle, sample = every sample; at 1 "
