@@ -218,7 +218,7 @@ struct Measured {
   std::vector<double> runMs;  // each round's median frame time
   ImageDifference difference;
   // Its time over the 1-sample row's, round by round: their median and its
-  // bootstrap interval (RatioToOneSample); NaN without a 1-sample row.
+  // bootstrap interval (setRatioToOneSample); NaN without a 1-sample row.
   double ratioToOneSample = NAN, ratioLow = NAN, ratioHigh = NAN;
   double ms() const { return summarizeFrameTimes(runMs).median; }
 };
