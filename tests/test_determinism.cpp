@@ -293,8 +293,9 @@ INSTANTIATE_TEST_SUITE_P(Determinism, EverySampleCount,
 // one to four registers, SSE2 at 2 and 4 samples, AVX2 at 2-8, AVX-512 at
 // 4-16), and each sample's lane groups in turn elsewhere (always on the
 // scalar path): the same bits, with partial quads at the frame's odd right
-// and bottom edges, triangles across tile borders, and the hierarchical
-// depth of both depth directions.
+// and bottom edges, boxes of 2x2 pixels or less off the quad grid (one quad
+// at the box's corner, its covered samples written one by one), triangles
+// across tile borders, and the hierarchical depth of both depth directions.
 TEST(Determinism, TinyTrianglesAtSamplesAreIdenticalAcrossIsas) {
   for (const std::string name : {"slivers", "subpixel-plane"}) {
     const Scene scene = makeBuiltinScene(name);
