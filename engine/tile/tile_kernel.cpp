@@ -1,6 +1,8 @@
 // The single dispatch point from Isa to kernel tables.
 #include "tile/tile_kernel.h"
 
+#include <iterator>
+
 namespace quadra {
 
 const TileKernels& tileKernels(Isa isa) {
@@ -25,6 +27,13 @@ TileKernelSelection selectTileKernels(Isa isa) {
     // least half of it empty, while the AVX2 group (4x2) fits it.
     selection.narrow = &tileKernels(Isa::Avx2);
     selection.narrowBelow = 4;
+  }
+  for (int i = 0; i < int(std::size(selection.quadSamples)); ++i) {
+    const int samples = 1 << i;
+    for (const TileKernels* kernels : {selection.wide, selection.narrow})
+      if (selection.quadSamples[i] == nullptr &&
+          TileKernelSelection::quadSampleRegisters(kernels->isa, kernels->lanes, samples) > 0)
+        selection.quadSamples[i] = kernels;
   }
   return selection;
 }

@@ -6,6 +6,7 @@
 // draws and test views take the forward path, which shades as it rasterizes.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "setup/triangle_record.h"
@@ -173,12 +174,15 @@ struct TileKernelSelection {
   // one; others as forWidth.
   static constexpr int kQuadSamplesBox = 8;
   const TileKernels& forSamples(int pixelsWide, int pixelsHigh, int samples) const {
-    if (pixelsWide <= kQuadSamplesBox && pixelsHigh <= kQuadSamplesBox) {
-      if (quadSampleRegisters(wide->isa, wide->lanes, samples) > 0) return *wide;
-      if (quadSampleRegisters(narrow->isa, narrow->lanes, samples) > 0) return *narrow;
-    }
+    if (pixelsWide <= kQuadSamplesBox && pixelsHigh <= kQuadSamplesBox)
+      if (const TileKernels* quad = quadSamples[std::countr_zero(unsigned(samples))]) return *quad;
     return forWidth(pixelsWide);
   }
+  // Per sample count 2^i, at index i: the first of wide and narrow with a
+  // quad-samples path at that count, or null. Chosen once by
+  // selectTileKernels, where choosing per triangle ran ~25 instructions a
+  // call (callgrind, MetalRoughSpheresNoTextures at 4 samples).
+  const TileKernels* quadSamples[std::countr_zero(unsigned(kMaxSamples)) + 1] = {};
   // How many registers of `lanes` lanes hold one quad's `samples` samples
   // on the quad-samples path (lane 4k + j of register r: pixel j of the quad
   // at sample r * lanes / 4 + k), or 0 where that path is not taken: more
