@@ -1160,14 +1160,16 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
 
 // The quad-samples path's box of at most 2x2 pixels that is off the quad
 // grid (an odd first column or row): ~45% of the calls on
-// MetalRoughSpheresNoTextures at 4 samples, and walking the 2 or 4 grid
-// quads it touches (callgrind: ~2.3 quads a call there) tested mostly lanes
-// outside it. Boxes that one or two own quads cover, taken the same way,
-// ran more instructions there (docs/samples.md, the fourteenth session). Here one quad at the box's
-// own corner holds its samples; its coverage and depths are the grid quads' lanes' (the same edge
-// values and the same plane at the same pixels), and each covered sample is then tested and written
-// alone, its pixels lying in different grid quads. `edge` and `z` are at the box's first pixel
-// (xBegin, yBegin). Returns whether the triangle won a sample.
+// MetalRoughSpheresNoTextures at 4 samples, where walking the 2 or 4 grid
+// quads it touches (callgrind: ~2.3 quads a call) tested mostly lanes
+// outside it. Here one quad at the box's own corner holds its samples: its
+// coverage and depths are the grid quads' lanes' (the same edge values and
+// the same plane at the same pixels), and each covered sample is then
+// tested and written alone, its pixels lying in different grid quads.
+// Boxes that one or two own quads cover, taken the same way, ran more
+// instructions there (docs/samples.md, the fourteenth session). `edge` and
+// `z` are at the box's first pixel (xBegin, yBegin). Returns whether the
+// triangle won a sample.
 template <int kRegisters>
 QUADRA_LANE_INLINE bool visibilityOffGridQuad(const I (&edge)[kRegisters][3],
                                               const TilePlane (&z)[kRegisters], const F& quadX,
