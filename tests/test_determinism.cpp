@@ -169,6 +169,35 @@ TEST(Determinism, OneRendererAcrossScenesMatchesFreshRenderers) {
   expectFresh("near-plane", kWidth, kHeight);
 }
 
+// A tile no triangle reaches takes a path of its own (tile_stage.cpp
+// renderTile: one sample plane standing for all). Into an embedder's frame
+// that still holds the last frame, it must write every pixel's colour,
+// depth and coverage as the general path would: at the bottom-left corner
+// the checker plane covered, and dense-mesh's sphere, centred, bins nothing
+// there.
+TEST(Determinism, EmptyTilesOverwriteTheFrameBefore) {
+  const Scene plane = makeBuiltinScene("checker-plane");
+  const Scene sphere = makeBuiltinScene("dense-mesh:2000");
+  for (const int samples : {1, 4, 16}) {
+    SCOPED_TRACE(samples);
+    RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.samples = samples;
+    settings.frameCoverage = true;
+    Renderer renderer(RendererConfig{});
+    Frame reused;
+    renderer.render(plane, firstCameraOrDefault(plane), settings, reused);
+    const std::size_t corner = std::size_t(kHeight - 1) * kWidth;  // bottom left
+    ASSERT_GT(reused.coverage.at(corner), 0.0f);                   // held a surface
+    renderer.render(sphere, firstCameraOrDefault(sphere), settings, reused);
+    const Frame expected =
+        renderOnce(sphere, firstCameraOrDefault(sphere), settings, renderer.threadCount());
+    ASSERT_EQ(expected.coverage.at(corner), 0.0f);  // and now holds none
+    expectSameFrame(reused, expected);
+  }
+}
+
 // Every filter, on scenes with textures, blending and dense geometry, so each
 // kernel specialization meets its scalar twin. One test per scene, so ctest
 // spreads them over the cores.

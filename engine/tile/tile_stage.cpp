@@ -1049,11 +1049,21 @@ void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, Tile
   }
 }
 
-void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& out,
-                TileTimes& times) {
+// binned: the triangles the front end binned to the tile, over every chunk.
+void renderTile(int tileIndex, std::uint32_t binned, const TileFrame& frame, TileScratch& s,
+                Frame& out, TileTimes& times) {
   const double start = stageClockMs();
   const int samples = frame.samples.count;
-  for (int k = 0; k < samples; ++k) {
+  // A tile no triangle reaches holds the clear colour and depth at every
+  // sample, so plane 0 stands for all of them: their box-filtered mean and
+  // nearest depth are its values exactly, and its coverage 0 is theirs. The
+  // other planes are neither cleared nor read (with several samples they
+  // cost a background tile four times a one-sample tile's clear and resolve;
+  // most of MetalRoughSpheresNoTextures' tiles at 1080p are background). A
+  // wide pixel filter's border rings and the AOVs take the general path.
+  const bool background = binned == 0 && frame.pixelFilter == nullptr && frame.aov == nullptr;
+  const int clearedPlanes = background ? 1 : samples;
+  for (int k = 0; k < clearedPlanes; ++k) {
     TileBuffers& tile = s.planes[k];
     tile.originX = (tileIndex % frame.grid.tilesX) * kTileSize;
     tile.originY = (tileIndex / frame.grid.tilesX) * kTileSize;
@@ -1061,6 +1071,14 @@ void renderTile(int tileIndex, const TileFrame& frame, TileScratch& s, Frame& ou
     tile.height = std::min(kTileSize, frame.grid.height - tile.originY);
     clearTile(tile, frame.clearColor, frame.clearDepth,
               k == 0 || frame.shadeSamples);  // shadePixels fills the others
+  }
+  if (background) {
+    const double cleared = stageClockMs();
+    if (frame.coverage) boxCoverage(s.planes.get(), 1, frame.clearDepth, out);
+    resolveTile(s.planes[0], out);
+    times.raster = cleared - start;
+    times.resolve = stageClockMs() - cleared;
+    return;
   }
   s.visibleTriangles.clear();
   s.visibleSources.clear();
@@ -1167,7 +1185,7 @@ void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
     scratch->mixedTables = &mixedTables;
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t t = order[i].second;
-      renderTile(int(t), frame, *scratch, out, times[t]);
+      renderTile(int(t), order[i].first - kPixelsCost, frame, *scratch, out, times[t]);
     }
   });
   if (!filter) return;
