@@ -261,11 +261,12 @@ void visibilityPass(int tileIndex, const TileFrame& frame, TileScratch& s) {
 }
 
 // How the draws of a tile's visible triangles shade: whether every one
-// shades one colour (Draw::shadesOneColour: no shading plane is read), and
-// whether the triangles are all of one draw (they are in submission order,
-// a draw's consecutive).
+// shades one colour (Draw::shadesOneColour: no shading plane is read) or
+// some does, and whether the triangles are all of one draw (they are in
+// submission order, a draw's consecutive).
 struct TileDrawShading {
   bool allOneColour = false;
+  bool anyOneColour = false;
   bool oneDraw = false;
 };
 
@@ -278,10 +279,10 @@ TileDrawShading tileDrawShading(const std::vector<Draw>& draws, const TileScratc
   for (const TileTriangle& v : s.visibleTriangles) {
     if (v.draw == last) continue;
     last = v.draw;
-    if (!draws[v.draw].shade.shadesOneColour()) {
-      out.allOneColour = false;
-      break;
-    }
+    const bool oneColour = draws[v.draw].shade.shadesOneColour();
+    out.allOneColour &= oneColour;
+    out.anyOneColour |= oneColour;
+    if (out.oneDraw || (out.anyOneColour && !out.allOneColour)) break;  // decided
   }
   return out;
 }
@@ -663,21 +664,26 @@ void findMixedPixels(TileScratch& s) {
 // triangle holds instead of once per triangle. The same bits: the jobs'
 // colours would all be the draw's, and their mean (pairwise sums of equal
 // values, a power-of-two weight) is that colour exactly. The samples keep
-// their triangles' ids (AOVs read them).
+// their triangles' ids (AOVs read them). `shading`, the tile's, spares the
+// per-triangle lookups where no draw or every draw shades one colour
+// (dense-mesh; MetalRoughSpheresNoTextures).
 template <int kSamples>
-void wholePixelsOfOneColour(const TileFrame& frame, TileScratch& s) {
+void wholePixelsOfOneColour(const TileFrame& frame, TileDrawShading shading, TileScratch& s) {
+  if (!shading.anyOneColour) return;
   const std::size_t triangles = s.visibleTriangles.size();
   s.oneColourDraw.resize(triangles + 1);
   s.oneColourDraw[0] = kNoTriangle;
-  bool any = false, oneColour = false;
-  std::uint32_t last = kNoTriangle;
-  for (std::size_t i = 0; i < triangles; ++i) {
-    const std::uint32_t draw = s.visibleTriangles[i].draw;
-    if (draw != last) oneColour = frame.draws[draw].shade.shadesOneColour(), last = draw;
-    s.oneColourDraw[i + 1] = oneColour ? draw : kNoTriangle;
-    any |= oneColour;
+  if (shading.allOneColour) {
+    for (std::size_t i = 0; i < triangles; ++i) s.oneColourDraw[i + 1] = s.visibleTriangles[i].draw;
+  } else {
+    bool oneColour = false;
+    std::uint32_t last = kNoTriangle;
+    for (std::size_t i = 0; i < triangles; ++i) {
+      const std::uint32_t draw = s.visibleTriangles[i].draw;
+      if (draw != last) oneColour = frame.draws[draw].shade.shadesOneColour(), last = draw;
+      s.oneColourDraw[i + 1] = oneColour ? draw : kNoTriangle;
+    }
   }
-  if (!any) return;
   const TileBuffers* const planes = s.planes.get();
   const std::uint32_t* const drawOf = s.oneColourDraw.data();
   std::uint32_t* const differs = s.sampleDiffers.data();
@@ -781,8 +787,9 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
   s.allMixed = false;
   if (s.visibleTriangles.empty()) return;
   if (!oneColourDraw)
-    withSampleCount(samples,
-                    [&](auto count) { wholePixelsOfOneColour<decltype(count)::value>(frame, s); });
+    withSampleCount(samples, [&](auto count) {
+      wholePixelsOfOneColour<decltype(count)::value>(frame, shading, s);
+    });
 
   rebaseShadePlanes(frame.draws, planes[0], SampleOffset{}, shading.allOneColour, s);
   // Plane 0's ids without the mixed pixels while its other pixels are
