@@ -42,7 +42,10 @@ struct alignas(64) TileBuffers {
   static int index(int x, int y) {
     return ((y >> 1) * (kTileSize / 2) + (x >> 1)) * 4 + (y & 1) * 2 + (x & 1);
   }
-  // The inverse: pixel (x, y) at a given index.
+  // Index of the block holding pixel (x, y), local to the tile, in
+  // blockDepthMin and blockDepthMax.
+  static int blockAt(int x, int y) { return (y / kBlockSize) * kBlocksPerRow + x / kBlockSize; }
+  // The inverse of index: pixel (x, y) at a given index.
   static int xAt(int index) { return ((index >> 2) % (kTileSize / 2)) * 2 + (index & 1); }
   static int yAt(int index) { return ((index >> 2) / (kTileSize / 2)) * 2 + ((index >> 1) & 1); }
 };

@@ -694,7 +694,7 @@ QUADRA_LANE_INLINE bool rasterizeInOneBlock(const TriangleRecord& t, const TileB
     if (std::uint64_t(corner[e] + (std::int64_t(1) << 30)) >= (std::uint64_t(1) << 31))
       return false;
   }
-  const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+  const int block = TileBuffers::blockAt(bx, by);
   if (depthTest.hidden(bx, by, block, tile)) return true;
   I base[3];
   std::int32_t a[3], b[3];
@@ -774,7 +774,7 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
     const auto walk = [&](auto tested) {
       for (int by = byFirst; by < yEnd; by += kBlockSize) {
         for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
-          const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+          const int block = TileBuffers::blockAt(bx, by);
           if (depthTest.hidden(bx, by, block, tile)) continue;
           if (!coverage.start(t, edges, tested, tile.originX + bx, tile.originY + by)) continue;
           shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
@@ -808,7 +808,7 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
   constexpr std::uint32_t kRowBits = (1u << kGroupWidth) - 1;
   for (int by = byFirst; by < yEnd; by += kBlockSize) {
     for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
-      const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+      const int block = TileBuffers::blockAt(bx, by);
       if (depthTest.hidden(bx, by, block, tile)) continue;
       const BlockRange range(bx, by, xBegin, xEnd, yBegin, yEnd);
       const std::uint64_t coverage =
@@ -1094,7 +1094,7 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
   bool won = false;
   for (int by = yBegin & ~(kBlockSize - 1); by < yEnd; by += kBlockSize) {
     for (int bx = xBegin & ~(kBlockSize - 1); bx < xEnd; bx += kBlockSize) {
-      const int block = (by / kBlockSize) * TileBuffers::kBlocksPerRow + bx / kBlockSize;
+      const int block = TileBuffers::blockAt(bx, by);
       std::int64_t corner[3];
       for (int e = 0; e < 3; ++e) corner[e] = t.edges[e].at(tile.originX + bx, tile.originY + by);
       const double slope = depthTest[0].slopeAt(bx, by);  // the samples' planes share it
@@ -1192,7 +1192,7 @@ QUADRA_LANE_INLINE bool visibilityOffGridQuad(const I (&edge)[kRegisters][3],
   for (int j = 0; j < 4; ++j) {
     const int px = box.xBegin + (j & 1), py = box.yBegin + (j >> 1);
     index[j] = TileBuffers::index(px, py);
-    block[j] = (py / kBlockSize) * TileBuffers::kBlocksPerRow + px / kBlockSize;
+    block[j] = TileBuffers::blockAt(px, py);
   }
   bool won = false;
   for (; covered != 0; covered &= covered - 1) {
