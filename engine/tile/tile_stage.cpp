@@ -1167,12 +1167,12 @@ void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
   // groups do). Each tile writes only its own part of the frame, so the
   // order changes no output.
   constexpr std::uint32_t kPixelsCost = 64;
+  std::vector<std::uint32_t> binned(tiles, 0);                        // per tile, over every chunk
   std::vector<std::pair<std::uint32_t, std::uint32_t>> order(tiles);  // (cost, tile)
   for (std::size_t t = 0; t < tiles; ++t) {
-    std::uint32_t cost = kPixelsCost;
     for (const FrontEndChunk& chunk : frame.chunks)
-      cost += chunk.bins.tileStart[t + 1] - chunk.bins.tileStart[t];
-    order[t] = {cost, std::uint32_t(t)};
+      binned[t] += chunk.bins.tileStart[t + 1] - chunk.bins.tileStart[t];
+    order[t] = {kPixelsCost + binned[t], std::uint32_t(t)};
   }
   std::stable_sort(order.begin(), order.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -1193,7 +1193,7 @@ void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
     scratch->mixedTables = &mixedTables;
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t t = order[i].second;
-      renderTile(int(t), order[i].first - kPixelsCost, frame, *scratch, out, times[t]);
+      renderTile(int(t), binned[t], frame, *scratch, out, times[t]);
     }
   });
   if (!filter) return;
