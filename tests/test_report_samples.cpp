@@ -135,6 +135,8 @@ TEST(ReportSamples, FilterOptionIsApplied) {
 TEST(ReportSamples, WithoutAReferenceTheTimesAndTheirRatiosToOneSample) {
   const fs::path dir = testDir() / "report_samples_times";
   fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "samples.svg") << "<svg/>";  // an earlier scored run's plot
   const RunResult r =
       run("report samples --scenes builtin:slivers --width 64 --height 36 --samples 4,1 "
           "--reference none --rounds 5 --frames 1 --threads 2 --out-dir " +
@@ -143,7 +145,8 @@ TEST(ReportSamples, WithoutAReferenceTheTimesAndTheirRatiosToOneSample) {
   EXPECT_NE(r.out.find("no reference"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| builtin:slivers | 1 | any |"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("Reference frames"), std::string::npos) << "no reference table";
-  EXPECT_FALSE(fs::exists(dir / "samples.svg")) << "nothing to plot";
+  EXPECT_FALSE(fs::exists(dir / "samples.svg")) << "nothing to plot, and no stale plot left";
+  EXPECT_NE(r.out.find("quadra removed"), std::string::npos) << r.out;
   std::istringstream csv(fileText(dir / "samples.csv"));
   std::string line;
   std::getline(csv, line);

@@ -543,9 +543,13 @@ int runSamplesReport(const std::vector<std::string>& args) {
       << tableText(results);
   const fs::path csvPath = outDir / "samples.csv", svgPath = outDir / "samples.svg";
   if (!scored) {
-    // Nothing to plot against: the table and the CSV only.
+    // Nothing to plot against: the table and the CSV only. An earlier
+    // scored run's plot would sit beside this CSV describing other frames.
     writeText(csvPath, csvText(results));
     std::cout << out.str() << "\nquadra wrote " << csvPath.string() << "\n";
+    std::error_code ignored;
+    if (fs::remove(svgPath, ignored))
+      std::cout << "quadra removed " << svgPath.string() << " (an earlier run's plot)\n";
     return 0;
   }
   out << "\nReference frames: "
