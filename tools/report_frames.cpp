@@ -40,7 +40,7 @@ constexpr const char* kFramesUsage =
     R"(usage: quadra report frames [--width W] [--height H] [--threads N] [--frames K]
                             [--rounds R] [--scenes LIST] [--assets DIR] [--out-dir DIR]
                             [--llvmpipe-framebuffer rgba32f|srgba8] [--allow-path DIR]
-                            [--max-memory SIZE]
+                            [--max-memory SIZE] [--samples N]
   --width W --height H  frame size (default 1920x1080)
   --threads N           threads of both renderers (default: all cores)
   --frames K            timed frames per timing run, after one warm-up (default 5)
@@ -58,6 +58,9 @@ constexpr const char* kFramesUsage =
                         (repeatable; passed to both renderers)
   --max-memory SIZE     the memory budget of each load and frame (default 8G; passed to
                         both renderers)
+  --samples N           samples per pixel, 1 (default), 2, 4, 8 or 16, passed to both
+                        renderers: quadra shades once per pixel and visible triangle,
+                        llvmpipe draws N-sample MSAA (it has 4 at most)
 Each scene is rendered by `quadra render` and, where it was built beside this
 quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and unlit
 shading), as separate processes with the same options, taking turns at going first.
@@ -78,6 +81,7 @@ struct FramesOptions {
   std::string outDir = "out";
   std::string peerFramebuffer = "rgba32f";  // quadra-llvmpipe --framebuffer
   LoadOptions load;                         // --allow-path and --max-memory, passed on
+  int samples = 1;                          // --samples, passed on
 };
 
 std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
@@ -95,6 +99,9 @@ std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
                 options.peerFramebuffer);
   addAllowPathOption(parser, options.load);
   addMaxMemoryOption(parser, options.load);
+  parser.value("--samples", [&options](const std::string& option, const std::string& value) {
+    options.samples = parseSampleCount(option, value);
+  });
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -198,6 +205,8 @@ std::map<std::string, std::string> runRender(const Contender& contender, const S
     arguments.insert(arguments.end(), {"--allow-path", folder});
   if (options.load.maxMemory != kDefaultMaxMemory)
     arguments.insert(arguments.end(), {"--max-memory", std::to_string(options.load.maxMemory)});
+  if (options.samples > 1)
+    arguments.insert(arguments.end(), {"--samples", std::to_string(options.samples)});
   arguments.insert(arguments.end(), contender.options.begin(), contender.options.end());
   const ProcessResult run = runProcess(contender.program, arguments, scratch);
   if (run.exitCode != 0)
@@ -256,16 +265,26 @@ int runFramesReport(const std::vector<std::string>& args) {
   if (scenes.empty()) throw Error("report frames: no scenes to render");
   const fs::path outDir(options.outDir), imageDir = outDir / "frames";
   std::error_code ec;
-  fs::create_directories(imageDir, ec);
-  if (ec || !fs::is_directory(imageDir))
-    throw Error(options.outDir + ": cannot create the output directory");
-
   const fs::path self = executablePath();
   std::vector<Contender> contenders = {{"quadra", self, {}}};
   const fs::path peer = self.parent_path() / "quadra-llvmpipe";
   const bool havePeer = fs::is_regular_file(peer, ec) && ::access(peer.c_str(), X_OK) == 0;
   if (havePeer)
     contenders.push_back({"llvmpipe", peer, {"--framebuffer", options.peerFramebuffer}});
+  if (havePeer && options.samples > 1) {
+    // Whether llvmpipe draws that many samples, asked of it before anything
+    // is written (Mesa 22.3 has 4 at most).
+    const ProcessResult probe =
+        runProcess(peer,
+                   {"render", "builtin:checker-plane", "--width", "8", "--height", "8", "--samples",
+                    std::to_string(options.samples)},
+                   fs::temp_directory_path());
+    if (probe.exitCode != 0) throw Error(firstLine(probe.err));
+  }
+
+  fs::create_directories(imageDir, ec);
+  if (ec || !fs::is_directory(imageDir))
+    throw Error(options.outDir + ": cannot create the output directory");
 
   std::vector<SceneResult> results;
   for (const SceneEntry& scene : scenes)
@@ -309,8 +328,15 @@ int runFramesReport(const std::vector<std::string>& args) {
 
   std::ostringstream out, csv;
   out << "Frames at " << options.width << "x" << options.height << ", " << options.threads
-      << " threads, medians of " << options.rounds << " rounds (each run: the median of "
-      << options.frames << " timed frames after a warm-up); end to end: `render SCENE --frames 1 "
+      << " threads, "
+      << (options.samples > 1
+              ? std::to_string(options.samples) + " samples per pixel (quadra: --samples " +
+                    std::to_string(options.samples) +
+                    ", shading once per pixel and visible triangle; llvmpipe: "
+                    "MSAA resolved by glBlitFramebuffer), "
+              : std::string())
+      << "medians of " << options.rounds << " rounds (each run: the median of " << options.frames
+      << " timed frames after a warm-up); end to end: `render SCENE --frames 1 "
       << "--out FILE.png` from process start to exit.\n";
   if (havePeer) {
     const auto& peerLine = results.front().byContender[1].line;

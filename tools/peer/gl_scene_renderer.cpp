@@ -167,6 +167,35 @@ GlTexelFormat glTexelFormat(TexelFormat format) {
 
 }  // namespace
 
+void GlSceneRenderer::makeFramebuffer(GLenum colorFormat, int samples, GLuint& framebuffer,
+                                      GLuint& color, GLuint& depth) const {
+  // Samples 1 is glRenderbufferStorage's single-sample storage as well.
+  const auto storage = [&](GLuint buffer, GLenum format) {
+    glBindRenderbuffer(GL_RENDERBUFFER, buffer);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, format,
+                                     settings_.width, settings_.height);
+  };
+  glGenRenderbuffers(1, &color);
+  storage(color, colorFormat);
+  glGenRenderbuffers(1, &depth);
+  storage(depth, GL_DEPTH_COMPONENT32F);
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw Error("llvmpipe: the colour + DEPTH32F framebuffer at " + std::to_string(samples) +
+                " samples is incomplete");
+  // GL may give more samples than asked (llvmpipe has 1 and 4): the frame
+  // would then not be the one quadra draws at that count.
+  GLint given = 0;
+  glBindRenderbuffer(GL_RENDERBUFFER, color);
+  glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &given);
+  if (std::max(given, 1) != samples)
+    throw Error("--samples " + std::to_string(samples) + ": llvmpipe gives " +
+                std::to_string(given) + " samples per pixel for that request");
+}
+
 GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scene,
                                  const PeerSettings& settings)
     : scene_(scene), settings_(settings) {
@@ -178,20 +207,18 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
   if (!clipControl) throw Error("llvmpipe: glClipControl is missing (OpenGL 4.5)");
   clipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);
 
-  glGenRenderbuffers(1, &colorBuffer_);
-  glBindRenderbuffer(GL_RENDERBUFFER, colorBuffer_);
   const bool floatColor = settings.framebuffer == PeerFramebuffer::Rgba32F;
-  glRenderbufferStorage(GL_RENDERBUFFER, floatColor ? GL_RGBA32F : GL_SRGB8_ALPHA8, settings.width,
-                        settings.height);
-  glGenRenderbuffers(1, &depthBuffer_);
-  glBindRenderbuffer(GL_RENDERBUFFER, depthBuffer_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, settings.width, settings.height);
-  glGenFramebuffers(1, &framebuffer_);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colorBuffer_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthBuffer_);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    throw Error("llvmpipe: the colour + DEPTH32F framebuffer is incomplete");
+  const GLenum colorFormat = floatColor ? GL_RGBA32F : GL_SRGB8_ALPHA8;
+  if (settings.samples > 1) {
+    GLint maxSamples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    if (settings.samples > maxSamples)
+      throw Error("--samples " + std::to_string(settings.samples) + ": llvmpipe has at most " +
+                  std::to_string(maxSamples) + " samples per pixel (GL_MAX_SAMPLES)");
+  }
+  makeFramebuffer(colorFormat, settings.samples, framebuffer_, colorBuffer_, depthBuffer_);
+  if (settings.samples > 1)
+    makeFramebuffer(colorFormat, 1, resolveFramebuffer_, resolveColor_, resolveDepth_);
   if (!floatColor) glEnable(GL_FRAMEBUFFER_SRGB);
   throwOnGlError("making the framebuffer");
 
@@ -263,6 +290,11 @@ GlSceneRenderer::~GlSceneRenderer() {
   glDeleteFramebuffers(1, &framebuffer_);
   glDeleteRenderbuffers(1, &colorBuffer_);
   glDeleteRenderbuffers(1, &depthBuffer_);
+  if (resolveFramebuffer_ != 0) {
+    glDeleteFramebuffers(1, &resolveFramebuffer_);
+    glDeleteRenderbuffers(1, &resolveColor_);
+    glDeleteRenderbuffers(1, &resolveDepth_);
+  }
 }
 
 const GlSceneRenderer::Program& GlSceneRenderer::programFor(bool textured, bool vertexColor,
@@ -394,6 +426,14 @@ void GlSceneRenderer::render(const Camera& camera) {
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   for (const std::size_t i : instanceDrawOrder(scene_, view))
     draw(draws_[i], projection * (view * scene_.instances[i].world));
+  if (settings_.samples > 1) {
+    // The resolve is part of the frame's time, as quadra's is.
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolveFramebuffer_);
+    glBlitFramebuffer(
+        0, 0, settings_.width, settings_.height, 0, 0, settings_.width, settings_.height,
+        GL_COLOR_BUFFER_BIT | (settings_.frameDepth ? GL_DEPTH_BUFFER_BIT : 0), GL_NEAREST);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolveFramebuffer_);
+  }
   glFinish();
   const std::size_t values = std::size_t(settings_.width) * std::size_t(settings_.height) * 4;
   glPixelStorei(GL_PACK_ALIGNMENT, 4);

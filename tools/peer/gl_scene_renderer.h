@@ -48,6 +48,12 @@ struct PeerSettings {
   // Read depth back with every frame too, as quadra resolves it with every
   // frame whose output has a Z channel (RenderSettings::frameDepth).
   bool frameDepth = false;
+  // Multisampling (MSAA) as a GL application has it, to set beside quadra's
+  // --samples: above 1, coverage and depth per sample in a multisampled
+  // framebuffer, shaded once per pixel and triangle, and resolved by
+  // glBlitFramebuffer (colour: the samples' mean; depth: the
+  // implementation's choice of a sample) before the read-back.
+  int samples = 1;
 };
 
 // The filters llvmpipe has: nearest, bilinear, nearest-mip, trilinear, aniso.
@@ -98,11 +104,16 @@ class GlSceneRenderer {
   void uploadMesh(const Mesh& mesh, std::span<const glm::vec3> positions, int texcoordSet,
                   bool vertexColor, MeshBuffers& out);
   GLuint uploadTexture(const Texture& texture);
+  // A colour + DEPTH32F framebuffer of the frame's size at `samples` per pixel.
+  void makeFramebuffer(GLenum colorFormat, int samples, GLuint& framebuffer, GLuint& color,
+                       GLuint& depth) const;
   void draw(const DrawState& state, const glm::mat4& clipFromModel) const;
 
   const Scene& scene_;
   PeerSettings settings_;
   GLuint framebuffer_ = 0, colorBuffer_ = 0, depthBuffer_ = 0;
+  // With samples > 1: the single-sample framebuffer the frame resolves into.
+  GLuint resolveFramebuffer_ = 0, resolveColor_ = 0, resolveDepth_ = 0;
   std::map<int, Program> programs_;
   std::vector<MeshBuffers> meshes_;  // one per scene mesh
   // One per skinned or morphed instance, its vertices posed as quadra's

@@ -50,12 +50,15 @@ order and shading.
   --framebuffer rgba32f|srgba8
                          colour buffer: rgba32f (default) holds what quadra's frame holds;
                          srgba8 is llvmpipe's cheapest target (8-bit sRGB, blended in linear)
+  --samples N            multisampling (MSAA): 1 (default), 2, 4, 8 or 16 samples per pixel,
+                         as far as llvmpipe has them (GL_MAX_SAMPLES), resolved by
+                         glBlitFramebuffer (the samples' mean) within the frame's time
   --threads N            llvmpipe's rasterizer threads (LP_NUM_THREADS; default: all cores)
   --frames K             K timed frames after one warm-up (default 1)
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
 Prints "llvmpipe frame_ms median=... min=... max=... triangles=... width=... height=...
-threads=..." after rendering; a frame's time ends when its colour has been read back.
+threads=... frames=... mesa=... vector_bits=... samples=..." after rendering; a frame's time ends when its colour has been read back.
 )";
 
 struct PeerCommand {
@@ -79,6 +82,9 @@ std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--framebuffer", "framebuffer",
                  {{"rgba32f", PeerFramebuffer::Rgba32F}, {"srgba8", PeerFramebuffer::Srgba8}},
                  cmd.settings.framebuffer);
+  options.value("--samples", [&cmd](const std::string& option, const std::string& value) {
+    cmd.settings.samples = parseSampleCount(option, value);
+  });
   addThreadsOption(options, cmd.threads);
   options.integer("--frames", cmd.frames, 1, 100000);
   addOutputOption(options, cmd.outputs);
@@ -138,10 +144,10 @@ int renderCommand(const std::vector<std::string>& args) {
   const FrameTimeSummary summary = summarizeFrameTimes(times);
   std::printf(
       "llvmpipe frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d "
-      "threads=%d frames=%d mesa=%s vector_bits=%s\n",
+      "threads=%d frames=%d mesa=%s vector_bits=%s samples=%d\n",
       summary.median, summary.min, summary.max, scene.triangleCount(), cmd.settings.width,
       cmd.settings.height, threads, cmd.frames, wordAfter(context.version(), "Mesa ").c_str(),
-      wordBefore(context.renderer(), " bits").c_str());
+      wordBefore(context.renderer(), " bits").c_str(), cmd.settings.samples);
   return 0;
 }
 
