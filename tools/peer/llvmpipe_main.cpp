@@ -58,7 +58,8 @@ order and shading.
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
 Prints "llvmpipe frame_ms median=... min=... max=... triangles=... width=... height=...
-threads=... frames=... mesa=... vector_bits=... samples=..." after rendering; a frame's time ends when its colour has been read back.
+threads=... frames=... mesa=... vector_bits=... samples=..." after rendering; a frame's
+time ends when its colour has been read back.
 )";
 
 struct PeerCommand {
