@@ -205,6 +205,12 @@ void addThreadsOption(CommandOptions& options, int& threads) {
   options.integer("--threads", threads, 1, 1024);
 }
 
+void addSamplesOption(CommandOptions& options, int& samples) {
+  options.value("--samples", [&samples](const std::string& option, const std::string& value) {
+    samples = parseSampleCount(option, value);
+  });
+}
+
 void addIsaOption(CommandOptions& options, std::optional<Isa>& isa) {
   options.value("--isa", [&isa](const std::string& option, const std::string& text) {
     if (text == "auto") {

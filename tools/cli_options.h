@@ -105,6 +105,8 @@ void addAnisoOption(CommandOptions& options, int& maxAniso);
 void addLodRangeOptions(CommandOptions& options, float& minLod, float& maxLod);
 
 void addThreadsOption(CommandOptions& options, int& threads);
+// --samples N: one of the sample counts parseSampleCount takes.
+void addSamplesOption(CommandOptions& options, int& samples);
 // auto (nullopt: the best the CPU has) or a path by name.
 void addIsaOption(CommandOptions& options, std::optional<Isa>& isa);
 // The requested path, or the best the CPU has; an Error when the CPU lacks it.

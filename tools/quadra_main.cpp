@@ -192,9 +192,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--opaque-shading", "opaque shading",
                  {{"two-pass", OpaqueShading::TwoPass}, {"forward", OpaqueShading::Forward}},
                  cmd.settings.opaqueShading);
-  options.value("--samples", [&cmd](const std::string& option, const std::string& value) {
-    cmd.settings.samples = parseSampleCount(option, value);
-  });
+  addSamplesOption(options, cmd.settings.samples);
   options.choice("--shading-rate", "shading rate",
                  {{"pixel", ShadingRate::Pixel}, {"sample", ShadingRate::Sample}},
                  cmd.settings.shadingRate);

@@ -99,9 +99,7 @@ std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
                 options.peerFramebuffer);
   addAllowPathOption(parser, options.load);
   addMaxMemoryOption(parser, options.load);
-  parser.value("--samples", [&options](const std::string& option, const std::string& value) {
-    options.samples = parseSampleCount(option, value);
-  });
+  addSamplesOption(parser, options.samples);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));

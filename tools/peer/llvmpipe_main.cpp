@@ -83,9 +83,7 @@ std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--framebuffer", "framebuffer",
                  {{"rgba32f", PeerFramebuffer::Rgba32F}, {"srgba8", PeerFramebuffer::Srgba8}},
                  cmd.settings.framebuffer);
-  options.value("--samples", [&cmd](const std::string& option, const std::string& value) {
-    cmd.settings.samples = parseSampleCount(option, value);
-  });
+  addSamplesOption(options, cmd.settings.samples);
   addThreadsOption(options, cmd.threads);
   options.integer("--frames", cmd.frames, 1, 100000);
   addOutputOption(options, cmd.outputs);
