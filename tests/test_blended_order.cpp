@@ -51,7 +51,10 @@ glm::dvec4 throughStore(const std::vector<Layer>& layers, glm::vec4 base, bool d
   for (const Layer& l : layers) {
     const float a = l.color.a;
     const float premultiplied[4] = {l.color.r * a, l.color.g * a, l.color.b * a, a};
-    store.add(1, kPixel, l.depth, premultiplied, 1.0f - a);
+    const float* const color[4] = {&premultiplied[0], &premultiplied[1], &premultiplied[2],
+                                   &premultiplied[3]};
+    const float keep = 1.0f - a;
+    store.add(1, kPixel, 1u, &l.depth, color, &keep);  // lane 0 alone
   }
   store.composite(planes);
   EXPECT_TRUE(store.empty());

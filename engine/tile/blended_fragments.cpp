@@ -2,20 +2,52 @@
 // compositing them, and merging when a sample is over its budget.
 #include "tile/blended_fragments.h"
 
+#include <cstring>
 #include <limits>
 
 namespace quadra {
+namespace {
+
+constexpr std::uint64_t kArrivalMask = 0xFF;
+
+// Fragments sort by these keys far to near, equal depths by arrival (the
+// key's low bits, kArrivalMask).
+std::uint64_t farToNearKey(float depth, int arrival, bool depthGreater) {
+  // The float's bits made to sort as it does (-0 as +0, which it equals),
+  // reversed for standard depth, whose far fragments hold the larger depths;
+  // below them the arrival, so equal depths keep their order.
+  if (depth == 0.0f) depth = 0.0f;
+  std::uint32_t bits;
+  std::memcpy(&bits, &depth, sizeof bits);
+  bits = (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
+  if (!depthGreater) bits = ~bits;
+  return std::uint64_t(bits) << 32 | std::uint32_t(arrival);
+}
+
+void sortKeys(std::uint64_t* keys, int n) {
+  // Insertion sort: n is at most kMaxPerSample + 1, mostly in order already.
+  for (int i = 1; i < n; ++i) {
+    const std::uint64_t key = keys[i];
+    int j = i;
+    for (; j > 0 && keys[j - 1] > key; --j) keys[j] = keys[j - 1];
+    keys[j] = key;
+  }
+}
+
+}  // namespace
 
 void BlendedFragments::begin(int planes, bool depthGreater) {
   const std::size_t slots = std::size_t(planes) * TileBuffers::kPixels;
-  if (head_.size() != slots) {
-    head_.assign(slots, kNoFragment);
+  if (slots_ != slots) {
+    // Default-initialized: pages no fragment reaches are never touched.
+    layers_.reset(new BlendedFragment[kMaxPerSample * slots]);
+    touched_.reset(new std::uint32_t[slots]);
+    slots_ = slots;
     count_.assign(slots, 0);
-    touched_.clear();
+    touchedCount_ = 0;
   }
-  for (const std::uint32_t slot : touched_) head_[slot] = kNoFragment, count_[slot] = 0;
-  touched_.clear();
-  pool_.clear();
+  for (std::size_t i = 0; i < touchedCount_; ++i) count_[touched_[i]] = 0;
+  touchedCount_ = 0;
   depthGreater_ = depthGreater;
   // Before the first fragment, any depth is "not behind": the far end.
   latest_.assign(slots, depthGreater ? -std::numeric_limits<float>::infinity()
@@ -23,72 +55,73 @@ void BlendedFragments::begin(int planes, bool depthGreater) {
   late_.assign(slots, 0.0f);
 }
 
-void BlendedFragments::add(int plane, int pixel, float depth, const float color[4], float keep) {
-  const std::uint32_t slot = std::uint32_t(plane * TileBuffers::kPixels + pixel);
-  std::uint8_t& count = count_[slot];
-  if (count == kMaxPerSample) return addBeyondBudget(slot, depth, color, keep);
-  if (count++ == 0) touched_.push_back(slot);
-  pool_.push_back({depth, {color[0], color[1], color[2], color[3]}, keep, head_[slot]});
-  head_[slot] = std::uint32_t(pool_.size() - 1);
-}
-
-int BlendedFragments::sorted(std::uint32_t slot, BlendedFragment* out) const {
-  int n = count_[slot];
-  // The list runs newest first: filled from the back, it is in arrival order.
-  int k = n;
-  for (std::uint32_t i = head_[slot]; i != kNoFragment; i = pool_[i].next) out[--k] = pool_[i];
-  // Insertion sort, stable (a fragment passes only strictly nearer ones), so
-  // equal depths keep their arrival order; n is at most kMaxPerSample + 1.
-  const bool greater = depthGreater_;
-  const auto farther = [greater](float a, float b) { return greater ? a < b : a > b; };
-  for (int i = 1; i < n; ++i) {
-    const BlendedFragment f = out[i];
-    int j = i;
-    for (; j > 0 && farther(f.depth, out[j - 1].depth); --j) out[j] = out[j - 1];
-    out[j] = f;
+void BlendedFragments::add(int plane, int index, std::uint32_t lanes, const float* depth,
+                           const float* const color[4], const float* keep) {
+  // Locals, not members: the counts' byte stores may alias anything.
+  BlendedFragment* const layers = layers_.get();
+  std::uint8_t* const counts = count_.data();
+  const std::size_t slots = slots_;
+  const std::uint32_t first = std::uint32_t(plane * TileBuffers::kPixels + index);
+  for (; lanes != 0; lanes &= lanes - 1) {
+    const int k = __builtin_ctz(lanes);
+    const std::uint32_t slot = first + std::uint32_t(k);
+    const int count = counts[slot];
+    if (count == kMaxPerSample) {
+      addBeyondBudget(slot,
+                      {depth[k], {color[0][k], color[1][k], color[2][k], color[3][k]}, keep[k]});
+      continue;
+    }
+    if (count == 0) touched_[touchedCount_++] = slot;
+    counts[slot] = std::uint8_t(count + 1);
+    // Field by field: a fragment built whole on the stack and copied was
+    // read back before its parts' stores could forward (perf: most of add).
+    BlendedFragment& f = layers[std::size_t(count) * slots + slot];
+    f.depth = depth[k];
+    for (int c = 0; c < 4; ++c) f.color[c] = color[c][k];
+    f.keep = keep[k];
   }
-  return n;
 }
 
-void BlendedFragments::addBeyondBudget(std::uint32_t slot, float depth, const float color[4],
-                                       float keep) {
-  BlendedFragment f[kMaxPerSample + 1];
-  const int n = sorted(slot, f);
-  // The newcomer, the newest, goes in front of the ones it is strictly nearer than.
-  const bool greater = depthGreater_;
-  int j = n;
-  for (; j > 0 && (greater ? f[j - 1].depth > depth : f[j - 1].depth < depth); --j) f[j] = f[j - 1];
-  f[j] = {depth, {color[0], color[1], color[2], color[3]}, keep, kNoFragment};
+void BlendedFragments::addBeyondBudget(std::uint32_t slot, const BlendedFragment& newest) {
+  // The sample's fragments and the newcomer, the newest, far to near.
+  constexpr int n = kMaxPerSample + 1;
+  BlendedFragment arrived[n];
+  std::uint64_t keys[n];
+  for (int k = 0; k < kMaxPerSample; ++k) arrived[k] = at(k, slot);
+  arrived[kMaxPerSample] = newest;
+  for (int k = 0; k < n; ++k) keys[k] = farToNearKey(arrived[k].depth, k, depthGreater_);
+  sortKeys(keys, n);
   // The two farthest become one step: the nearer applied after the farther.
-  BlendedFragment& merged = f[1];
-  for (int c = 0; c < 4; ++c) merged.color[c] += merged.keep * f[0].color[c];
-  merged.keep *= f[0].keep;
-  // Back into the sample's own nodes, newest first as nearest first, so
-  // later sorts keep this order among equal depths and the pool does not grow.
-  std::uint32_t node = head_[slot];
-  for (int k = n; k >= 1; --k) {
-    const std::uint32_t next = pool_[node].next;
-    pool_[node] = f[k];
-    pool_[node].next = next;
-    node = next;
-  }
+  const BlendedFragment& farthest = arrived[keys[0] & kArrivalMask];
+  BlendedFragment merged = arrived[keys[1] & kArrivalMask];
+  for (int c = 0; c < 4; ++c) merged.color[c] += merged.keep * farthest.color[c];
+  merged.keep *= farthest.keep;
+  // Back into the sample's layers far to near, as if they had arrived in
+  // that order, so later sorts keep this order among equal depths.
+  at(0, slot) = merged;
+  for (int k = 2; k < n; ++k) at(k - 1, slot) = arrived[keys[k] & kArrivalMask];
 }
 
 void BlendedFragments::composite(TileBuffers* planes) {
-  BlendedFragment f[kMaxPerSample];
-  for (const std::uint32_t slot : touched_) {
-    const int n = sorted(slot, f);
+  const std::size_t touched = touchedCount_;  // a local: the colour stores may alias it
+  for (std::size_t i = 0; i < touched; ++i) {
+    const std::uint32_t slot = touched_[i];
+    const int n = count_[slot];
+    std::uint64_t keys[kMaxPerSample];
+    for (int k = 0; k < n; ++k) keys[k] = farToNearKey(at(k, slot).depth, k, depthGreater_);
+    sortKeys(keys, n);
     TileBuffers& plane = planes[slot / TileBuffers::kPixels];
     const int pixel = int(slot % TileBuffers::kPixels);
-    for (int c = 0; c < 4; ++c) {
-      float dst = plane.color[c][pixel];
-      for (int k = 0; k < n; ++k) dst = f[k].color[c] + dst * f[k].keep;
-      plane.color[c][pixel] = dst;
+    float dst[4] = {plane.color[0][pixel], plane.color[1][pixel], plane.color[2][pixel],
+                    plane.color[3][pixel]};
+    for (int k = 0; k < n; ++k) {
+      const BlendedFragment& f = at(int(keys[k] & kArrivalMask), slot);
+      for (int c = 0; c < 4; ++c) dst[c] = f.color[c] + dst[c] * f.keep;
     }
+    for (int c = 0; c < 4; ++c) plane.color[c][pixel] = dst[c];
   }
-  for (const std::uint32_t slot : touched_) head_[slot] = kNoFragment, count_[slot] = 0;
-  touched_.clear();
-  pool_.clear();
+  for (std::size_t i = 0; i < touchedCount_; ++i) count_[touched_[i]] = 0;
+  touchedCount_ = 0;
 }
 
 }  // namespace quadra

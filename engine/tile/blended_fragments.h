@@ -17,7 +17,9 @@
 // keep = 1 - a), so two steps compose into one: the overflow fallback below.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "tile/tile_buffers.h"
@@ -26,26 +28,27 @@ namespace quadra {
 
 struct BlendedFragment {
   float depth;
-  float color[4];      // premultiplied R, G, B and A it adds
-  float keep;          // the fraction of what lies behind that shows through
-  std::uint32_t next;  // the sample's fragment that arrived before it, or kNoFragment
+  float color[4];  // premultiplied R, G, B and A it adds
+  float keep;      // the fraction of what lies behind that shows through
 };
 
 class BlendedFragments {
  public:
   // The budget: a sample holds at most this many fragments. A further one
   // merges the sample's two farthest into one step (exact unless a later
-  // fragment falls between those two), so a tile's memory stays within
-  // planes * kPixels * kMaxPerSample fragments of 28 bytes, plus 13 bytes a
-  // sample for the lists' heads and counts and the order pass.
+  // fragment falls between those two). The store is kMaxPerSample layers of
+  // one fragment per sample, fragment k of a sample in layer k: planes *
+  // kPixels * kMaxPerSample fragments of 24 bytes, allocated once for a
+  // plane count and touched only where fragments are kept, plus 13 bytes a
+  // sample for the counts, the touched list and the order pass.
   static constexpr int kMaxPerSample = 8;
-  static constexpr std::uint32_t kNoFragment = 0xFFFFFFFFu;
+  static constexpr std::size_t kBytesPerSample = kMaxPerSample * sizeof(BlendedFragment) + 13;
 
   // Empty, for a tile of `planes` samples per pixel, before its first
   // blended triangle. depthGreater: reversed depth, where the far fragments
   // hold the smaller depths.
   void begin(int planes, bool depthGreater);
-  bool empty() const { return touched_.empty(); }
+  bool empty() const { return touchedCount_ == 0; }
 
   // Per sample of plane `plane`, in TileBuffers order: the depth of the
   // latest fragment the order pass saw, and 1 where a fragment arrived
@@ -54,10 +57,14 @@ class BlendedFragments {
   float* late(int plane) { return &late_[std::size_t(plane) * TileBuffers::kPixels]; }
   const float* late(int plane) const { return &late_[std::size_t(plane) * TileBuffers::kPixels]; }
 
-  // Adds a fragment at pixel `pixel` (TileBuffers index) of sample plane
-  // `plane`. Out of line: the ISA kernels call it, and an inline copy in each
-  // would be one symbol the linker picks from any of them.
-  void add(int plane, int pixel, float depth, const float color[4], float keep);
+  // Adds a lane group's fragments to sample plane `plane`: for each lane k
+  // set in `lanes`, one at pixel index + k (TileBuffers order) with depth
+  // depth[k], premultiplied colour color[c][k] and keep[k]. A group a call:
+  // out of line (the ISA kernels call it, and an inline copy in each would
+  // be one symbol the linker picks from any of them), and a call per
+  // fragment was a fifth of intersecting-glass's frame.
+  void add(int plane, int index, std::uint32_t lanes, const float* depth,
+           const float* const color[4], const float* keep);
 
   // Composites every kept sample's fragments over its colour in `planes`
   // (one TileBuffers per sample plane), far to near; fragments at equal
@@ -65,16 +72,27 @@ class BlendedFragments {
   void composite(TileBuffers* planes);
 
  private:
-  // A sample's fragments far to near (equal depths in the order they
-  // arrived); returns how many.
-  int sorted(std::uint32_t slot, BlendedFragment* out) const;
-  void addBeyondBudget(std::uint32_t slot, float depth, const float color[4], float keep);
+  // Fragment `layer` of sample slot (plane * kPixels + pixel). Layers rather
+  // than a pool of linked nodes: consecutive samples' fragments arrive
+  // together (a triangle's pixels in turn) and are composited together, and
+  // both then run along each layer, where walking per-sample lists through
+  // a shared pool was a chain of dependent loads, a quarter of
+  // intersecting-glass's frame (perf, 1 thread).
+  BlendedFragment& at(int layer, std::uint32_t slot) {
+    return layers_[std::size_t(layer) * slots_ + slot];
+  }
+  const BlendedFragment& at(int layer, std::uint32_t slot) const {
+    return layers_[std::size_t(layer) * slots_ + slot];
+  }
+  void addBeyondBudget(std::uint32_t slot, const BlendedFragment& newest);
 
-  std::vector<BlendedFragment> pool_;
-  std::vector<std::uint32_t> head_;     // per slot (plane * kPixels + pixel): its newest fragment
-  std::vector<std::uint8_t> count_;     // per slot
-  std::vector<std::uint32_t> touched_;  // slots holding fragments, in the order first touched
-  std::vector<float> latest_, late_;    // per slot, for the order pass
+  std::unique_ptr<BlendedFragment[]> layers_;  // kMaxPerSample * slots_, not zeroed
+  std::size_t slots_ = 0;
+  std::vector<std::uint8_t> count_;  // per slot
+  // The slots holding fragments, in the order first touched: room for every slot.
+  std::unique_ptr<std::uint32_t[]> touched_;
+  std::size_t touchedCount_ = 0;
+  std::vector<float> latest_, late_;  // per slot, for the order pass
   bool depthGreater_ = false;
 };
 

@@ -471,11 +471,8 @@ struct ForwardShader {
     (c.b * c.a).store_aligned(rgba[2]);
     c.a.store_aligned(rgba[3]);
     (F(1.0f) - c.a).store_aligned(keep);
-    for (std::uint32_t lanes = simd::bits(cover); lanes != 0; lanes &= lanes - 1) {
-      const int k = __builtin_ctz(lanes);
-      const float color[4] = {rgba[0][k], rgba[1][k], rgba[2][k], rgba[3][k]};
-      deferred->add(plane, index + k, z[k], color, keep[k]);
-    }
+    const float* const color[4] = {rgba[0], rgba[1], rgba[2], rgba[3]};
+    deferred->add(plane, index, simd::bits(cover), z, color, keep);
   }
 
   // Any other blend state: out of line, so the raster loop that inlines

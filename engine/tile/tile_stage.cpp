@@ -1122,10 +1122,8 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
   const bool blended = std::any_of(draws.begin(), draws.end(), [](const Draw& draw) {
     return composedInDepthOrder(draw.shade);
   });
-  // The fragment pool may grow to twice its bound (vector doubling); heads,
-  // counts and the order pass take 13 bytes a sample (blended_fragments.h).
-  const std::uint64_t fragments =
-      blended ? slots * (2 * BlendedFragments::kMaxPerSample * sizeof(BlendedFragment) + 13) : 0;
+  // The fragment layers, counts and the order pass (blended_fragments.h).
+  const std::uint64_t fragments = blended ? slots * BlendedFragments::kBytesPerSample : 0;
   // A TileScratch's lists. A vector that grows by doubling or resizing is
   // counted twice its bound; visibleTriangles and shadePlanes are reserved
   // at theirs. Per visible triangle: its entry and shading planes, its run,
