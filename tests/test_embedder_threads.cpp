@@ -3,18 +3,21 @@
 // PublicApi.RendererInTheEmbeddersArenaRunsThereWithTheSameBits), seen from
 // an observer on that arena, with the same scene as on quadra's own; and
 // several Renderers rendering at once in one process (the sanitizer suites
-// run this under TSan).
+// run this under TSan). And the executor's worker index, which per-worker
+// scratch relies on, on its own arena and on the embedder's.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_scheduler_observer.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "api/renderer.h"
+#include "core/parallel.h"
 #include "lab/scene/builtin_scenes.h"
 #include "render_helpers.h"
 #include "scene/gltf_loader.h"
@@ -92,6 +95,41 @@ TEST(EmbedderThreads, SeveralRenderersRenderAtOnce) {
     EXPECT_EQ(together[i].rgba, alone[i].rgba) << names[i];
     EXPECT_EQ(together[i].depth, alone[i].depth) << names[i];
   }
+}
+
+// Every body of a loop sees an index in [0, threadCount()) that no other
+// body running at the same time holds: each body marks its index busy
+// while it runs, long enough for the threads to overlap.
+void expectWorkerIndicesExclusive(const Executor& executor) {
+  std::vector<std::atomic<int>> busy(std::size_t(executor.threadCount()));
+  std::atomic<int> outOfRange{0}, shared{0}, bodies{0};
+  std::vector<std::atomic<int>> used(busy.size());
+  executor.parallelFor(256, 1, [&](std::size_t, std::size_t) {
+    ++bodies;
+    const int index = executor.workerIndex();
+    if (index < 0 || index >= executor.threadCount()) {
+      ++outOfRange;
+      return;
+    }
+    if (busy[std::size_t(index)].exchange(1) != 0) ++shared;
+    ++used[std::size_t(index)];
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+    busy[std::size_t(index)] = 0;
+  });
+  EXPECT_GT(bodies.load(), 1) << "the loop was not split";
+  EXPECT_EQ(outOfRange.load(), 0);
+  EXPECT_EQ(shared.load(), 0) << "two bodies ran at once with one index";
+  int indicesUsed = 0;
+  for (const auto& u : used) indicesUsed += u.load() > 0 ? 1 : 0;
+  EXPECT_GT(indicesUsed, 1) << "every body ran on one thread";
+}
+
+TEST(EmbedderThreads, WorkerIndicesAreExclusiveOnOwnAndEmbeddersArena) {
+  expectWorkerIndicesExclusive(Executor(3));
+  tbb::task_arena arena(3);
+  expectWorkerIndicesExclusive(Executor(arena));
+  const Executor one(1);
+  one.parallelFor(8, 1, [&](std::size_t, std::size_t) { EXPECT_EQ(one.workerIndex(), 0); });
 }
 
 }  // namespace

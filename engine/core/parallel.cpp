@@ -54,4 +54,11 @@ void Executor::parallelFor(std::size_t count, std::size_t grain,
   });
 }
 
+int Executor::workerIndex() const {
+  // One thread runs the body where parallelFor does not enter the arena
+  // (one thread, or a single sub-range), and it may be outside any arena.
+  const int index = tbb::this_task_arena::current_thread_index();
+  return index >= 0 && index < threads_ ? index : 0;
+}
+
 }  // namespace quadra

@@ -35,6 +35,14 @@ class Executor {
   void parallelFor(std::size_t count, std::size_t grain,
                    const std::function<void(std::size_t, std::size_t)>& body) const;
 
+  // Inside a parallelFor body: the running thread's index in
+  // [0, threadCount()). No two bodies running at once share one, so scratch
+  // kept per index serves every sub-range a thread takes, where scratch made
+  // per sub-range is allocated, faulted in and unmapped (TLB shootdowns
+  // across the threads) tens of times a loop. Not for a body that runs a
+  // parallel loop itself: while it waits, its thread may run another body.
+  int workerIndex() const;
+
  private:
   int threads_;
   struct Arena;

@@ -1185,10 +1185,16 @@ void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
     filter->borderRings = rings.get();
   }
   const MixedPixelTables mixedTables = mixedPixelTables(frame.samples);
+  // A scratch per worker, made by its first sub-range (renderTile leaves
+  // nothing in it that the next tile reads).
+  std::vector<std::unique_ptr<TileScratch>> scratches(std::size_t(executor.threadCount()));
   executor.parallelFor(tiles, 1, [&](std::size_t begin, std::size_t end) {
-    const auto scratch = std::make_unique<TileScratch>(frame.samples.count);
-    scratch->pixelFilter = filter ? &*filter : nullptr;
-    scratch->mixedTables = &mixedTables;
+    std::unique_ptr<TileScratch>& scratch = scratches[std::size_t(executor.workerIndex())];
+    if (!scratch) {
+      scratch = std::make_unique<TileScratch>(frame.samples.count);
+      scratch->pixelFilter = filter ? &*filter : nullptr;
+      scratch->mixedTables = &mixedTables;
+    }
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t t = order[i].second;
       renderTile(int(t), binned[t], frame, *scratch, out, times[t]);
