@@ -114,6 +114,41 @@ TEST(BlendedFragments, BeyondTheBudgetFrontToBackStaysExact) {
   }
 }
 
+// One store serves a worker's tiles in turn, at whatever plane count each
+// frame has: what one tile kept must not reach the next.
+TEST(BlendedFragments, AReusedStoreStartsEachTileEmpty) {
+  std::mt19937 rng(3);
+  static TileBuffers planes[4];
+  BlendedFragments reused;
+  const auto addLayers = [&](int plane, const std::vector<Layer>& layers) {
+    for (const Layer& l : layers) {
+      const float a = l.color.a, keep = 1.0f - a;
+      const float premultiplied[4] = {l.color.r * a, l.color.g * a, l.color.b * a, a};
+      const float* const color[4] = {&premultiplied[0], &premultiplied[1], &premultiplied[2],
+                                     &premultiplied[3]};
+      reused.add(plane, 9, 1u, &l.depth, color, &keep);
+    }
+  };
+  int tile = 0;
+  for (const int planeCount : {2, 2, 4, 1, 4, 4}) {
+    const int plane = planeCount - 1;
+    reused.begin(planeCount, false);
+    if (tile++ % 2 == 1) {
+      // A tile whose kept fragments were never composited: begin clears them too.
+      addLayers(plane, randomLayers(3, rng));
+      reused.begin(planeCount, false);
+      EXPECT_TRUE(reused.empty());
+    }
+    for (int c = 0; c < 4; ++c) planes[plane].color[c][9] = 0.25f;
+    const std::vector<Layer> layers = randomLayers(5, rng);
+    addLayers(plane, layers);
+    reused.composite(planes);
+    const glm::dvec4 expected = exactOver(layers, glm::dvec4(0.25), false);
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(planes[plane].color[c][9], expected[c], 1e-6) << planeCount << " planes";
+  }
+}
+
 // ---- frames --------------------------------------------------------------------
 
 constexpr int kWidth = 160, kHeight = 90;

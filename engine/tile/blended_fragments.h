@@ -59,10 +59,9 @@ class BlendedFragments {
 
   // Adds a lane group's fragments to sample plane `plane`: for each lane k
   // set in `lanes`, one at pixel index + k (TileBuffers order) with depth
-  // depth[k], premultiplied colour color[c][k] and keep[k]. A group a call:
-  // out of line (the ISA kernels call it, and an inline copy in each would
-  // be one symbol the linker picks from any of them), and a call per
-  // fragment was a fifth of intersecting-glass's frame.
+  // depth[k], premultiplied colour color[c][k] and keep[k]. Out of line
+  // (the ISA kernels call it, and an inline copy in each would be one symbol
+  // the linker picks from any of them), so a call a group, not a fragment.
   void add(int plane, int index, std::uint32_t lanes, const float* depth,
            const float* const color[4], const float* keep);
 
