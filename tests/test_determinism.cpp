@@ -169,6 +169,61 @@ TEST(Determinism, OneRendererAcrossScenesMatchesFreshRenderers) {
   expectFresh("near-plane", kWidth, kHeight);
 }
 
+// A Renderer keeps the tile stage's per-worker scratch between frames too
+// (TileWorkspace): frames whose settings size it alike reuse it, others
+// make it afresh. Whatever a frame leaves there (kept blended fragments,
+// alpha-to-coverage's per-sample states of its draw indices, lists and
+// planes of another sample count) must not reach the next: each frame of a
+// run that changes samples, rate, filter, AOVs and scene equals a fresh
+// Renderer's.
+TEST(Determinism, OneRendererAcrossSampleSettingsMatchesFreshRenderers) {
+  RendererConfig config;
+  config.threads = 2;
+  Renderer renderer(config);
+  const Scene showcase = makeBuiltinScene("showcase");         // textures, alpha mask, blending
+  const Scene glass = makeBuiltinScene("intersecting-glass");  // kept fragments
+  const Scene plane = makeBuiltinScene("checker-plane");       // opaque only
+  struct Step {
+    const Scene* scene;
+    int samples;
+    bool sampleRate = false, alphaToCoverage = false, wideFilter = false, aovs = false;
+    std::optional<Filter> filter = std::nullopt;
+  };
+  const Step steps[] = {
+      {&glass, 4},
+      // The same draw masked with another texture filter: a state kept
+      // from the frame before would draw it with the old one.
+      {&showcase, 4, false, true, false, false, Filter::Nearest},
+      {&showcase, 4, false, true},
+      {&showcase, 4},
+      {&glass, 4, true},
+      {&plane, 4},
+      {&showcase, 16, false, true, true},
+      {&glass, 1},
+      {&showcase, 4, false, true, false, true},
+      {&glass, 4},
+  };
+  int index = 0;
+  for (const Step& step : steps) {
+    SCOPED_TRACE("step " + std::to_string(index++));
+    RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.samples = step.samples;
+    settings.shadingRate = step.sampleRate ? ShadingRate::Sample : ShadingRate::Pixel;
+    settings.alphaToCoverage = step.alphaToCoverage;
+    settings.pixelFilter = step.wideFilter ? PixelFilter::BlackmanHarris : PixelFilter::Box;
+    settings.filter = step.filter;
+    settings.frameCoverage = true;
+    if (step.aovs) settings.aovs = AovSet(Aov::Normal) | AovSet(Aov::Ids);
+    const Camera camera = firstCameraOrDefault(*step.scene);
+    Frame reused;
+    renderer.render(*step.scene, camera, settings, reused);
+    ASSERT_TRUE(hasVisiblePixels(reused));
+    expectSameFrame(reused, renderOnce(*step.scene, camera, settings, 2, std::nullopt));
+  }
+}
+
 // A tile no triangle reaches takes a path of its own (tile_stage.cpp
 // renderTile: one sample plane standing for all). Into an embedder's frame
 // that still holds the last frame, it must write every pixel's colour,

@@ -103,7 +103,6 @@ TEST(EmbedderThreads, SeveralRenderersRenderAtOnce) {
 void expectWorkerIndicesExclusive(const Executor& executor) {
   std::vector<std::atomic<int>> busy(std::size_t(executor.threadCount()));
   std::atomic<int> outOfRange{0}, shared{0}, bodies{0};
-  std::vector<std::atomic<int>> used(busy.size());
   executor.parallelFor(256, 1, [&](std::size_t, std::size_t) {
     ++bodies;
     const int index = executor.workerIndex();
@@ -112,16 +111,14 @@ void expectWorkerIndicesExclusive(const Executor& executor) {
       return;
     }
     if (busy[std::size_t(index)].exchange(1) != 0) ++shared;
-    ++used[std::size_t(index)];
     std::this_thread::sleep_for(std::chrono::microseconds(200));
     busy[std::size_t(index)] = 0;
   });
   EXPECT_GT(bodies.load(), 1) << "the loop was not split";
   EXPECT_EQ(outOfRange.load(), 0);
   EXPECT_EQ(shared.load(), 0) << "two bodies ran at once with one index";
-  int indicesUsed = 0;
-  for (const auto& u : used) indicesUsed += u.load() > 0 ? 1 : 0;
-  EXPECT_GT(indicesUsed, 1) << "every body ran on one thread";
+  // Not asserted: that several threads took part. Where other work holds
+  // TBB's workers (a test process of many tests), one thread may run them all.
 }
 
 TEST(EmbedderThreads, WorkerIndicesAreExclusiveOnOwnAndEmbeddersArena) {

@@ -33,6 +33,7 @@ struct Renderer::Impl {
   std::vector<TransformedVertices> vertices;
   std::vector<FrontEndChunk> chunks;
   std::vector<TileTimes> tileTimes;
+  TileWorkspace tiles;  // the tile stage's per-worker scratch, kept likewise
   Impl(const RendererConfig& config, Isa isa)
       : executor(config.arena ? Executor(*config.arena) : Executor(config.threads)),
         kernels(selectTileKernels(isa)),
@@ -505,7 +506,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                             pixelFilter ? &*pixelFilter : nullptr,
                             settings.frameCoverage,
                             aov ? &*aov : nullptr};
-  renderTiles(tileFrame, executor, out, impl_->tileTimes);
+  renderTiles(tileFrame, executor, impl_->tiles, out, impl_->tileTimes);
   const double tilesDone = stageClockMs();
 
   SetupCounters total;

@@ -39,8 +39,10 @@ void sortKeys(std::uint64_t* keys, int n) {
 void BlendedFragments::begin(int planes, bool depthGreater) {
   const std::size_t slots = std::size_t(planes) * TileBuffers::kPixels;
   if (slots_ != slots) {
-    // Default-initialized: pages no fragment reaches are never touched.
-    layers_.reset(new BlendedFragment[kMaxPerSample * slots]);
+    // Zeroed, so every page is resident from the first tile: a store kept
+    // from frame to frame (TileWorkspace) would otherwise take a few more
+    // pages each frame, as fragments reach layers the tiles before did not.
+    layers_.reset(new BlendedFragment[kMaxPerSample * slots]());
     touched_.reset(new std::uint32_t[slots]);
     slots_ = slots;
     count_.assign(slots, 0);

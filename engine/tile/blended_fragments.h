@@ -38,8 +38,8 @@ class BlendedFragments {
   // merges the sample's two farthest into one step (exact unless a later
   // fragment falls between those two). The store is kMaxPerSample layers of
   // one fragment per sample, fragment k of a sample in layer k: planes *
-  // kPixels * kMaxPerSample fragments of 24 bytes, allocated once for a
-  // plane count and touched only where fragments are kept, plus 13 bytes a
+  // kPixels * kMaxPerSample fragments of 24 bytes, allocated and zeroed
+  // once for a plane count, plus 13 bytes a
   // sample for the counts, the touched list and the order pass.
   static constexpr int kMaxPerSample = 8;
   static constexpr std::size_t kBytesPerSample = kMaxPerSample * sizeof(BlendedFragment) + 13;
@@ -85,7 +85,7 @@ class BlendedFragments {
   }
   void addBeyondBudget(std::uint32_t slot, const BlendedFragment& newest);
 
-  std::unique_ptr<BlendedFragment[]> layers_;  // kMaxPerSample * slots_, not zeroed
+  std::unique_ptr<BlendedFragment[]> layers_;  // kMaxPerSample * slots_
   std::size_t slots_ = 0;
   std::vector<std::uint8_t> count_;  // per slot
   // The slots holding fragments, in the order first touched: room for every slot.

@@ -34,7 +34,10 @@ namespace {
 
 struct MixedPixelTables;
 
-// One task's working memory, reused from tile to tile.
+constexpr std::uint32_t kNoCoverageDraw = 0xFFFFFFFFu;
+
+// One worker's working memory, reused from tile to tile and frame to frame
+// (TileWorkspace).
 struct TileScratch {
   explicit TileScratch(int samples) : planes(new TileBuffers[std::size_t(samples)]) {
     // At their bound from the start, so they never grow past it by doubling
@@ -87,7 +90,7 @@ struct TileScratch {
   // With alpha to coverage, one masked draw's state per sample plane
   // (shadeAtSample), for the draw coverageDraw.
   std::vector<ShadeState> coverageShades;
-  std::uint32_t coverageDraw = 0xFFFFFFFFu;
+  std::uint32_t coverageDraw = kNoCoverageDraw;
   // A wide pixel filter's frame (renderTiles) and working memory
   // (tile/pixel_filter.h); null with the box filter.
   const PixelFilterFrame* pixelFilter = nullptr;
@@ -1155,8 +1158,18 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
   return std::uint64_t(workers) * perWorker + rings + tables;
 }
 
-void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
-                 std::vector<TileTimes>& times) {
+struct TileWorkspace::Kept {
+  // What the scratches were made for (tileMemoryBytes' inputs but the grid).
+  int samples = 0, threads = 0, filterChannels = 0;
+  bool aovs = false, blended = false;
+  std::vector<std::unique_ptr<TileScratch>> scratches;  // per worker, made by its first tile
+};
+
+TileWorkspace::TileWorkspace() : kept(std::make_unique<Kept>()) {}
+TileWorkspace::~TileWorkspace() = default;
+
+void renderTiles(const TileFrame& frame, const Executor& executor, TileWorkspace& workspace,
+                 Frame& out, std::vector<TileTimes>& times) {
   const std::size_t tiles = std::size_t(frame.grid.tileCount());
   times.assign(tiles, TileTimes{});
   // Heavy tiles first, so the last tasks to finish are short ones: a tile's
@@ -1185,16 +1198,28 @@ void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
     filter->borderRings = rings.get();
   }
   const MixedPixelTables mixedTables = mixedPixelTables(frame.samples);
-  // A scratch per worker, made by its first sub-range (renderTile leaves
-  // nothing in it that the next tile reads).
-  std::vector<std::unique_ptr<TileScratch>> scratches(std::size_t(executor.threadCount()));
+  TileWorkspace::Kept& kept = *workspace.kept;
+  TileWorkspace::Kept made{frame.samples.count,
+                           executor.threadCount(),
+                           frame.pixelFilter ? (frame.coverage ? 5 : 4) : 0,
+                           frame.aov != nullptr,
+                           std::any_of(frame.draws.begin(), frame.draws.end(),
+                                       [](const Draw& d) { return composedInDepthOrder(d.shade); }),
+                           {}};
+  if (made.samples != kept.samples || made.threads != kept.threads ||
+      made.filterChannels != kept.filterChannels || made.aovs != kept.aovs ||
+      made.blended != kept.blended) {
+    made.scratches.resize(std::size_t(made.threads));
+    kept = std::move(made);
+  }
   executor.parallelFor(tiles, 1, [&](std::size_t begin, std::size_t end) {
-    std::unique_ptr<TileScratch>& scratch = scratches[std::size_t(executor.workerIndex())];
-    if (!scratch) {
-      scratch = std::make_unique<TileScratch>(frame.samples.count);
-      scratch->pixelFilter = filter ? &*filter : nullptr;
-      scratch->mixedTables = &mixedTables;
-    }
+    std::unique_ptr<TileScratch>& scratch = kept.scratches[std::size_t(executor.workerIndex())];
+    if (!scratch) scratch = std::make_unique<TileScratch>(frame.samples.count);
+    // This frame's: renderTile leaves nothing else in the scratch that the
+    // next tile, or the next frame, reads.
+    scratch->pixelFilter = filter ? &*filter : nullptr;
+    scratch->mixedTables = &mixedTables;
+    scratch->coverageDraw = kNoCoverageDraw;  // a draw index of its frame
     for (std::size_t i = begin; i < end; ++i) {
       const std::size_t t = order[i].second;
       renderTile(int(t), binned[t], frame, *scratch, out, times[t]);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -57,9 +58,28 @@ struct TileFrame {
   const AovFrame* aov = nullptr;
 };
 
+// The tile stage's working memory, kept by its owner (a Renderer) from frame
+// to frame: a scratch per worker thread (tile planes, lists, fragment
+// store). Made every frame, its pages were faulted in again and, freed,
+// stayed with the allocator or were unmapped with TLB shootdowns across the
+// threads; resident memory then moved from frame to frame with the
+// allocator's state. Dropped when a frame differs from the one before in
+// what sizes it (tileMemoryBytes' inputs), so what is kept stays within
+// each frame's charge. One frame at a time.
+class TileWorkspace {
+ public:
+  TileWorkspace();
+  ~TileWorkspace();
+  TileWorkspace(const TileWorkspace&) = delete;
+  TileWorkspace& operator=(const TileWorkspace&) = delete;
+
+  struct Kept;  // tile_stage.cpp
+  std::unique_ptr<Kept> kept;
+};
+
 // times: resized to the tile count, one entry per tile.
-void renderTiles(const TileFrame& frame, const Executor& executor, Frame& out,
-                 std::vector<TileTimes>& times);
+void renderTiles(const TileFrame& frame, const Executor& executor, TileWorkspace& workspace,
+                 Frame& out, std::vector<TileTimes>& times);
 
 // The most triangles a tile's visibility pass keeps as visible at once at
 // `samples` samples: one a sample slot and a plane more. At that, the ones no
