@@ -41,9 +41,26 @@ constexpr std::uint32_t kNoCoverageDraw = 0xFFFFFFFFu;
 struct TileScratch {
   explicit TileScratch(int samples) : planes(new TileBuffers[std::size_t(samples)]) {
     // At their bound from the start, so they never grow past it by doubling
-    // (tileMemoryBytes); pages never written take no memory.
-    visibleTriangles.reserve(std::size_t(maxVisibleTriangles(samples)));
-    shadePlanes.reserve(std::size_t(maxVisibleTriangles(samples)) * kShadePlaneStride + 1);
+    // (tileMemoryBytes); pages never written take no memory. Kept from
+    // frame to frame (TileWorkspace), a list that grew by reallocating left
+    // its old block resident and touched a new one: a step in resident
+    // memory each time a worker first took a larger tile.
+    const std::size_t triangles = std::size_t(maxVisibleTriangles(samples)) + 1;
+    const std::size_t slots = std::size_t(samples) * TileBuffers::kPixels;
+    const std::size_t pixels = TileBuffers::kPixels + 3;
+    visibleTriangles.reserve(triangles);
+    shadePlanes.reserve(triangles * kShadePlaneStride + 1);
+    for (auto* list : {&renumbered, &runOf, &oneColourDraw, &runGroups, &runPixels, &runJobs,
+                       &groupCursor, &pixelCursor})
+      list->reserve(triangles);
+    for (auto* list : {&groupRun, &sampleDiffers, &pixelFirstJob, &mixedPlaneZeroIds})
+      list->reserve(pixels);
+    for (auto* list : {&groupList, &pixelList, &mixedPixels}) list->reserve(pixels);
+    jobs.reserve(slots);
+    sortedJobs.reserve(slots);
+    sortedAt.reserve(slots);
+    jobColor.reserve(3 * slots);
+    sampleSlot.reserve(slots);
   }
   // One per sample (tile_stage.cpp's opening comment). Not value-initialized:
   // every tile clears what it reads.
