@@ -91,8 +91,9 @@ constexpr int maxVisibleTriangles(int samples) {
   return (samples + 1) * TileBuffers::kPixels;
 }
 
-// An upper bound on the memory renderTiles holds at once besides the frame,
-// on `threads` threads: each running task's scratch (a TileBuffers per
+// An upper bound on the memory renderTiles holds besides the frame (and a
+// TileWorkspace keeps between frames of the same settings), on `threads`
+// threads: each worker's scratch (a TileBuffers per
 // sample plane; the lists and shading planes of at most maxVisibleTriangles
 // triangles, with aovs their AOV records too; the shading jobs, at
 // most one a sample; when some draw is composited in depth order the blended
