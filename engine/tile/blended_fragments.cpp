@@ -48,8 +48,7 @@ void BlendedFragments::begin(int planes, bool depthGreater) {
     count_.assign(slots, 0);
     touchedCount_ = 0;
   }
-  for (std::size_t i = 0; i < touchedCount_; ++i) count_[touched_[i]] = 0;
-  touchedCount_ = 0;
+  clearTouched();
   depthGreater_ = depthGreater;
   // Before the first fragment, any depth is "not behind": the far end.
   latest_.assign(slots, depthGreater ? -std::numeric_limits<float>::infinity()
@@ -122,6 +121,10 @@ void BlendedFragments::composite(TileBuffers* planes) {
     }
     for (int c = 0; c < 4; ++c) plane.color[c][pixel] = dst[c];
   }
+  clearTouched();
+}
+
+void BlendedFragments::clearTouched() {
   for (std::size_t i = 0; i < touchedCount_; ++i) count_[touched_[i]] = 0;
   touchedCount_ = 0;
 }

@@ -39,8 +39,8 @@ class BlendedFragments {
   // fragment falls between those two). The store is kMaxPerSample layers of
   // one fragment per sample, fragment k of a sample in layer k: planes *
   // kPixels * kMaxPerSample fragments of 24 bytes, allocated and zeroed
-  // once for a plane count, plus 13 bytes a
-  // sample for the counts, the touched list and the order pass.
+  // once for a plane count, plus 13 bytes a sample for the counts, the
+  // touched list and the order pass.
   static constexpr int kMaxPerSample = 8;
   static constexpr std::size_t kBytesPerSample = kMaxPerSample * sizeof(BlendedFragment) + 13;
 
@@ -84,6 +84,7 @@ class BlendedFragments {
     return layers_[std::size_t(layer) * slots_ + slot];
   }
   void addBeyondBudget(std::uint32_t slot, const BlendedFragment& newest);
+  void clearTouched();  // every kept sample's count back to 0
 
   std::unique_ptr<BlendedFragment[]> layers_;  // kMaxPerSample * slots_
   std::size_t slots_ = 0;

@@ -961,6 +961,13 @@ bool composedInDepthOrder(const ShadeState& shade) {
   return shade.depthOrdered;
 }
 
+// Whether a frame's tiles need the fragment store (its memory and the
+// TileWorkspace's sizing).
+bool someDrawComposedInDepthOrder(const std::vector<Draw>& draws) {
+  return std::any_of(draws.begin(), draws.end(),
+                     [](const Draw& draw) { return composedInDepthOrder(draw.shade); });
+}
+
 // Calls draw(triangle, planes, plane) for every sample plane, with the
 // triangle and its depth plane moved to that plane's sample, and its next
 // planeCount - 1 planes (1/w, attributes) to where the sample is shaded.
@@ -1139,9 +1146,7 @@ void renderTile(int tileIndex, std::uint32_t binned, const TileFrame& frame, Til
 std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
                               int pixelFilterChannels, bool aovs, const std::vector<Draw>& draws) {
   const std::uint64_t slots = std::uint64_t(samples) * TileBuffers::kPixels;
-  const bool blended = std::any_of(draws.begin(), draws.end(), [](const Draw& draw) {
-    return composedInDepthOrder(draw.shade);
-  });
+  const bool blended = someDrawComposedInDepthOrder(draws);
   // The fragment layers, counts and the order pass (blended_fragments.h).
   const std::uint64_t fragments = blended ? slots * BlendedFragments::kBytesPerSample : 0;
   // A TileScratch's lists. A vector that grows by doubling or resizing is
@@ -1176,9 +1181,12 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
 }
 
 struct TileWorkspace::Kept {
-  // What the scratches were made for (tileMemoryBytes' inputs but the grid).
-  int samples = 0, threads = 0, filterChannels = 0;
-  bool aovs = false, blended = false;
+  // What sizes the scratches (tileMemoryBytes' inputs but the grid).
+  struct Sizing {
+    int samples = 0, threads = 0, filterChannels = 0;
+    bool aovs = false, blended = false;
+    bool operator==(const Sizing&) const = default;
+  } sizing;
   std::vector<std::unique_ptr<TileScratch>> scratches;  // per worker, made by its first tile
 };
 
@@ -1216,18 +1224,13 @@ void renderTiles(const TileFrame& frame, const Executor& executor, TileWorkspace
   }
   const MixedPixelTables mixedTables = mixedPixelTables(frame.samples);
   TileWorkspace::Kept& kept = *workspace.kept;
-  TileWorkspace::Kept made{frame.samples.count,
-                           executor.threadCount(),
-                           frame.pixelFilter ? (frame.coverage ? 5 : 4) : 0,
-                           frame.aov != nullptr,
-                           std::any_of(frame.draws.begin(), frame.draws.end(),
-                                       [](const Draw& d) { return composedInDepthOrder(d.shade); }),
-                           {}};
-  if (made.samples != kept.samples || made.threads != kept.threads ||
-      made.filterChannels != kept.filterChannels || made.aovs != kept.aovs ||
-      made.blended != kept.blended) {
-    made.scratches.resize(std::size_t(made.threads));
-    kept = std::move(made);
+  const TileWorkspace::Kept::Sizing sizing{frame.samples.count, executor.threadCount(),
+                                           filter ? filter->channels() : 0, frame.aov != nullptr,
+                                           someDrawComposedInDepthOrder(frame.draws)};
+  if (!(sizing == kept.sizing)) {
+    kept.scratches.clear();
+    kept.scratches.resize(std::size_t(sizing.threads));
+    kept.sizing = sizing;
   }
   executor.parallelFor(tiles, 1, [&](std::size_t begin, std::size_t end) {
     std::unique_ptr<TileScratch>& scratch = kept.scratches[std::size_t(executor.workerIndex())];
