@@ -167,11 +167,10 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance, bool afterFor
               s.derivatives == DerivativeMode::Analytic &&
               settings.opaqueShading == OpaqueShading::TwoPass;
   // Every sample is shaded in a supersampled frame, and a multisampled
-  // frame's forward draws (blended ones) are shaded per sample too: each
-  // such lookup filters for the sample spacing (with the pixel's footprint,
-  // alpha-quads at 16 samples shaded per pixel took 1.8x the time of
-  // shading every sample, for 5-7 dB less).
-  if (settings.samples > 1 && (settings.shadingRate == ShadingRate::Sample || !s.twoPass))
+  // frame's other forward draws are shaded per sample too: each such lookup
+  // filters for the sample spacing.
+  if (settings.samples > 1 &&
+      (settings.shadingRate == ShadingRate::Sample || s.shadedPerSampleAtPixelRate()))
     s.footprintScale = float(1.0 / std::sqrt(double(settings.samples)));
 
   // Interpolate only what the shading reads.

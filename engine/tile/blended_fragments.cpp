@@ -54,6 +54,7 @@ void BlendedFragments::begin(int planes, bool depthGreater) {
   latest_.assign(slots, depthGreater ? -std::numeric_limits<float>::infinity()
                                      : std::numeric_limits<float>::infinity());
   late_.assign(slots, 0.0f);
+  covered_.assign(TileBuffers::kPixels, 0u);
 }
 
 void BlendedFragments::add(int plane, int index, std::uint32_t lanes, const float* depth,

@@ -39,10 +39,11 @@ class BlendedFragments {
   // fragment falls between those two). The store is kMaxPerSample layers of
   // one fragment per sample, fragment k of a sample in layer k: planes *
   // kPixels * kMaxPerSample fragments of 24 bytes, allocated and zeroed
-  // once for a plane count, plus 13 bytes a sample for the counts, the
-  // touched list and the order pass.
+  // once for a plane count, plus 17 bytes a sample for the counts, the
+  // touched list, the order pass and the covered samples (4 bytes a pixel,
+  // counted per sample).
   static constexpr int kMaxPerSample = 8;
-  static constexpr std::size_t kBytesPerSample = kMaxPerSample * sizeof(BlendedFragment) + 13;
+  static constexpr std::size_t kBytesPerSample = kMaxPerSample * sizeof(BlendedFragment) + 17;
 
   // Empty, for a tile of `planes` samples per pixel, before its first
   // blended triangle. depthGreater: reversed depth, where the far fragments
@@ -56,6 +57,12 @@ class BlendedFragments {
   float* latest(int plane) { return &latest_[std::size_t(plane) * TileBuffers::kPixels]; }
   float* late(int plane) { return &late_[std::size_t(plane) * TileBuffers::kPixels]; }
   const float* late(int plane) const { return &late_[std::size_t(plane) * TileBuffers::kPixels]; }
+
+  // Per pixel, in TileBuffers order, bit k for sample k: the samples the
+  // triangle being shaded per pixel covers (TileKernels::coverBlended). Zero
+  // from begin on, and again after each triangle (shadeBlendedPixels clears
+  // what it reads).
+  std::uint32_t* covered() { return covered_.data(); }
 
   // Adds a lane group's fragments to sample plane `plane`: for each lane k
   // set in `lanes`, one at pixel index + k (TileBuffers order) with depth
@@ -92,7 +99,8 @@ class BlendedFragments {
   // The slots holding fragments, in the order first touched: room for every slot.
   std::unique_ptr<std::uint32_t[]> touched_;
   std::size_t touchedCount_ = 0;
-  std::vector<float> latest_, late_;  // per slot, for the order pass
+  std::vector<float> latest_, late_;    // per slot, for the order pass
+  std::vector<std::uint32_t> covered_;  // per pixel
   bool depthGreater_ = false;
 };
 

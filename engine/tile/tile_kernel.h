@@ -133,6 +133,17 @@ struct TileKernels {
   // marks the samples of plane `plane` where it arrives behind an earlier one.
   void (*orderBlended)(const TriangleRecord& triangle, const Plane* planes, const ShadeState& shade,
                        TileBuffers& tile, BlendedFragments& fragments, int plane);
+  // A blended draw composed in depth order, shaded once per pixel (the pixel
+  // rate, several samples): first coverBlended at every sample plane, the
+  // triangle and its depth plane moved to that sample, marking in
+  // fragments.covered() the samples it covers and that pass the depth test;
+  // then shadeBlendedPixels with the triangle's own planes, which shades each
+  // marked pixel once and blends it into, or defers it at, each marked sample.
+  void (*coverBlended)(const TriangleRecord& triangle, const Plane* planes, const ShadeState& shade,
+                       TileBuffers& tile, BlendedFragments& fragments, int plane);
+  void (*shadeBlendedPixels)(const TriangleRecord& triangle, const Plane* planes,
+                             const ShadeState& shade, const SamplePattern& pattern,
+                             TileBuffers* samplePlanes, BlendedFragments& fragments);
   // Visibility pass: coverage and depth test (and a masked draw's alpha
   // test); the samples the triangle wins get its depth and `id`. Returns
   // whether it won any.

@@ -407,6 +407,34 @@ QUADRA_LANE_INLINE F blendChannel(BlendEquation equation, const F& s, const F& s
   return simd::max(s, d);
 }
 
+// A premultiplied "over" step of straight colour c onto the covered lanes of
+// `color`: c * a + dst * (1 - a), alpha included (blendChannel's Add of
+// src * 1 and dst * (1 - a), bit for bit: s * 1 is exact).
+QUADRA_LANE_INLINE void blendOver(const M& cover, const Rgba<L>& c, float* const color[4]) {
+  const F src[4] = {c.r * c.a, c.g * c.a, c.b * c.a, c.a};
+  const F keep = F(1.0f) - c.a;
+  for (int k = 0; k < 4; ++k) {
+    const F dst = F::load_aligned(color[k]);
+    simd::select(cover, src[k] + dst * keep, dst).store_aligned(color[k]);
+  }
+}
+
+// The covered lanes' fragments of straight colour c into sample plane
+// `plane` of the fragment store, as "over" steps: premultiplied colour and
+// alpha, and 1 - alpha of what lies behind (the products blendOver forms).
+QUADRA_LANE_INLINE void deferOver(BlendedFragments& fragments, int plane, const M& cover,
+                                  const F& zValue, const Rgba<L>& c, int index) {
+  alignas(64) float z[L::kWidth], rgba[4][L::kWidth], keep[L::kWidth];
+  zValue.store_aligned(z);
+  (c.r * c.a).store_aligned(rgba[0]);
+  (c.g * c.a).store_aligned(rgba[1]);
+  (c.b * c.a).store_aligned(rgba[2]);
+  c.a.store_aligned(rgba[3]);
+  (F(1.0f) - c.a).store_aligned(keep);
+  const float* const color[4] = {rgba[0], rgba[1], rgba[2], rgba[3]};
+  fragments.add(plane, index, simd::bits(cover), z, color, keep);
+}
+
 // Forward path: one group of quads, coverage in; depth test, shading, alpha,
 // blend and depth write as it goes.
 template <class Feat>
@@ -451,7 +479,7 @@ struct ForwardShader {
     if (deferred != nullptr) {
       // The late samples' fragments wait for the depth-order composite.
       const M late = F::load_unaligned(deferred->late(plane) + index) != F(0.0f);
-      if (simd::any(cover & late)) defer(cover & late, zValue, c, index);
+      if (simd::any(cover & late)) deferOver(*deferred, plane, cover & late, zValue, c, index);
       cover = cover & ~late;
       if (!simd::any(cover)) return zOld;
     }
@@ -459,20 +487,6 @@ struct ForwardShader {
                              tile.color[3] + index};
     write(cover, zValue, zOld, c, depth, color);
     return simd::select(cover, zValue, zOld);
-  }
-
-  // The covered lanes' fragments as "over" steps: premultiplied colour and
-  // alpha, and 1 - alpha of what lies behind (the same products write forms).
-  void defer(const M& cover, const F& zValue, const Rgba<L>& c, int index) const {
-    alignas(64) float z[L::kWidth], rgba[4][L::kWidth], keep[L::kWidth];
-    zValue.store_aligned(z);
-    (c.r * c.a).store_aligned(rgba[0]);
-    (c.g * c.a).store_aligned(rgba[1]);
-    (c.b * c.a).store_aligned(rgba[2]);
-    c.a.store_aligned(rgba[3]);
-    (F(1.0f) - c.a).store_aligned(keep);
-    const float* const color[4] = {rgba[0], rgba[1], rgba[2], rgba[3]};
-    deferred->add(plane, index, simd::bits(cover), z, color, keep);
   }
 
   // Any other blend state: out of line, so the raster loop that inlines
@@ -503,12 +517,7 @@ struct ForwardShader {
       for (int k = 0; k < 4; ++k)
         simd::select(cover, src[k], F::load_aligned(color[k])).store_aligned(color[k]);
     } else if (over) {
-      // blendChannel's Add of src * 1 and dst * (1 - a), bit for bit: s * 1 is exact.
-      const F keep = F(1.0f) - src[3];
-      for (int k = 0; k < 4; ++k) {
-        const F dst = F::load_aligned(color[k]);
-        simd::select(cover, src[k] + dst * keep, dst).store_aligned(color[k]);
-      }
+      blendOver(cover, c, color);
     } else {
       blendWith(blend, cover, src, color);
     }
@@ -544,6 +553,39 @@ struct BlendOrderShader {
     const M behind = shade.depthGreater ? zValue < before : zValue > before;
     simd::select(cover & behind, F(1.0f), F::load_unaligned(late)).store_unaligned(late);
     simd::select(cover, zValue, before).store_unaligned(latest);
+    return zOld;
+  }
+};
+
+// A blended draw shaded per pixel (shadeBlendedPixels), its first pass at one
+// sample plane: one group of quads, coverage in; the samples the triangle
+// covers and that pass the depth test get bit `plane` of
+// BlendedFragments::covered.
+struct BlendCoverageShader {
+  const ShadeState& shade;
+  TileBuffers& tile;
+  const TrianglePlanes planes;
+  std::int32_t* covered;
+  I bit;
+
+  BlendCoverageShader(const ShadeState& s, const TriangleRecord& t, const Plane* p, TileBuffers& tb,
+                      BlendedFragments& f, int samplePlane)
+      : shade(s),
+        tile(tb),
+        planes(s, t, p, tb, true),
+        covered(reinterpret_cast<std::int32_t*>(f.covered())),
+        bit(std::int32_t(1) << samplePlane) {}
+
+  bool depthWritten() const { return false; }
+
+  F shadeGroup(const F& x, const F& y, M cover, int index) const {
+    const F zValue = planes.z.at(x, y);
+    const F zOld = F::load_aligned(tile.depth + index);
+    cover = cover & depthPasses(shade.depthCompare, zValue, zOld);
+    if (!simd::any(cover)) return zOld;
+    const I was = I::load_unaligned(covered + index);
+    simd::asInt(simd::select(cover, simd::asFloat(was | bit), simd::asFloat(was)))
+        .store_unaligned(covered + index);
     return zOld;
   }
 };
@@ -1019,6 +1061,87 @@ void orderBlended(const TriangleRecord& t, const Plane* p, const ShadeState& s, 
   rasterizeWith(t, BlendOrderShader(s, t, p, tile, fragments, plane), tile);
 }
 
+void coverBlended(const TriangleRecord& t, const Plane* p, const ShadeState& s, TileBuffers& tile,
+                  BlendedFragments& fragments, int plane) {
+  rasterizeWith(t, BlendCoverageShader(s, t, p, tile, fragments, plane), tile);
+}
+
+// A blended draw's triangle shaded per pixel, after coverBlended at every
+// sample plane: each pixel some sample of which it covers is shaded once, at
+// the centre where it covers them all, else at the mean of their positions
+// (meanSampleOffset's arithmetic, as the opaque draws' mixed pixels), and
+// that colour is blended into, or deferred at, each covered sample with the
+// sample's own depth. Clears the coverage words it reads.
+template <class Feat>
+void shadeBlendedPixelsWith(const TriangleRecord& t, const Plane* p, const ShadeState& s,
+                            const SamplePattern& pattern, TileBuffers* samplePlanes,
+                            BlendedFragments& fragments) {
+  const TileBuffers& tile = samplePlanes[0];  // every plane has the tile's origin and size
+  const BoxInTile box(t, tile);
+  if (box.empty()) return;
+  static const LaneOffsets lane;  // const after construction; per ISA namespace
+  const TrianglePlanes planes(s, t, p, tile);
+  const int samples = pattern.count;
+  // Each sample's depth plane rebased to the tile, as the planes at that
+  // sample's own pass rebase it (SampleDepths: the same bits).
+  alignas(16) float depthC[kMaxSamples];
+  const SampleDepths depths(p[0], t, tile);
+  for (int k = 0; k < samples; k += 2)
+    _mm_storel_pi(reinterpret_cast<__m64*>(depthC + k), depths.pair(pattern, k));
+  std::int32_t* const covered = reinterpret_cast<std::int32_t*>(fragments.covered());
+  const F allSamples(float((1 << samples) - 1));
+  for (int gy = box.yBegin & ~1; gy < box.yEnd; gy += 2) {
+    for (int gx = box.xBegin / kGroupWidth * kGroupWidth; gx < box.xEnd; gx += kGroupWidth) {
+      const int index = TileBuffers::index(gx, gy);
+      const I held = I::load_unaligned(covered + index);
+      const F heldValue = simd::toFloat(held);  // at most 16 bits: exact
+      const M any = heldValue != F(0.0f);
+      if (!simd::any(any)) continue;
+      I(0).store_unaligned(covered + index);
+      const F x = lane.x + F(float(gx)), y = lane.y + F(float(gy));
+      F shadeX = x, shadeY = y;
+      const M partial = any & (heldValue != allSamples);
+      if (simd::any(partial)) {
+        F sumX(0.0f), sumY(0.0f), count(0.0f);  // whole numbers: exact
+        for (int k = 0; k < samples; ++k) {
+          const M in = simd::toFloat(held & I(std::int32_t(1) << k)) != F(0.0f);
+          sumX = sumX + simd::select(in, F(float(pattern.offsets[k].x)), F(0.0f));
+          sumY = sumY + simd::select(in, F(float(pattern.offsets[k].y)), F(0.0f));
+          count = count + simd::select(in, F(1.0f), F(0.0f));
+        }
+        const F scale = F(1.0f) / (simd::max(count, F(1.0f)) * F(float(kSampleUnitsPerPixel)));
+        shadeX = x + simd::select(partial, sumX * scale, F(0.0f));
+        shadeY = y + simd::select(partial, sumY * scale, F(0.0f));
+      }
+      const Rgba<L> c = Feat::color(s, shadeX, shadeY, planes.invW, planes.attr);
+      for (int k = 0; k < samples; ++k) {
+        M cover = simd::toFloat(held & I(std::int32_t(1) << k)) != F(0.0f);
+        if (!simd::any(cover)) continue;
+        const M late = F::load_unaligned(fragments.late(k) + index) != F(0.0f);
+        if (simd::any(cover & late)) {
+          const TilePlane z{F(planes.depth.dx), F(planes.depth.dy), F(depthC[k])};
+          deferOver(fragments, k, cover & late, z.at(x, y), c, index);
+          cover = cover & ~late;
+          if (!simd::any(cover)) continue;
+        }
+        TileBuffers& plane = samplePlanes[k];
+        float* const color[4] = {plane.color[0] + index, plane.color[1] + index,
+                                 plane.color[2] + index, plane.color[3] + index};
+        blendOver(cover, c, color);
+      }
+    }
+  }
+}
+
+void shadeBlendedPixels(const TriangleRecord& t, const Plane* p, const ShadeState& s,
+                        const SamplePattern& pattern, TileBuffers* samplePlanes,
+                        BlendedFragments& fragments) {
+  withFeatures(s, [&]<class Feat>() {
+    if constexpr (Feat::kAlpha == AlphaMode::Blend)
+      shadeBlendedPixelsWith<Feat>(t, p, s, pattern, samplePlanes, fragments);
+  });
+}
+
 bool visibility(const TriangleRecord& t, const Plane* p, const ShadeState& s, std::uint32_t id,
                 TileBuffers& tile) {
   const auto visit = [&]<class Feat>() {
@@ -1457,6 +1580,8 @@ const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
                                    QUADRA_KERNEL_NAMESPACE::L::kWidth,
                                    &QUADRA_KERNEL_NAMESPACE::rasterize,
                                    &QUADRA_KERNEL_NAMESPACE::orderBlended,
+                                   &QUADRA_KERNEL_NAMESPACE::coverBlended,
+                                   &QUADRA_KERNEL_NAMESPACE::shadeBlendedPixels,
                                    &QUADRA_KERNEL_NAMESPACE::visibility,
                                    &QUADRA_KERNEL_NAMESPACE::visibilityAtSamples,
                                    &QUADRA_KERNEL_NAMESPACE::shade,

@@ -968,6 +968,18 @@ bool someDrawComposedInDepthOrder(const std::vector<Draw>& draws) {
                      [](const Draw& draw) { return composedInDepthOrder(draw.shade); });
 }
 
+// Whether a forward draw shades once per pixel (TileKernels::
+// shadeBlendedPixels): with several samples at the pixel rate, where the
+// draw is not shaded per sample anyway (ShadeState::
+// shadedPerSampleAtPixelRate), unless it shades one colour, which every
+// sample gets alike: in one pass per sample plane, the same bits in less
+// time (intersecting-glass, 4 samples, 1080p: 26.6 ms per sample, 27.8 in
+// two passes).
+bool shadedPerPixel(const TileFrame& frame, const ShadeState& shade) {
+  return frame.samples.count > 1 && !frame.shadeSamples && !shade.shadedPerSampleAtPixelRate() &&
+         !shade.shadesOneColour();
+}
+
 // Calls draw(triangle, planes, plane) for every sample plane, with the
 // triangle and its depth plane moved to that plane's sample, and its next
 // planeCount - 1 planes (1/w, attributes) to where the sample is shaded.
@@ -1009,6 +1021,14 @@ void forwardDraws(const TileFrame& frame, TileScratch& s) {
           k.orderBlended(r, p, laterShade, s.planes[plane], s.blended, plane);
         });
       }
+    }
+    if (inDepthOrder && shadedPerPixel(frame, shade)) {
+      forEachSample(frame, t, 1, [&](const TriangleRecord& r, const Plane* p, int plane) {
+        kernel.coverBlended(r, p, shade, s.planes[plane], s.blended, plane);
+      });
+      kernel.shadeBlendedPixels(*t.triangle, t.planes, shade, frame.samples, s.planes.get(),
+                                s.blended);
+      continue;
     }
     BlendedFragments* const deferred = inDepthOrder ? &s.blended : nullptr;
     forEachSample(frame, t, 2 + shade.attributes.count,

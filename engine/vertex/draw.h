@@ -81,8 +81,8 @@ struct ShadeState {
   ShadeOutput output = ShadeOutput::Color;
   DerivativeMode derivatives = DerivativeMode::Analytic;
   // Texture footprints are scaled by this: 1/sqrt(samples) where each
-  // sample is shaded (ShadingRate::Sample, and the forward draws of a
-  // multisampled frame), else 1.
+  // sample is shaded (ShadingRate::Sample, and shadedPerSampleAtPixelRate
+  // draws of a multisampled frame), else 1.
   float footprintScale = 1.0f;
   // Visibility and shading passes (tile/tile_kernel.h) instead of the forward
   // path: opaque and masked draws with analytic derivatives. The renderer puts
@@ -96,6 +96,14 @@ struct ShadeState {
   // neither rebased nor gathered for shading.
   bool shadesOneColour() const {
     return !textured && !vertexColor && !lit && output == ShadeOutput::Color;
+  }
+  // Whether a multisampled frame shading once per pixel still shades this
+  // draw at every sample: the forward draws, but for the depth-ordered
+  // blended ones with analytic footprints, which are shaded once per pixel
+  // (tile/tile_kernel.h shadeBlendedPixels; quad differences need each lane
+  // at its own pixel centre).
+  bool shadedPerSampleAtPixelRate() const {
+    return !twoPass && !(depthOrdered && derivatives == DerivativeMode::Analytic);
   }
 };
 

@@ -40,10 +40,12 @@ struct SamplePattern {
 // Pixel: once per pixel and visible triangle (multisampling): at the pixel
 // centre where one triangle holds every sample, else at the mean position of
 // the samples the triangle holds there (inside the triangle, so nothing is
-// extrapolated); the colour goes to those samples. Blended draws are shaded
-// per sample either way (until they have a pass of their own). Sample: every
-// sample is shaded at its own position (supersampling). A lookup shaded per
-// sample filters for the sample spacing (footprints scaled by 1/sqrt(samples)).
+// extrapolated); the colour goes to those samples. glTF BLEND draws too,
+// each covered sample blended at its own depth; draws with an embedder's
+// blend state, and any with quad derivatives, are shaded per sample
+// (ShadeState::shadedPerSampleAtPixelRate). Sample: every sample is shaded
+// at its own position (supersampling). A lookup shaded per sample filters
+// for the sample spacing (footprints scaled by 1/sqrt(samples)).
 enum class ShadingRate : std::uint8_t { Pixel, Sample };
 
 // How a frame's samples become its pixels (api/renderer.h RenderSettings).
