@@ -238,6 +238,51 @@ TEST(BlendedOrder, DrawAndTriangleOrderDoNotChangeTheFrame) {
   }
 }
 
+// A tile whose blended triangles arrive far to near over all of it skips
+// the order pass (tile_stage.cpp blendedArriveFarToNear); one where any
+// arrives behind an earlier one must not. builtin:alpha-quads' five
+// camera-facing quads (each at one depth: the exact, margin-free case),
+// merged into one blended draw so that their triangles arrive in the
+// mesh's order: near to far it must composite as far to near does, to the
+// bit, at every sample count and in both depth directions.
+TEST(BlendedOrder, LayersOfOneDrawArrivingNearToFarCompositeInDepthOrder) {
+  const Scene quads = makeBuiltinScene("alpha-quads");
+  const auto merged = [&](bool farFirst) {
+    Scene scene = quads;
+    Mesh layers;
+    layers.material = quads.meshes[std::size_t(quads.instances[1].mesh)].material;
+    for (std::size_t n = 1; n < quads.instances.size(); ++n) {
+      const std::size_t i = farFirst ? n : quads.instances.size() - n;  // drawn far first
+      const Instance& instance = quads.instances[i];
+      const Mesh& quad = quads.meshes[std::size_t(instance.mesh)];
+      const auto base = std::uint32_t(layers.positions.size());
+      for (std::size_t v = 0; v < quad.positions.size(); ++v) {
+        layers.positions.push_back(glm::vec3(instance.world * glm::vec4(quad.positions[v], 1.0f)));
+        layers.texcoords[0].push_back(quad.texcoords[0][v]);
+      }
+      for (const std::uint32_t index : quad.indices) layers.indices.push_back(base + index);
+    }
+    scene.meshes.push_back(std::move(layers));
+    scene.instances.resize(1);  // the opaque background
+    scene.instances.push_back({int(scene.meshes.size() - 1), glm::mat4(1.0f)});
+    return scene;
+  };
+  const Scene farToNear = merged(true), nearToFar = merged(false);
+  for (const DepthMode depth : {DepthMode::Standard, DepthMode::Reversed})
+    for (const int samples : {1, 4}) {
+      RenderSettings settings;
+      settings.width = kWidth;
+      settings.height = kHeight;
+      settings.samples = samples;
+      settings.depth = depth;
+      const Frame a = renderOnce(farToNear, firstCameraOrDefault(farToNear), settings);
+      const Frame b = renderOnce(nearToFar, firstCameraOrDefault(nearToFar), settings);
+      ASSERT_EQ(a.rgba.size(), b.rgba.size());
+      EXPECT_EQ(std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)), 0)
+          << samples << " samples, " << (depth == DepthMode::Reversed ? "reversed" : "standard");
+    }
+}
+
 // The order pass and the kept fragments give every thread count and ISA the
 // same bits.
 TEST(BlendedOrder, IdenticalAcrossThreadsAndIsas) {

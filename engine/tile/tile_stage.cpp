@@ -17,6 +17,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -997,6 +999,52 @@ void forEachSample(const TileFrame& frame, const TileTriangle& t, int planeCount
   }
 }
 
+// The range a triangle's depth takes over its part of the tile, widened by
+// a pixel each way (a sample lies within half a pixel of its centre) and by
+// 2^-20 of the plane's largest term (far past the float roundings of the
+// per-sample planes and lanes, as BlockDepthTest's margin); a constant
+// plane evaluates exactly and takes no margin.
+struct DepthRange {
+  double low, high;
+};
+DepthRange depthRangeInTile(const TileTriangle& t, const TileBuffers& tile) {
+  const TriangleRecord& r = *t.triangle;
+  const Plane& z = t.planes[0];  // at pixel (px, py): c + dx (px - minX) + dy (py - minY)
+  const int x0 = std::max(int(r.minX), tile.originX) - 1 - r.minX;
+  const int x1 = std::min(int(r.maxX), tile.originX + tile.width - 1) + 1 - r.minX;
+  const int y0 = std::max(int(r.minY), tile.originY) - 1 - r.minY;
+  const int y1 = std::min(int(r.maxY), tile.originY + tile.height - 1) + 1 - r.minY;
+  const double dx = z.dx, dy = z.dy, c = z.c;
+  const double low = c + std::min(dx * x0, dx * x1) + std::min(dy * y0, dy * y1);
+  const double high = c + std::max(dx * x0, dx * x1) + std::max(dy * y0, dy * y1);
+  if (dx == 0.0 && dy == 0.0) return {low, high};
+  const double margin = (std::abs(c) + std::abs(dx) * std::max(std::abs(x0), std::abs(x1)) +
+                         std::abs(dy) * std::max(std::abs(y0), std::abs(y1))) *
+                            0x1p-20 +
+                        1e-37;
+  return {low - margin, high + margin};
+}
+
+// Whether the tile's blended triangles composed in depth order, from the
+// first one on, arrive far to near at every sample they share: each one
+// nowhere behind any before it over the tile. Then no sample is late, and
+// the order pass, which would mark none, is skipped: a draw's own triangles
+// at one depth, or draws sorted back to front that do not interpenetrate
+// (alpha-quads' layers), pay nothing for it.
+bool blendedArriveFarToNear(const TileFrame& frame, const TileScratch& s, std::size_t first) {
+  const TileBuffers& tile = s.planes[0];
+  constexpr double kFar = std::numeric_limits<double>::infinity();
+  double nearest = frame.depthGreater ? -kFar : kFar;  // of those so far
+  for (std::size_t j = first; j < s.forward.size(); ++j) {
+    const TileTriangle& t = s.forward[j];
+    if (!composedInDepthOrder(frame.draws[t.draw].shade)) continue;
+    const DepthRange range = depthRangeInTile(t, tile);
+    if (!(frame.depthGreater ? range.low >= nearest : range.high <= nearest)) return false;
+    nearest = frame.depthGreater ? std::max(nearest, range.high) : std::min(nearest, range.low);
+  }
+  return true;
+}
+
 // The forward triangles in order. At the first blended one composed in depth
 // order (the renderer puts blended draws after the opaque ones, so the depth
 // is final there), the order pass over it and the rest; their late samples'
@@ -1011,7 +1059,8 @@ void forwardDraws(const TileFrame& frame, TileScratch& s) {
     if (inDepthOrder && !ordered) {
       ordered = true;
       s.blended.begin(frame.samples.count, frame.depthGreater);
-      for (std::size_t j = i; j < s.forward.size(); ++j) {
+      const bool inOrder = blendedArriveFarToNear(frame, s, i);
+      for (std::size_t j = i; j < s.forward.size() && !inOrder; ++j) {
         const TileTriangle& later = s.forward[j];
         const ShadeState& laterShade = frame.draws[later.draw].shade;
         if (!composedInDepthOrder(laterShade)) continue;
