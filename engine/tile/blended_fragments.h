@@ -11,6 +11,9 @@
 // samples where a fragment arrives strictly behind the one before it
 // ("late"); the shading pass blends the other samples' fragments at once and
 // keeps only the late samples' fragments here. The two give the same bits.
+// A tile whose blended triangles' depth ranges show that each arrives
+// nowhere behind those before it has no late sample and skips the first
+// pass (tile_stage.cpp blendedArriveFarToNear).
 //
 // Every kept fragment is an affine step on what lies behind it,
 // dst' = color + keep * dst (premultiplied "over": color = rgb*a and a,
