@@ -2,6 +2,7 @@
 // compositing them, and merging when a sample is over its budget.
 #include "tile/blended_fragments.h"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 
@@ -47,14 +48,26 @@ void BlendedFragments::begin(int planes, bool depthGreater) {
     slots_ = slots;
     count_.assign(slots, 0);
     touchedCount_ = 0;
+    latest_.resize(slots);
+    late_.assign(slots, 0.0f);
+    lateMarked_ = false;
   }
   clearTouched();
   depthGreater_ = depthGreater;
-  // Before the first fragment, any depth is "not behind": the far end.
-  latest_.assign(slots, depthGreater ? -std::numeric_limits<float>::infinity()
-                                     : std::numeric_limits<float>::infinity());
-  late_.assign(slots, 0.0f);
+  // Only after an order pass: a tile that skips it (most of a frame whose
+  // blended layers arrive far to near) writes neither list, where clearing
+  // both was 512 KiB a tile at 16 samples.
+  if (lateMarked_) std::fill(late_.begin(), late_.end(), 0.0f);
+  lateMarked_ = false;
   covered_.assign(TileBuffers::kPixels, 0u);
+}
+
+void BlendedFragments::beginOrderPass() {
+  // Before the first fragment, any depth is "not behind": the far end.
+  std::fill(latest_.begin(), latest_.end(),
+            depthGreater_ ? -std::numeric_limits<float>::infinity()
+                          : std::numeric_limits<float>::infinity());
+  lateMarked_ = true;
 }
 
 void BlendedFragments::add(int plane, int index, std::uint32_t lanes, const float* depth,

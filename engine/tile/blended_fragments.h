@@ -54,6 +54,11 @@ class BlendedFragments {
   void begin(int planes, bool depthGreater);
   bool empty() const { return touchedCount_ == 0; }
 
+  // Before the tile's order pass (tile_stage.cpp skips it where no sample
+  // can be late): every sample's latest depth at the far end. Without it the
+  // tile's samples are none of them late.
+  void beginOrderPass();
+
   // Per sample of plane `plane`, in TileBuffers order: the depth of the
   // latest fragment the order pass saw, and 1 where a fragment arrived
   // strictly behind the one before it (its fragments are kept here), else 0.
@@ -103,6 +108,7 @@ class BlendedFragments {
   std::unique_ptr<std::uint32_t[]> touched_;
   std::size_t touchedCount_ = 0;
   std::vector<float> latest_, late_;    // per slot, for the order pass
+  bool lateMarked_ = false;             // an order pass ran since late_ was cleared
   std::vector<std::uint32_t> covered_;  // per pixel
   bool depthGreater_ = false;
 };

@@ -1060,6 +1060,7 @@ void forwardDraws(const TileFrame& frame, TileScratch& s) {
       ordered = true;
       s.blended.begin(frame.samples.count, frame.depthGreater);
       const bool inOrder = blendedArriveFarToNear(frame, s, i);
+      if (!inOrder) s.blended.beginOrderPass();
       for (std::size_t j = i; j < s.forward.size() && !inOrder; ++j) {
         const TileTriangle& later = s.forward[j];
         const ShadeState& laterShade = frame.draws[later.draw].shade;
