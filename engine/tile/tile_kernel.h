@@ -158,6 +158,17 @@ struct TileKernels {
                               const SamplePattern& pattern, TileBuffers* samplePlanes);
   // Shading pass: the colour of every pixel of the run, all of one draw.
   void (*shade)(const ShadeState& shade, const ShadeRun& run, TileBuffers& tile);
+  // Whole-plane loops over a multisampled tile (one TileBuffers a sample),
+  // here so that they compile for the ISA: in the tile stage they were
+  // SSE2, a sixth of alpha-quads' 16-sample frame. copyAgreeingSamples:
+  // plane 0's colour to the other planes where differs[pixel] is 0.
+  // averageSamples: the samples' mean into plane 0's colour, summed pairwise
+  // (planes k and k + w for w = 1, 2, 4, ...), as the shading pass sums a
+  // pixel's jobs, so samples of one colour average to that colour.
+  // nearestSampleDepth: each pixel's nearest sample's depth into plane 0.
+  void (*copyAgreeingSamples)(TileBuffers* planes, int samples, const std::uint32_t* differs);
+  void (*averageSamples)(TileBuffers* planes, int samples);
+  void (*nearestSampleDepth)(TileBuffers* planes, int samples, bool depthGreater);
   // The lod and anisotropy AOVs of a textured draw's jobs (each at its
   // tile-local position with its own triangle's planes, rebased as the
   // shading pass's): the footprint the shading pass takes there and the

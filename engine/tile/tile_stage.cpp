@@ -722,7 +722,7 @@ void wholePixelsOfOneColour(const TileFrame& frame, TileDrawShading shading, Til
 }
 
 // Pixel p's colour from its samples' (premultiplied RGBA), kResolve: box
-// filtered into plane 0, summed pairwise as averageSamples sums the planes
+// filtered into plane 0, summed pairwise as TileKernels::averageSamples sums the planes
 // (the same bits); else each into its own plane.
 template <int kSamples, bool kResolve>
 void writeSampleColors(float (&value)[4][kSamples], std::uint16_t p, TileBuffers* planes) {
@@ -744,7 +744,7 @@ void writeSampleColors(float (&value)[4][kSamples], std::uint16_t p, TileBuffers
 // this ran no faster than the loop over each job's samples it replaced,
 // though cachegrind put a mispredict a pixel in that loop). kResolve:
 // straight to their box-filtered colour in plane 0, summed pairwise as
-// averageSamples sums the planes (the same bits), the other planes' colours
+// TileKernels::averageSamples sums the planes (the same bits), the other planes' colours
 // never written nor read (dense-mesh at 4 samples: the resolve stage 5.3 ->
 // 3.0 ms a frame at 1 thread, where it is 3.3 at one sample).
 template <int kSamples, bool kSorted, bool kResolve>
@@ -888,21 +888,8 @@ void shadePixels(const TileFrame& frame, const TileKernels& kernels, TileScratch
 // of the pixels whose samples agree copied to the other planes, and every
 // pixel resolved from all its samples.
 void fillSamplePlanes(const TileFrame& frame, TileScratch& s) {
-  const std::uint32_t* const differs = s.sampleDiffers.data();
-  for (int k = 1; k < frame.samples.count; ++k)
-    for (int c = 0; c < 4; ++c) {
-      const float* __restrict from = s.planes[0].color[c];
-      float* __restrict to = s.planes[k].color[c];
-      // A select on the bits, not a conditional store or a float select, so
-      // it vectorizes on the baseline ISA (a branch per pixel made
-      // alpha-quads' 16-sample frame 1.8x slower than shading every sample;
-      // the float select ran scalar, 2.4 instructions a pixel).
-      for (int p = 0; p < TileBuffers::kPixels; ++p) {
-        const std::uint32_t fromPlane0 = differs[p] == 0 ? ~0u : 0u;
-        to[p] = std::bit_cast<float>((std::bit_cast<std::uint32_t>(from[p]) & fromPlane0) |
-                                     (std::bit_cast<std::uint32_t>(to[p]) & ~fromPlane0));
-      }
-    }
+  frame.kernels.wide->copyAgreeingSamples(s.planes.get(), frame.samples.count,
+                                          s.sampleDiffers.data());
   s.allMixed = true;
 }
 
@@ -918,39 +905,6 @@ void shadingPass(const TileFrame& frame, const TileKernels& kernels, TileScratch
     TileBuffers& plane = s.planes[k];
     rebaseShadePlanes(frame.draws, plane, shadingOffset(frame.samples, k), allOneColour, s);
     shadePlane(frame.draws, kernels, plane.visible, plane, s);
-  }
-}
-
-// The samples' pixel box filter into plane 0, every plane holding its
-// samples' colours: the mean of the samples, summed pairwise as
-// writeJobColors sums a pixel's (so samples of one colour average to exactly
-// that colour).
-void averageSamples(const TileFrame& frame, TileScratch& s) {
-  const int samples = frame.samples.count;
-  TileBuffers* const planes = s.planes.get();
-  const float weight = 1.0f / float(samples);  // a power of two: exact
-  for (int width = 1; width < samples; width *= 2)
-    for (int k = 0; k + width < samples; k += 2 * width)
-      for (int c = 0; c < 4; ++c) {
-        float* sum = planes[k].color[c];
-        const float* add = planes[k + width].color[c];
-        for (int p = 0; p < TileBuffers::kPixels; ++p) sum[p] += add[p];
-      }
-  for (int c = 0; c < 4; ++c)
-    for (int p = 0; p < TileBuffers::kPixels; ++p) planes[0].color[c][p] *= weight;
-}
-
-// Every filter's depth: the pixel's nearest sample's, into plane 0.
-void nearestSampleDepth(const TileFrame& frame, TileScratch& s) {
-  const TileBuffers* const planes = s.planes.get();
-  const int samples = frame.samples.count;
-  float* const nearest = s.planes[0].depth;
-  for (int k = 1; k < samples; ++k) {
-    const float* depth = planes[k].depth;
-    if (frame.depthGreater)
-      for (int p = 0; p < TileBuffers::kPixels; ++p) nearest[p] = std::max(nearest[p], depth[p]);
-    else
-      for (int p = 0; p < TileBuffers::kPixels; ++p) nearest[p] = std::min(nearest[p], depth[p]);
   }
 }
 
@@ -1101,9 +1055,10 @@ void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame
                       perPixel ? s.sampleDiffers.data() : nullptr, s.filter, out);
   } else {
     if (frame.coverage) boxCoverage(s.planes.get(), samples, frame.clearDepth, out);
-    if (samples > 1 && s.allMixed) averageSamples(frame, s);
+    if (samples > 1 && s.allMixed) frame.kernels.wide->averageSamples(s.planes.get(), samples);
   }
-  if (samples > 1) nearestSampleDepth(frame, s);
+  if (samples > 1)
+    frame.kernels.wide->nearestSampleDepth(s.planes.get(), samples, frame.depthGreater);
 }
 
 // The lod and anisotropy AOVs (README "AOVs"): per pixel, the nearest
