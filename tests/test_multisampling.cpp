@@ -4,10 +4,12 @@
 // sample is shaded.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -238,6 +240,58 @@ TEST(Multisampling, BlendedDrawsAreShadedOncePerPixel) {
         samples, perPixel, perSample);
     EXPECT_GT(perPixel, 0.8) << samples << " samples";
     EXPECT_LT(perSample, 0.2) << samples << " samples";
+  }
+}
+
+// A blended pixel whose samples its triangle covers only in part is shaded
+// at the mean of those samples, inside the triangle, never at the pixel
+// centre outside it. Small blended triangles of opaque red, green and blue
+// corners (a colour gradient of up to 0.2 a pixel) over a transparent
+// clear: each pixel's resolved colour over its resolved alpha is the colour
+// shaded there, which interpolation inside the triangle keeps within
+// [0, 1] in every channel; shaded half a pixel outside, an edge pixel's
+// colour would leave it by up to 0.1.
+TEST(Multisampling, BlendedEdgePixelsAreShadedInsideTheirTriangles) {
+  Scene scene;
+  scene.name = "blended-gradients";
+  Material material;
+  material.alphaMode = AlphaMode::Blend;
+  material.doubleSided = true;
+  scene.materials = {material};
+  Mesh mesh;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> at(8.0, 248.0), size(5.0, 12.0);
+  for (int n = 0; n < 60; ++n) {
+    const double x = at(rng), y = at(rng), w = size(rng), h = size(rng);
+    const auto base = std::uint32_t(mesh.positions.size());
+    mesh.positions.push_back(worldFromWindow(x, y));
+    mesh.positions.push_back(worldFromWindow(x + w, y + 0.3 * h));
+    mesh.positions.push_back(worldFromWindow(x + 0.4 * w, y + h));
+    mesh.colors.insert(mesh.colors.end(), {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}});
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+  }
+  mesh.material = 0;
+  scene.meshes.push_back(std::move(mesh));
+  scene.instances.push_back({0, glm::mat4(1.0f)});
+  scene.cameras.push_back(pixelExactCamera());
+  for (const int samples : {4, 16}) {
+    RenderSettings settings;
+    settings.width = settings.height = kPixelExactSize;
+    settings.samples = samples;
+    const Frame frame = renderOnce(scene, scene.cameras[0], settings);
+    std::size_t edge = 0;
+    float worst = 0.0f;  // how far outside [0, 1] a shaded channel lies
+    for (std::size_t p = 0; p < frame.rgba.size(); p += 4) {
+      const float alpha = frame.rgba[p + 3];
+      if (alpha <= 0.0f) continue;
+      edge += alpha < 1.0f;
+      for (int c = 0; c < 3; ++c) {
+        const float shaded = frame.rgba[p + std::size_t(c)] / alpha;
+        worst = std::max({worst, -shaded, shaded - 1.0f});
+      }
+    }
+    EXPECT_GT(edge, 1000u) << samples << " samples: the case is there";
+    EXPECT_LT(worst, 1e-5f) << samples << " samples";
   }
 }
 
