@@ -100,7 +100,7 @@ TEST(DepthPrecision, EachSampleDepthRoundsAsThePlaneMovedThenRebased) {
       tile->originY = (t.minY + trial % 64) / kTileSize * kTileSize;
       float atSamples[kMaxSamples];
       withSampleCount(samples, [&](auto count) {
-        sampleDepthsInTile<decltype(count)::value>(plane, pattern, t, *tile, atSamples);
+        sampleDepthsInTile(plane, pattern, t, *tile, decltype(count)::value, atSamples);
       });
       for (int k = 0; k < samples; ++k) {
         // volatile: the moved plane's depth is rounded to float before it

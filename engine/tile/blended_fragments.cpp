@@ -59,7 +59,7 @@ void BlendedFragments::begin(int planes, bool depthGreater) {
   // both was 512 KiB a tile at 16 samples.
   if (lateMarked_) std::fill(late_.begin(), late_.end(), 0.0f);
   lateMarked_ = false;
-  covered_.assign(TileBuffers::kPixels, 0u);
+  if (covered_.empty()) covered_.assign(TileBuffers::kPixels, 0u);  // zero from then on
 }
 
 void BlendedFragments::beginOrderPass() {

@@ -68,8 +68,8 @@ class BlendedFragments {
 
   // Per pixel, in TileBuffers order, bit k for sample k: the samples the
   // triangle being shaded per pixel covers (TileKernels::coverBlended). Zero
-  // from begin on, and again after each triangle (shadeBlendedPixels clears
-  // what it reads).
+  // between triangles: shadeBlendedPixels clears every word coverBlended set
+  // (the triangle's box), so it is zeroed only when first allocated.
   std::uint32_t* covered() { return covered_.data(); }
 
   // Adds a lane group's fragments to sample plane `plane`: for each lane k

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 
 #include "setup/triangle_record.h"
@@ -71,14 +72,26 @@ struct SampleDepths {
   }
 };
 
-// c[k] for each of the pattern's kSamples samples (2 to 16), as SampleDepths.
-template <int kSamples>
+// c[k] for each of the pattern's first `samples` samples (an even count, 2
+// to 16), as SampleDepths; inlined, a constant count unrolls.
 QUADRA_DOUBLE_PAIR_INLINE void sampleDepthsInTile(const Plane& depth, const SamplePattern& pattern,
                                                   const TriangleRecord& t, const TileBuffers& tile,
-                                                  float* c) {
+                                                  int samples, float* c) {
   const SampleDepths depths(depth, t, tile);
-  for (int k = 0; k < kSamples; k += 2)
+  for (int k = 0; k < samples; k += 2)
     _mm_storel_pi(reinterpret_cast<__m64*>(c + k), depths.pair(pattern, k));
+}
+
+// How far a float evaluation of a depth plane may stray from the exact
+// plane within `span` pixels of where c holds: 2^-20 of the plane's largest
+// term, far past the roundings of rebasing it and of its lane evaluation.
+// A constant plane evaluates exactly (c + 0x + 0y): no margin, so coplanar
+// layers at one depth (orthographic scenes, camera-facing quads) stay
+// apart. Hierarchical depth and the blended order pass's skip widen depth
+// ranges by it.
+inline double depthPlaneMargin(double c, double dx, double dy, double span) {
+  if (dx == 0.0 && dy == 0.0) return 0.0;
+  return (std::abs(c) + span * (std::abs(dx) + std::abs(dy))) * 0x1p-20 + 1e-37;
 }
 
 // Shading planes of a tile's triangles, rebased to the tile (the value at

@@ -649,11 +649,8 @@ class BlockDepthTest {
     const double span = kBlockSize - 1;
     low_ = std::min(0.0, z_.dx * span) + std::min(0.0, z_.dy * span);
     high_ = std::max(0.0, z_.dx * span) + std::max(0.0, z_.dy * span);
-    // A constant plane evaluates exactly (c + 0x + 0y): no margin, so coplanar
-    // layers at one depth (orthographic scenes) hide each other's blocks.
-    if (z_.dx != 0.0 || z_.dy != 0.0)
-      margin_ =
-          (std::abs(z_.c) + kTileSize * (std::abs(z_.dx) + std::abs(z_.dy))) * 0x1p-20 + 1e-37;
+    // Coplanar layers at one depth hide each other's blocks: no margin there.
+    margin_ = depthPlaneMargin(z_.c, z_.dx, z_.dy, kTileSize);
   }
 
   // Whether the triangle fails the depth test at every sample of the block
@@ -1085,10 +1082,8 @@ void shadeBlendedPixelsWith(const TriangleRecord& t, const Plane* p, const Shade
   const int samples = pattern.count;
   // Each sample's depth plane rebased to the tile, as the planes at that
   // sample's own pass rebase it (SampleDepths: the same bits).
-  alignas(16) float depthC[kMaxSamples];
-  const SampleDepths depths(p[0], t, tile);
-  for (int k = 0; k < samples; k += 2)
-    _mm_storel_pi(reinterpret_cast<__m64*>(depthC + k), depths.pair(pattern, k));
+  float depthC[kMaxSamples];
+  sampleDepthsInTile(p[0], pattern, t, tile, samples, depthC);
   std::int32_t* const covered = reinterpret_cast<std::int32_t*>(fragments.covered());
   const F allSamples(float((1 << samples) - 1));
   for (int gy = box.yBegin & ~1; gy < box.yEnd; gy += 2) {
@@ -1194,7 +1189,7 @@ int visibilitySmallAtSamples(const TriangleRecord& t, const Plane* p, const Shad
   TilePlane z[kSamples];
   BlockDepthTest depthTest[kSamples];
   float depthC[kSamples];
-  sampleDepthsInTile<kSamples>(p[0], pattern, t, tile, depthC);
+  sampleDepthsInTile(p[0], pattern, t, tile, kSamples, depthC);
   for (int k = 0; k < samples; ++k) {
     const SampleOffset o = pattern.offsets[k];
     for (int e = 0; e < 3; ++e) shift[k][e] = t.edges[e].sampleShift(o);

@@ -955,9 +955,7 @@ void forEachSample(const TileFrame& frame, const TileTriangle& t, int planeCount
 
 // The range a triangle's depth takes over its part of the tile, widened by
 // a pixel each way (a sample lies within half a pixel of its centre) and by
-// 2^-20 of the plane's largest term (far past the float roundings of the
-// per-sample planes and lanes, as BlockDepthTest's margin); a constant
-// plane evaluates exactly and takes no margin.
+// depthPlaneMargin (the per-sample planes' and lanes' float roundings).
 struct DepthRange {
   double low, high;
 };
@@ -971,11 +969,8 @@ DepthRange depthRangeInTile(const TileTriangle& t, const TileBuffers& tile) {
   const double dx = z.dx, dy = z.dy, c = z.c;
   const double low = c + std::min(dx * x0, dx * x1) + std::min(dy * y0, dy * y1);
   const double high = c + std::max(dx * x0, dx * x1) + std::max(dy * y0, dy * y1);
-  if (dx == 0.0 && dy == 0.0) return {low, high};
-  const double margin = (std::abs(c) + std::abs(dx) * std::max(std::abs(x0), std::abs(x1)) +
-                         std::abs(dy) * std::max(std::abs(y0), std::abs(y1))) *
-                            0x1p-20 +
-                        1e-37;
+  const double margin = depthPlaneMargin(
+      c, dx, dy, std::max({std::abs(x0), std::abs(x1), std::abs(y0), std::abs(y1)}));
   return {low - margin, high + margin};
 }
 
