@@ -18,6 +18,7 @@
 #include "lab/scene/builtin_scenes.h"
 #include "render_helpers.h"
 #include "tile/blended_fragments.h"
+#include "tile/tile_kernel.h"
 
 namespace quadra {
 namespace {
@@ -56,7 +57,7 @@ glm::dvec4 throughStore(const std::vector<Layer>& layers, glm::vec4 base, bool d
     const float keep = 1.0f - a;
     store.add(1, kPixel, 1u, &l.depth, color, &keep);  // lane 0 alone
   }
-  store.composite(planes);
+  tileKernels(Isa::Scalar).compositeBlended(store, planes);
   EXPECT_TRUE(store.empty());
   glm::dvec4 out;
   for (int c = 0; c < 4; ++c) out[c] = planes[1].color[c][kPixel];
@@ -114,6 +115,59 @@ TEST(BlendedFragments, BeyondTheBudgetFrontToBackStaysExact) {
   }
 }
 
+// A lane group's samples are sorted at once (compositeBlended): samples
+// holding from none to over the budget of fragments side by side, with
+// equal depths among them, composite as each alone would, on every ISA and
+// to the same bits.
+TEST(BlendedFragments, ALaneGroupOfMixedCountsCompositesAlikeOnEveryIsa) {
+  constexpr int kGroup = BlendedFragments::kGroupSlots, kFirst = 3 * kGroup, kPlane = 1;
+  std::mt19937 rng(17);
+  std::vector<std::vector<Layer>> perSample(kGroup);
+  for (int k = 0; k < kGroup; ++k) {
+    perSample[std::size_t(k)] = randomLayers(k % 11, rng);  // 0 to 10: over the budget of 8
+    if (k % 3 == 0 && perSample[std::size_t(k)].size() > 2)
+      perSample[std::size_t(k)][1].depth = perSample[std::size_t(k)][0].depth;
+  }
+  const glm::vec4 base(0.3f, 0.6f, 0.1f, 1.0f);
+  static TileBuffers planes[2];
+  std::vector<float> firstIsa;
+  for (const Isa isa : {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+    if (!isaSupported(isa)) continue;
+    BlendedFragments store;
+    store.begin(2, false);
+    for (int k = 0; k < kGroup; ++k)
+      for (int c = 0; c < 4; ++c) planes[kPlane].color[c][kFirst + k] = base[c];
+    // Arrival interleaved across the samples, as a triangle's pixels in turn.
+    for (std::size_t layer = 0; layer < 10; ++layer)
+      for (int k = 0; k < kGroup; ++k) {
+        if (layer >= perSample[std::size_t(k)].size()) continue;
+        const Layer& l = perSample[std::size_t(k)][layer];
+        const float a = l.color.a, keep = 1.0f - a;
+        const float premultiplied[4] = {l.color.r * a, l.color.g * a, l.color.b * a, a};
+        const float* const color[4] = {&premultiplied[0], &premultiplied[1], &premultiplied[2],
+                                       &premultiplied[3]};
+        store.add(kPlane, kFirst + k, 1u, &l.depth, color, &keep);
+      }
+    tileKernels(isa).compositeBlended(store, planes);
+    EXPECT_TRUE(store.empty());
+    std::vector<float> out;
+    for (int k = 0; k < kGroup; ++k) {
+      glm::dvec4 got;
+      for (int c = 0; c < 4; ++c)
+        out.push_back(float(got[c] = planes[kPlane].color[c][kFirst + k]));
+      const std::vector<Layer>& layers = perSample[std::size_t(k)];
+      EXPECT_EQ(got, throughStore(layers, base, false)) << "sample " << k << ", isa " << int(isa);
+      if (layers.size() <= std::size_t(BlendedFragments::kMaxPerSample)) {  // else merged
+        EXPECT_LT(largestDifference(got, exactOver(layers, base, false)), 1e-6)
+            << "sample " << k << ", " << layers.size() << " layers, isa " << int(isa);
+      }
+    }
+    if (firstIsa.empty()) firstIsa = out;
+    EXPECT_EQ(std::memcmp(out.data(), firstIsa.data(), out.size() * sizeof(float)), 0)
+        << "isa " << int(isa);
+  }
+}
+
 // One store serves a worker's tiles in turn, at whatever plane count each
 // frame has: what one tile kept must not reach the next.
 TEST(BlendedFragments, AReusedStoreStartsEachTileEmpty) {
@@ -142,7 +196,7 @@ TEST(BlendedFragments, AReusedStoreStartsEachTileEmpty) {
     for (int c = 0; c < 4; ++c) planes[plane].color[c][9] = 0.25f;
     const std::vector<Layer> layers = randomLayers(5, rng);
     addLayers(plane, layers);
-    reused.composite(planes);
+    tileKernels(Isa::Scalar).compositeBlended(reused, planes);
     const glm::dvec4 expected = exactOver(layers, glm::dvec4(0.25), false);
     for (int c = 0; c < 4; ++c)
       EXPECT_NEAR(planes[plane].color[c][9], expected[c], 1e-6) << planeCount << " planes";

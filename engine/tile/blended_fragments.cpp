@@ -1,5 +1,6 @@
-// The per-sample fragment store's slow parts: sorting a sample's fragments,
-// compositing them, and merging when a sample is over its budget.
+// The per-sample fragment store: adding fragments, and merging when a sample
+// is over its budget. Compositing is a tile kernel (compositeBlended), which
+// sorts a lane group's samples at once.
 #include "tile/blended_fragments.h"
 
 #include <algorithm>
@@ -40,19 +41,25 @@ void sortKeys(std::uint64_t* keys, int n) {
 void BlendedFragments::begin(int planes, bool depthGreater) {
   const std::size_t slots = std::size_t(planes) * TileBuffers::kPixels;
   if (slots_ != slots) {
-    // Zeroed, so every page is resident from the first tile: a store kept
-    // from frame to frame (TileWorkspace) would otherwise take a few more
-    // pages each frame, as fragments reach layers the tiles before did not.
-    layers_.reset(new BlendedFragment[kMaxPerSample * slots]());
-    touched_.reset(new std::uint32_t[slots]);
+    // Each field plane padded by a cache line: unpadded, a fragment's six
+    // fields sit a multiple of 16 KiB apart and alias in the L1 sets (as
+    // TileBuffers::kPlaneStride). Zeroed, so every page is resident from the
+    // first tile: a store kept from frame to frame (TileWorkspace) would
+    // otherwise take a few more pages each frame, as fragments reach layers
+    // the tiles before did not.
+    const std::size_t stride = slots + 16;
+    const std::size_t floats = std::size_t(kMaxPerSample) * kFields * stride;
+    layers_.reset(new (std::align_val_t(64)) float[floats]());
     slots_ = slots;
+    fieldStride_ = stride;
     count_.assign(slots, 0);
-    touchedCount_ = 0;
+    touched_.assign((slots / kGroupSlots + 63) / 64, 0);
+    anyTouched_ = false;
     latest_.resize(slots);
     late_.assign(slots, 0.0f);
     lateMarked_ = false;
   }
-  clearTouched();
+  clear();
   depthGreater_ = depthGreater;
   // Only after an order pass: a tile that skips it (most of a frame whose
   // blended layers arrive far to near) writes neither list, where clearing
@@ -73,74 +80,59 @@ void BlendedFragments::beginOrderPass() {
 void BlendedFragments::add(int plane, int index, std::uint32_t lanes, const float* depth,
                            const float* const color[4], const float* keep) {
   // Locals, not members: the counts' byte stores may alias anything.
-  BlendedFragment* const layers = layers_.get();
+  float* const layers = layers_.get();
   std::uint8_t* const counts = count_.data();
-  const std::size_t slots = slots_;
+  const std::size_t stride = fieldStride_;
   const std::uint32_t first = std::uint32_t(plane * TileBuffers::kPixels + index);
+  markTouched(first);  // a lane group lies within one group of slots
   for (; lanes != 0; lanes &= lanes - 1) {
     const int k = __builtin_ctz(lanes);
     const std::uint32_t slot = first + std::uint32_t(k);
     const int count = counts[slot];
     if (count == kMaxPerSample) {
       addBeyondBudget(slot,
-                      {depth[k], {color[0][k], color[1][k], color[2][k], color[3][k]}, keep[k]});
+                      {depth[k], color[0][k], color[1][k], color[2][k], color[3][k], keep[k]});
       continue;
     }
-    if (count == 0) touched_[touchedCount_++] = slot;
     counts[slot] = std::uint8_t(count + 1);
-    // Field by field: a fragment built whole on the stack and copied was
-    // read back before its parts' stores could forward (perf: most of add).
-    BlendedFragment& f = layers[std::size_t(count) * slots + slot];
-    f.depth = depth[k];
-    for (int c = 0; c < 4; ++c) f.color[c] = color[c][k];
-    f.keep = keep[k];
+    float* const f = layers + std::size_t(count) * kFields * stride + slot;
+    f[kDepth * stride] = depth[k];
+    for (int c = 0; c < 4; ++c) f[(kRed + c) * stride] = color[c][k];
+    f[kKeep * stride] = keep[k];
   }
 }
 
-void BlendedFragments::addBeyondBudget(std::uint32_t slot, const BlendedFragment& newest) {
+void BlendedFragments::addBeyondBudget(std::uint32_t slot, const float (&newest)[kFields]) {
   // The sample's fragments and the newcomer, the newest, far to near.
   constexpr int n = kMaxPerSample + 1;
-  BlendedFragment arrived[n];
+  float arrived[n][kFields];
   std::uint64_t keys[n];
-  for (int k = 0; k < kMaxPerSample; ++k) arrived[k] = at(k, slot);
-  arrived[kMaxPerSample] = newest;
-  for (int k = 0; k < n; ++k) keys[k] = farToNearKey(arrived[k].depth, k, depthGreater_);
+  for (int k = 0; k < kMaxPerSample; ++k)
+    for (int f = 0; f < kFields; ++f) arrived[k][f] = at(k, f, slot);
+  for (int f = 0; f < kFields; ++f) arrived[kMaxPerSample][f] = newest[f];
+  for (int k = 0; k < n; ++k) keys[k] = farToNearKey(arrived[k][kDepth], k, depthGreater_);
   sortKeys(keys, n);
   // The two farthest become one step: the nearer applied after the farther.
-  const BlendedFragment& farthest = arrived[keys[0] & kArrivalMask];
-  BlendedFragment merged = arrived[keys[1] & kArrivalMask];
-  for (int c = 0; c < 4; ++c) merged.color[c] += merged.keep * farthest.color[c];
-  merged.keep *= farthest.keep;
+  const float* const farthest = arrived[keys[0] & kArrivalMask];
+  float merged[kFields];
+  std::copy_n(arrived[keys[1] & kArrivalMask], kFields, merged);
+  for (int c = kRed; c <= kAlpha; ++c) merged[c] += merged[kKeep] * farthest[c];
+  merged[kKeep] *= farthest[kKeep];
   // Back into the sample's layers far to near, as if they had arrived in
   // that order, so later sorts keep this order among equal depths.
-  at(0, slot) = merged;
-  for (int k = 2; k < n; ++k) at(k - 1, slot) = arrived[keys[k] & kArrivalMask];
+  for (int f = 0; f < kFields; ++f) at(0, f, slot) = merged[f];
+  for (int k = 2; k < n; ++k)
+    for (int f = 0; f < kFields; ++f) at(k - 1, f, slot) = arrived[keys[k] & kArrivalMask][f];
 }
 
-void BlendedFragments::composite(TileBuffers* planes) {
-  const std::size_t touched = touchedCount_;  // a local: the colour stores may alias it
-  for (std::size_t i = 0; i < touched; ++i) {
-    const std::uint32_t slot = touched_[i];
-    const int n = count_[slot];
-    std::uint64_t keys[kMaxPerSample];
-    for (int k = 0; k < n; ++k) keys[k] = farToNearKey(at(k, slot).depth, k, depthGreater_);
-    sortKeys(keys, n);
-    TileBuffers& plane = planes[slot / TileBuffers::kPixels];
-    const int pixel = int(slot % TileBuffers::kPixels);
-    float dst[4] = {plane.color[0][pixel], plane.color[1][pixel], plane.color[2][pixel],
-                    plane.color[3][pixel]};
-    for (int k = 0; k < n; ++k) {
-      const BlendedFragment& f = at(int(keys[k] & kArrivalMask), slot);
-      for (int c = 0; c < 4; ++c) dst[c] = f.color[c] + dst[c] * f.keep;
+void BlendedFragments::clear() {
+  for (std::size_t w = 0; w < touched_.size() && anyTouched_; ++w)
+    for (std::uint64_t bits = touched_[w]; bits != 0; bits &= bits - 1) {
+      const std::size_t group = w * 64 + std::size_t(__builtin_ctzll(bits));
+      std::fill_n(count_.begin() + std::ptrdiff_t(group * kGroupSlots), kGroupSlots, 0);
     }
-    for (int c = 0; c < 4; ++c) plane.color[c][pixel] = dst[c];
-  }
-  clearTouched();
-}
-
-void BlendedFragments::clearTouched() {
-  for (std::size_t i = 0; i < touchedCount_; ++i) count_[touched_[i]] = 0;
-  touchedCount_ = 0;
+  std::fill(touched_.begin(), touched_.end(), 0);
+  anyTouched_ = false;
 }
 
 }  // namespace quadra

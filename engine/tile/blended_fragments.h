@@ -23,36 +23,38 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 #include <vector>
 
 #include "tile/tile_buffers.h"
 
 namespace quadra {
 
-struct BlendedFragment {
-  float depth;
-  float color[4];  // premultiplied R, G, B and A it adds
-  float keep;      // the fraction of what lies behind that shows through
-};
-
 class BlendedFragments {
  public:
   // The budget: a sample holds at most this many fragments. A further one
   // merges the sample's two farthest into one step (exact unless a later
   // fragment falls between those two). The store is kMaxPerSample layers of
-  // one fragment per sample, fragment k of a sample in layer k: planes *
-  // kPixels * kMaxPerSample fragments of 24 bytes, allocated and zeroed
-  // once for a plane count, plus 17 bytes a sample for the counts, the
-  // touched list, the order pass and the covered samples (4 bytes a pixel,
-  // counted per sample).
+  // one fragment per sample, fragment k of a sample in layer k, each layer
+  // kFields planes of one float per sample slot (structure of arrays, so a
+  // lane group's fragments of one layer load as one register each):
+  // planes * kPixels * kMaxPerSample fragments of 24 bytes, allocated and
+  // zeroed once for a plane count, plus 13 bytes a sample for the counts,
+  // the order pass and the covered samples (4 bytes a pixel, counted per
+  // sample), and a bit per kGroupSlots samples for the touched groups.
   static constexpr int kMaxPerSample = 8;
-  static constexpr std::size_t kBytesPerSample = kMaxPerSample * sizeof(BlendedFragment) + 17;
+  enum Field { kDepth, kRed, kGreen, kBlue, kAlpha, kKeep, kFields };
+  static constexpr std::size_t kBytesPerSample = kMaxPerSample * kFields * sizeof(float) + 13;
+  // Fragments are tracked, composited and cleared by groups of this many
+  // consecutive slots: a lane group of every ISA lies within one.
+  static constexpr int kGroupSlots = 16;
 
   // Empty, for a tile of `planes` samples per pixel, before its first
   // blended triangle. depthGreater: reversed depth, where the far fragments
   // hold the smaller depths.
   void begin(int planes, bool depthGreater);
-  bool empty() const { return touchedCount_ == 0; }
+  bool empty() const { return !anyTouched_; }
+  bool depthGreater() const { return depthGreater_; }
 
   // Before the tile's order pass (tile_stage.cpp skips it where no sample
   // can be late): every sample's latest depth at the far end. Without it the
@@ -80,33 +82,50 @@ class BlendedFragments {
   void add(int plane, int index, std::uint32_t lanes, const float* depth,
            const float* const color[4], const float* keep);
 
-  // Composites every kept sample's fragments over its colour in `planes`
-  // (one TileBuffers per sample plane), far to near; fragments at equal
-  // depths in the order they arrived. Leaves the store empty.
-  void composite(TileBuffers* planes);
+  // The layers as the kernels read and write them (deferOver adds a lane
+  // group's fragments of one layer at once; compositeBlended reads the store
+  // and then clears it). Slot s is sample plane s / kPixels, pixel s %
+  // kPixels. field(layer, f)[s]: field f of the sample's fragment `layer`
+  // (its arrival order, below counts()[s], how many it holds); 64-byte
+  // aligned, as TileBuffers' planes. A kernel that writes fragments of a
+  // lane group starting at slot s calls markTouched(s) too.
+  // touchedGroups(): bit g of word g / 64 set where slots [g * kGroupSlots,
+  // (g + 1) * kGroupSlots) may hold fragments; the others hold none.
+  const float* field(int layer, int f) const {
+    return &layers_[(std::size_t(layer) * kFields + std::size_t(f)) * fieldStride_];
+  }
+  float* field(int layer, int f) {
+    return &layers_[(std::size_t(layer) * kFields + std::size_t(f)) * fieldStride_];
+  }
+  const std::uint8_t* counts() const { return count_.data(); }
+  std::uint8_t* counts() { return count_.data(); }
+  void markTouched(std::size_t slot) {
+    touched_[slot / kGroupSlots / 64] |= std::uint64_t(1) << (slot / kGroupSlots % 64);
+    anyTouched_ = true;
+  }
+  const std::vector<std::uint64_t>& touchedGroups() const { return touched_; }
+  void clear();  // every kept sample's count back to 0: empty
 
  private:
-  // Fragment `layer` of sample slot (plane * kPixels + pixel). Layers rather
-  // than a pool of linked nodes: consecutive samples' fragments arrive
-  // together (a triangle's pixels in turn) and are composited together, and
-  // both then run along each layer, where walking per-sample lists through
-  // a shared pool was a chain of dependent loads, a quarter of
-  // intersecting-glass's frame (perf, 1 thread).
-  BlendedFragment& at(int layer, std::uint32_t slot) {
-    return layers_[std::size_t(layer) * slots_ + slot];
+  // Layers rather than a pool of linked nodes: consecutive samples'
+  // fragments arrive together (a triangle's pixels in turn) and are
+  // composited together, and both then run along each layer, where walking
+  // per-sample lists through a shared pool was a chain of dependent loads, a
+  // quarter of intersecting-glass's frame (perf, 1 thread).
+  float& at(int layer, int f, std::uint32_t slot) {
+    return layers_[(std::size_t(layer) * kFields + std::size_t(f)) * fieldStride_ + slot];
   }
-  const BlendedFragment& at(int layer, std::uint32_t slot) const {
-    return layers_[std::size_t(layer) * slots_ + slot];
-  }
-  void addBeyondBudget(std::uint32_t slot, const BlendedFragment& newest);
-  void clearTouched();  // every kept sample's count back to 0
+  void addBeyondBudget(std::uint32_t slot, const float (&newest)[kFields]);
 
-  std::unique_ptr<BlendedFragment[]> layers_;  // kMaxPerSample * slots_
-  std::size_t slots_ = 0;
-  std::vector<std::uint8_t> count_;  // per slot
-  // The slots holding fragments, in the order first touched: room for every slot.
-  std::unique_ptr<std::uint32_t[]> touched_;
-  std::size_t touchedCount_ = 0;
+  struct AlignedDelete {
+    void operator()(float* p) const { ::operator delete[](p, std::align_val_t(64)); }
+  };
+  // kMaxPerSample * kFields planes of fieldStride_ floats, 64-byte aligned.
+  std::unique_ptr<float[], AlignedDelete> layers_;
+  std::size_t slots_ = 0, fieldStride_ = 0;
+  std::vector<std::uint8_t> count_;     // per slot
+  std::vector<std::uint64_t> touched_;  // per kGroupSlots slots, a bit
+  bool anyTouched_ = false;
   std::vector<float> latest_, late_;    // per slot, for the order pass
   bool lateMarked_ = false;             // an order pass ran since late_ was cleared
   std::vector<std::uint32_t> covered_;  // per pixel

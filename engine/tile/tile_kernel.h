@@ -157,6 +157,11 @@ struct TileKernels {
   void (*shadeBlendedPixels)(const TriangleRecord& triangle, const Plane* planes,
                              const ShadeState& shade, const SamplePattern& pattern,
                              TileBuffers* samplePlanes, BlendedFragments& fragments);
+  // After a tile's last draw: every sample's kept fragments composited over
+  // its colour in `planes` (one TileBuffers per sample plane), far to near,
+  // fragments at equal depths in the order they arrived; a lane group's
+  // samples sorted at once. Leaves the store empty.
+  void (*compositeBlended)(BlendedFragments& fragments, TileBuffers* planes);
   // Visibility pass: coverage and depth test (and a masked draw's alpha
   // test); the samples the triangle wins get its depth and `id`. Returns
   // whether it won any.

@@ -425,6 +425,30 @@ QUADRA_LANE_INLINE void blendOver(const M& cover, const Rgba<L>& c, float* const
 // alpha, and 1 - alpha of what lies behind (the products blendOver forms).
 QUADRA_LANE_INLINE void deferOver(BlendedFragments& fragments, int plane, const M& cover,
                                   const F& zValue, const Rgba<L>& c, int index) {
+  // Mostly the covered samples hold as many fragments as each other (a
+  // triangle's neighbours arrived together): then the group's fragments go
+  // into that one layer as a register a field. Otherwise, or at the budget,
+  // lane by lane (BlendedFragments::add), as a field by field store per
+  // lane was a sixth of overlapping-glass's frame.
+  const std::uint32_t lanes = simd::bits(cover);
+  const std::size_t first = std::size_t(plane) * TileBuffers::kPixels + std::size_t(index);
+  std::uint8_t* const counts = fragments.counts() + first;
+  const int layer = counts[std::countr_zero(lanes)];
+  bool oneLayer = layer < BlendedFragments::kMaxPerSample;
+  for (std::uint32_t rest = lanes; rest != 0 && oneLayer; rest &= rest - 1)
+    oneLayer = counts[std::countr_zero(rest)] == layer;
+  if (oneLayer) {
+    const F fields[BlendedFragments::kFields] = {zValue,    c.r * c.a, c.g * c.a,
+                                                 c.b * c.a, c.a,       F(1.0f) - c.a};
+    for (int f = 0; f < BlendedFragments::kFields; ++f) {
+      float* const to = fragments.field(layer, f) + first;
+      simd::select(cover, fields[f], F::load_aligned(to)).store_aligned(to);
+    }
+    for (std::uint32_t rest = lanes; rest != 0; rest &= rest - 1)
+      counts[std::countr_zero(rest)] = std::uint8_t(layer + 1);
+    fragments.markTouched(first);
+    return;
+  }
   alignas(64) float z[L::kWidth], rgba[4][L::kWidth], keep[L::kWidth];
   zValue.store_aligned(z);
   (c.r * c.a).store_aligned(rgba[0]);
@@ -1599,6 +1623,104 @@ void nearestSampleDepth(TileBuffers* planes, int samples, bool depthGreater) {
   }
 }
 
+// One lane group's kept fragments (layers [0, N), N the most any of its
+// samples holds) sorted far to near per lane and composited over the group's
+// colour. Ascending keys: standard depth negated (its far fragments hold the
+// larger depths), equal depths by arrival (the layer). Layers a lane does
+// not hold sort first, at -inf, and are skipped.
+template <int N>
+void compositeLayers(const BlendedFragments& fragments, std::size_t slot, const F& count,
+                     float* const color[4]) {
+  using Field = BlendedFragments::Field;
+  F key[N], arrival[N], rgba[N][4], keep[N];
+  for (int k = 0; k < N; ++k) {
+    const F depth = F::load_aligned(fragments.field(k, Field::kDepth) + slot);
+    arrival[k] = F(float(k));
+    key[k] = simd::select(arrival[k] < count, fragments.depthGreater() ? depth : -depth,
+                          F(-std::numeric_limits<float>::infinity()));
+    for (int c = 0; c < 4; ++c)
+      rgba[k][c] = F::load_aligned(fragments.field(k, Field::kRed + c) + slot);
+    keep[k] = F::load_aligned(fragments.field(k, Field::kKeep) + slot);
+  }
+  const auto exchange = [](const M& where, F& a, F& b) {
+    const F low = simd::select(where, b, a);
+    b = simd::select(where, a, b);
+    a = low;
+  };
+  // Odd-even transposition: N rounds of neighbour exchanges sort N keys.
+  for (int round = 0; round < N; ++round)
+    for (int k = round % 2; k + 1 < N; k += 2) {
+      const M later =
+          (key[k] > key[k + 1]) | ((key[k] == key[k + 1]) & (arrival[k] > arrival[k + 1]));
+      if (!simd::any(later)) continue;
+      exchange(later, key[k], key[k + 1]);
+      exchange(later, arrival[k], arrival[k + 1]);
+      for (int c = 0; c < 4; ++c) exchange(later, rgba[k][c], rgba[k + 1][c]);
+      exchange(later, keep[k], keep[k + 1]);
+    }
+  F dst[4];
+  for (int c = 0; c < 4; ++c) dst[c] = F::load_aligned(color[c]);
+  for (int k = 0; k < N; ++k) {
+    const M held = arrival[k] < count;
+    for (int c = 0; c < 4; ++c) dst[c] = simd::select(held, rgba[k][c] + dst[c] * keep[k], dst[c]);
+  }
+  for (int c = 0; c < 4; ++c) dst[c].store_aligned(color[c]);
+}
+
+void compositeBlended(BlendedFragments& fragments, TileBuffers* planes) {
+  constexpr int kGroupSlots = BlendedFragments::kGroupSlots;
+  static_assert(kGroupSlots % L::kWidth == 0);
+  const std::uint8_t* const counts = fragments.counts();
+  const std::vector<std::uint64_t>& touched = fragments.touchedGroups();
+  for (std::size_t w = 0; w < touched.size(); ++w)
+    for (std::uint64_t bits = touched[w]; bits != 0; bits &= bits - 1) {
+      const std::size_t group = w * 64 + std::size_t(std::countr_zero(bits));
+      for (std::size_t slot = group * kGroupSlots; slot < (group + 1) * kGroupSlots;
+           slot += L::kWidth) {
+        alignas(64) float held[L::kWidth];
+        int most = 0;
+        for (int k = 0; k < L::kWidth; ++k) {
+          held[k] = float(counts[slot + std::size_t(k)]);
+          most = std::max(most, int(counts[slot + std::size_t(k)]));
+        }
+        if (most == 0) continue;
+        TileBuffers& plane = planes[slot / TileBuffers::kPixels];
+        const std::size_t pixel = slot % TileBuffers::kPixels;
+        float* const color[4] = {plane.color[0] + pixel, plane.color[1] + pixel,
+                                 plane.color[2] + pixel, plane.color[3] + pixel};
+        const F count = F::load_aligned(held);
+        static_assert(BlendedFragments::kMaxPerSample == 8);
+        switch (most) {
+          case 1:
+            compositeLayers<1>(fragments, slot, count, color);
+            break;
+          case 2:
+            compositeLayers<2>(fragments, slot, count, color);
+            break;
+          case 3:
+            compositeLayers<3>(fragments, slot, count, color);
+            break;
+          case 4:
+            compositeLayers<4>(fragments, slot, count, color);
+            break;
+          case 5:
+            compositeLayers<5>(fragments, slot, count, color);
+            break;
+          case 6:
+            compositeLayers<6>(fragments, slot, count, color);
+            break;
+          case 7:
+            compositeLayers<7>(fragments, slot, count, color);
+            break;
+          default:
+            compositeLayers<8>(fragments, slot, count, color);
+            break;
+        }
+      }
+    }
+  fragments.clear();
+}
+
 void shade(const ShadeState& s, const ShadeRun& run, TileBuffers& tile) {
   withFeatures(s, [&]<class Feat>() {
     if constexpr (Feat::kAlpha != AlphaMode::Blend) {
@@ -1619,6 +1741,7 @@ const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
                                    &QUADRA_KERNEL_NAMESPACE::orderBlended,
                                    &QUADRA_KERNEL_NAMESPACE::coverBlended,
                                    &QUADRA_KERNEL_NAMESPACE::shadeBlendedPixels,
+                                   &QUADRA_KERNEL_NAMESPACE::compositeBlended,
                                    &QUADRA_KERNEL_NAMESPACE::visibility,
                                    &QUADRA_KERNEL_NAMESPACE::visibilityAtSamples,
                                    &QUADRA_KERNEL_NAMESPACE::shade,

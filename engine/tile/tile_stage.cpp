@@ -1036,7 +1036,8 @@ void forwardDraws(const TileFrame& frame, TileScratch& s) {
                                      deferred, plane);
                   });
   }
-  if (ordered && !s.blended.empty()) s.blended.composite(s.planes.get());
+  if (ordered && !s.blended.empty())
+    frame.kernels.wide->compositeBlended(s.blended, s.planes.get());
 }
 
 // The samples into plane 0 (colour and depth) and Frame::coverage, by the
