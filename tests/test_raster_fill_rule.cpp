@@ -234,6 +234,27 @@ TEST(RasterFillRule, EdgesEndingInsideCoveredTilesMatchReference) {
   expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas());
 }
 
+// Random triangles thousands of pixels long (|a| + |b| beyond 2^27, where
+// the unscaled edge functions would not fit 32-bit lanes) with vertices on
+// arbitrary grid units, so that their edges cross blocks at every fraction
+// of a pixel: the lanes' edges scaled down by 256 and rounded up
+// (tile_kernel_impl.h LaneEdges) must keep every sign, at 1 and 4 samples.
+TEST(RasterFillRule, TrianglesThousandsOfPixelsLongMatchReference) {
+  std::mt19937 rng(2027);
+  std::uniform_int_distribution<int> far(-5000 * 256, 5000 * 256);
+  std::uniform_int_distribution<int> near(-20 * 256, (kSize + 20) * 256);
+  std::vector<WindowTriangle> triangles;
+  for (int n = 0; n < 60; ++n) {
+    // One vertex near the viewport, two far out, so that most cross it.
+    WindowTriangle t = {{{near(rng) / 256.0, near(rng) / 256.0},
+                         {far(rng) / 256.0, far(rng) / 256.0},
+                         {far(rng) / 256.0, far(rng) / 256.0}}};
+    triangles.push_back(t);
+  }
+  for (const int samples : {1, 4})
+    expectCoverageMatches(sceneFromWindow(triangles, true), supportedIsas(), samples);
+}
+
 // Wedges whose only pixels in the viewport lie in one 8x8 block at a corner,
 // with their other vertices ~900 px outside: the small-triangle path
 // (tile_kernel_impl.h rasterizeInOneBlock) must hand such a triangle, whose

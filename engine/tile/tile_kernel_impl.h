@@ -57,17 +57,6 @@ struct LaneOffsets {
   }
 };
 
-// Bit b of a group's packed coverage: row (b / kGroupWidth), column
-// (b % kGroupWidth); the lane with that pixel gets it.
-M groupMask(std::uint32_t packed) {
-  std::uint32_t laneBits = 0;
-  for (int k = 0; k < L::kWidth; ++k) {
-    const int column = 2 * (k / 4) + k % 2, row = (k / 2) % 2;
-    laneBits |= ((packed >> (row * kGroupWidth + column)) & 1u) << k;
-  }
-  return simd::maskFromBits<L>(laneBits);
-}
-
 // A plane rebased to the tile: value at local pixel centre (x, y) is c + dx*x + dy*y.
 struct TilePlane {
   F dx, dy, c;
@@ -79,30 +68,9 @@ TilePlane rebase(const Plane& p, const TriangleRecord& t, const TileBuffers& til
   return {F(q.dx), F(q.dy), F(q.c)};
 }
 
-// A triangle's edge functions prepared for 8x8 blocks: per edge, the offsets
-// of the eight columns of a row, and the extremes over a block, so the
-// per-block work is additions only (AVX2 has no 64-bit multiply).
-struct BlockEdges {
-  std::int64_t column[3][kBlockSize];
-  std::int64_t rowStep[3];
-  std::int64_t lowOffset[3], highOffset[3];  // min / max of E - E(corner) over the block
-
-  explicit BlockEdges(const TriangleRecord& t) {
-    const std::int64_t span = kBlockSize - 1;
-    for (int e = 0; e < 3; ++e) {
-      const std::int64_t a = t.edges[e].a, b = t.edges[e].b;
-      for (int c = 0; c < kBlockSize; ++c) column[e][c] = a * c;
-      rowStep[e] = b;
-      lowOffset[e] = std::min<std::int64_t>(0, a * span) + std::min<std::int64_t>(0, b * span);
-      highOffset[e] = std::max<std::int64_t>(0, a * span) + std::max<std::int64_t>(0, b * span);
-    }
-  }
-};
-
 // The pixels of an 8x8 block inside both the tile's viewport part and the
-// triangle's bbox: rows [rowBegin, rowEnd), columns [columnBegin, columnEnd),
-// and as a mask, bit (row*8 + column). A small triangle's is a few bits, and
-// the coverage loop visits only those.
+// triangle's bbox: rows [rowBegin, rowEnd), columns [columnBegin, columnEnd).
+// A small triangle's is a few pixels, and the coverage loop visits only those.
 struct BlockRange {
   int rowBegin, rowEnd, columnBegin, columnEnd;
   BlockRange(int bx, int by, int xBegin, int xEnd, int yBegin, int yEnd)
@@ -110,55 +78,26 @@ struct BlockRange {
         rowEnd(std::min(yEnd - by, kBlockSize)),
         columnBegin(std::max(xBegin - bx, 0)),
         columnEnd(std::min(xEnd - bx, kBlockSize)) {}
-  // Only blockCoverage's bit masks need it; the lane-edge walk does not.
-  std::uint64_t mask() const {
-    const std::uint64_t rowBits = ((1u << columnEnd) - 1u) & ~((1u << columnBegin) - 1u);
-    constexpr std::uint64_t kFirstColumn = 0x0101010101010101u;  // bit 0 of every row
-    const std::uint64_t rows = kFirstColumn * rowBits;           // rowBits in every row
-    const std::uint64_t below = rowEnd == kBlockSize ? ~0ull : (1ull << (rowEnd * kBlockSize)) - 1;
-    return rows & below & ~((1ull << (rowBegin * kBlockSize)) - 1);
-  }
 };
 
-// Coverage of the 8x8 block whose top-left pixel is (px, py) in the window,
-// within `range`: bit (row*8 + column). Exact: integer edge functions
-// (window/window_space.h). For triangles too long for LaneEdges.
-std::uint64_t blockCoverage(const TriangleRecord& t, const BlockEdges& edges, int px, int py,
-                            const BlockRange& range) {
-  std::int64_t corner[3];
-  bool full = true;
-  for (int e = 0; e < 3; ++e) {
-    corner[e] = t.edges[e].at(px, py);
-    if (corner[e] + edges.highOffset[e] <= 0) return 0;
-    full = full && corner[e] + edges.lowOffset[e] > 0;
-  }
-  if (full) return range.mask();
-  std::uint64_t mask = 0;
-  for (int row = range.rowBegin; row < range.rowEnd; ++row) {
-    std::int64_t start[3];
-    for (int e = 0; e < 3; ++e) start[e] = corner[e] + edges.rowStep[e] * row;
-    std::uint64_t bits = 0;
-    for (int c = range.columnBegin; c < range.columnEnd; ++c) {
-      const bool inside = (start[0] + edges.column[0][c] > 0) &
-                          (start[1] + edges.column[1][c] > 0) & (start[2] + edges.column[2][c] > 0);
-      bits |= std::uint64_t(inside) << c;
-    }
-    mask |= bits << (row * kBlockSize);
-  }
-  return mask;
-}
-
 // A triangle's edge functions in 32-bit lanes, in the lanes' own pixel order:
-// coverage without a bit per pixel to gather into lanes. Taken when every
-// edge has |a| + |b| < 2^27 (under 2048 px of extent, 16.8 fixed point
-// squared): over a block that an edge crosses, |E| <= |E(corner)| +
-// 7(|a| + |b|) <= 14(|a| + |b|) < 2^31, so the lanes hold E exactly, and an
-// edge positive over the whole block drops out of that block's test.
+// coverage without a bit per pixel to gather into lanes, for a triangle of
+// any size. The lanes hold E / 256 rounded up, which is positive exactly
+// where E is: a and b are multiples of kSubpixelScale (256; setup's
+// makeEdge), so E = E(corner) + 256 L at a pixel with L integer, and E > 0
+// exactly where L + ceil(E(corner) / 256) > 0. Over a block that an edge
+// crosses that is at most 14 (|a| + |b|) / 256 + 1 < 2^28 in magnitude
+// (a and b are int32), so it fits, and an edge positive over the whole
+// block drops out of that block's test. (Unscaled, E fitted only for |a| +
+// |b| < 2^27, and longer triangles, full-screen quads among them, took a
+// scalar test per pixel: 6-7% of alpha-quads' multisampled frame.)
 struct LaneEdges {
   std::int64_t low[3], high[3];  // min / max of E - E(corner) over a block
-  std::int32_t a[3], b[3];
-  I offset[3];  // E - E(group corner) at each lane's pixel
+  std::int32_t a[3], b[3];       // the edges' a and b over kSubpixelScale
+  I offset[3];                   // L at each lane's pixel from the group's corner
 
+  // Whether the unscaled E fits 32-bit lanes over a crossing block (the
+  // small-triangle paths, which take it unscaled).
   static bool fits(const TriangleRecord& t) {
     for (const EdgeFunction& f : t.edges)
       if (std::abs(std::int64_t(f.a)) + std::abs(std::int64_t(f.b)) >= (std::int64_t(1) << 27))
@@ -172,7 +111,7 @@ struct LaneEdges {
       const std::int64_t fa = t.edges[e].a, fb = t.edges[e].b;
       low[e] = std::min<std::int64_t>(0, fa * span) + std::min<std::int64_t>(0, fb * span);
       high[e] = std::max<std::int64_t>(0, fa * span) + std::max<std::int64_t>(0, fb * span);
-      a[e] = t.edges[e].a, b[e] = t.edges[e].b;
+      a[e] = t.edges[e].a / kSubpixelScale, b[e] = t.edges[e].b / kSubpixelScale;
       offset[e] = I(a[e]) * lane.xi + I(b[e]) * lane.yi;
     }
   }
@@ -193,8 +132,9 @@ class BlockLaneCoverage {
       if (!(unsigned(tested) >> e & 1u)) continue;
       const std::int64_t corner = t.edges[e].at(px, py);
       if (corner + edges.high[e] <= 0) return false;
-      if (corner + edges.low[e] > 0) continue;  // inside over the whole block
-      base_[crossing_] = I(std::int32_t(corner)) + edges.offset[e];
+      if (corner + edges.low[e] > 0) continue;                      // inside over the whole block
+      const std::int64_t cornerUp = -((-corner) >> kSubpixelBits);  // ceil(corner / 256)
+      base_[crossing_] = I(std::int32_t(cornerUp)) + edges.offset[e];
       a_[crossing_] = edges.a[e], b_[crossing_] = edges.b[e];
       ++crossing_;
     }
@@ -827,62 +767,41 @@ void rasterizeWith(const TriangleRecord& t, const ShaderT& shader, TileBuffers& 
       rasterizeInOneBlock(t, tile, lane, depthTest, shadeBlock, bxFirst, byFirst,
                           BlockRange(bxFirst, byFirst, xBegin, xEnd, yBegin, yEnd)))
     return;
-  if (LaneEdges::fits(t)) {
-    const LaneEdges edges(t, lane);
-    BlockLaneCoverage coverage;
-    // tested: a std::integral_constant for small triangles, so their block
-    // test compiles to the plain three-edge one.
-    const auto walk = [&](auto tested) {
-      for (int by = byFirst; by < yEnd; by += kBlockSize) {
-        for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
-          const int block = TileBuffers::blockAt(bx, by);
-          if (depthTest.hidden(bx, by, block, tile)) continue;
-          if (!coverage.start(t, edges, tested, tile.originX + bx, tile.originY + by)) continue;
-          shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
-                     [&](int gx, int gy) { return coverage.group(gx, gy); });
-        }
+  const LaneEdges edges(t, lane);
+  BlockLaneCoverage coverage;
+  // tested: a std::integral_constant for small triangles, so their block
+  // test compiles to the plain three-edge one.
+  const auto walk = [&](auto tested) {
+    for (int by = byFirst; by < yEnd; by += kBlockSize) {
+      for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
+        const int block = TileBuffers::blockAt(bx, by);
+        if (depthTest.hidden(bx, by, block, tile)) continue;
+        if (!coverage.start(t, edges, tested, tile.originX + bx, tile.originY + by)) continue;
+        shadeBlock(bx, by, block, BlockRange(bx, by, xBegin, xEnd, yBegin, yEnd),
+                   [&](int gx, int gy) { return coverage.group(gx, gy); });
       }
-    };
-    // Small parts (a few blocks at most: nearly all of a dense mesh's) test
-    // every edge in each block; a per-tile check would cost more than it
-    // saves (dense-mesh's frame took 6% longer with one for every part).
-    constexpr int kWholeTileCheckPixels = 4 * kBlockSize * kBlockSize;
-    if ((xEnd - xBegin) * (yEnd - yBegin) < kWholeTileCheckPixels)
-      return walk(std::integral_constant<unsigned, 0b111>());
-    // Larger ones: an edge positive at the four corners of the lanes the walk
-    // can visit (the triangle's part of the tile, widened to whole groups) is
-    // positive at every one of them (E is linear), so the blocks skip it, and
-    // a triangle that covers the tile there tests no edge at all.
-    const int x0 = tile.originX + xBegin / kGroupWidth * kGroupWidth;
-    const int x1 = tile.originX + (xEnd + kGroupWidth - 1) / kGroupWidth * kGroupWidth - 1;
-    const int y0 = tile.originY + (yBegin & ~1), y1 = tile.originY + ((yEnd + 1) & ~1) - 1;
-    unsigned tested = 0;
-    for (int e = 0; e < 3; ++e) {
-      const EdgeFunction& f = t.edges[e];
-      const std::int64_t low = std::min({f.at(x0, y0), f.at(x1, y0), f.at(x0, y1), f.at(x1, y1)});
-      tested |= unsigned(low <= 0) << e;
     }
-    walk(tested);
-    return;
+  };
+  // Small parts (a few blocks at most: nearly all of a dense mesh's) test
+  // every edge in each block; a per-tile check would cost more than it
+  // saves (dense-mesh's frame took 6% longer with one for every part).
+  constexpr int kWholeTileCheckPixels = 4 * kBlockSize * kBlockSize;
+  if ((xEnd - xBegin) * (yEnd - yBegin) < kWholeTileCheckPixels)
+    return walk(std::integral_constant<unsigned, 0b111>());
+  // Larger ones: an edge positive at the four corners of the lanes the walk
+  // can visit (the triangle's part of the tile, widened to whole groups) is
+  // positive at every one of them (E is linear), so the blocks skip it, and
+  // a triangle that covers the tile there tests no edge at all.
+  const int x0 = tile.originX + xBegin / kGroupWidth * kGroupWidth;
+  const int x1 = tile.originX + (xEnd + kGroupWidth - 1) / kGroupWidth * kGroupWidth - 1;
+  const int y0 = tile.originY + (yBegin & ~1), y1 = tile.originY + ((yEnd + 1) & ~1) - 1;
+  unsigned tested = 0;
+  for (int e = 0; e < 3; ++e) {
+    const EdgeFunction& f = t.edges[e];
+    const std::int64_t low = std::min({f.at(x0, y0), f.at(x1, y0), f.at(x0, y1), f.at(x1, y1)});
+    tested |= unsigned(low <= 0) << e;
   }
-  const BlockEdges edges(t);
-  constexpr std::uint32_t kRowBits = (1u << kGroupWidth) - 1;
-  for (int by = byFirst; by < yEnd; by += kBlockSize) {
-    for (int bx = bxFirst; bx < xEnd; bx += kBlockSize) {
-      const int block = TileBuffers::blockAt(bx, by);
-      if (depthTest.hidden(bx, by, block, tile)) continue;
-      const BlockRange range(bx, by, xBegin, xEnd, yBegin, yEnd);
-      const std::uint64_t coverage =
-          blockCoverage(t, edges, tile.originX + bx, tile.originY + by, range);
-      if (coverage == 0) continue;
-      shadeBlock(bx, by, block, range, [&](int gx, int gy) {
-        const int shift = gy * kBlockSize + gx;
-        return groupMask(std::uint32_t((coverage >> shift) & kRowBits) |
-                         std::uint32_t((coverage >> (shift + kBlockSize)) & kRowBits)
-                             << kGroupWidth);
-      });
-    }
-  }
+  walk(tested);
 }
 
 // The planes of each lane's triangle (tile triangle ids per lane), broadcast
