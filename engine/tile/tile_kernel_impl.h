@@ -1028,6 +1028,7 @@ void shadeBlendedPixelsWith(const TriangleRecord& t, const Plane* p, const Shade
   float depthC[kMaxSamples];
   sampleDepthsInTile(p[0], pattern, t, tile, samples, depthC);
   std::int32_t* const covered = reinterpret_cast<std::int32_t*>(fragments.covered());
+  const bool orderPassRan = fragments.orderPassRan();
   const F allSamples(float((1 << samples) - 1));
   for (int gy = box.yBegin & ~1; gy < box.yEnd; gy += 2) {
     for (int gx = box.xBegin / kGroupWidth * kGroupWidth; gx < box.xEnd; gx += kGroupWidth) {
@@ -1056,8 +1057,9 @@ void shadeBlendedPixelsWith(const TriangleRecord& t, const Plane* p, const Shade
       for (int k = 0; k < samples; ++k) {
         M cover = simd::toFloat(held & I(std::int32_t(1) << k)) != F(0.0f);
         if (!simd::any(cover)) continue;
-        const M late = F::load_unaligned(fragments.late(k) + index) != F(0.0f);
-        if (simd::any(cover & late)) {
+        const M late = orderPassRan ? F::load_unaligned(fragments.late(k) + index) != F(0.0f)
+                                    : F(1.0f) != F(1.0f);
+        if (orderPassRan && simd::any(cover & late)) {
           const TilePlane z{F(planes.depth.dx), F(planes.depth.dy), F(depthC[k])};
           deferOver(fragments, k, cover & late, z.at(x, y), c, index);
           cover = cover & ~late;
