@@ -676,8 +676,8 @@ QUADRA_LANE_INLINE void updateBlockDepth(TileBuffers& tile, int block, const F& 
 // block (most of a dense mesh's) tests all three edges in lanes straight from
 // the block's corner: no block walk, no per-block edge classification, none
 // of LaneEdges' extremes (the walk ran ~750 instructions a call on
-// dense-mesh). Exact when the edges fit LaneEdges and each corner value is
-// below 2^30 in magnitude: a lane's value is at most 7 (|a| + |b|) < 2^30
+// dense-mesh). Exact, unscaled, when the edges fit (LaneEdges::fits) and
+// each corner value is below 2^30 in magnitude: a lane's value is at most 7 (|a| + |b|) < 2^30
 // further. Returns false, having done nothing, for the rare triangles beyond
 // that (a huge one the viewport clips to one block), which walk. Coverage is
 // the walk's: an edge the walk drops over the block is positive at every lane
