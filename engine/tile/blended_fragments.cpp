@@ -126,7 +126,8 @@ void BlendedFragments::addBeyondBudget(std::uint32_t slot, const float (&newest)
 }
 
 void BlendedFragments::clear() {
-  for (std::size_t w = 0; w < touched_.size() && anyTouched_; ++w)
+  if (!anyTouched_) return;  // touched_ is all zero then
+  for (std::size_t w = 0; w < touched_.size(); ++w)
     for (std::uint64_t bits = touched_[w]; bits != 0; bits &= bits - 1) {
       const std::size_t group = w * 64 + std::size_t(__builtin_ctzll(bits));
       std::fill_n(count_.begin() + std::ptrdiff_t(group * kGroupSlots), kGroupSlots, 0);

@@ -64,11 +64,11 @@ class BlendedFragments {
   // Per sample of plane `plane`, in TileBuffers order: the depth of the
   // latest fragment the order pass saw, and 1 where a fragment arrived
   // strictly behind the one before it (its fragments are kept here), else 0.
-  // Whether the tile ran the order pass: else no sample is late.
-  bool orderPassRan() const { return lateMarked_; }
   float* latest(int plane) { return &latest_[std::size_t(plane) * TileBuffers::kPixels]; }
   float* late(int plane) { return &late_[std::size_t(plane) * TileBuffers::kPixels]; }
   const float* late(int plane) const { return &late_[std::size_t(plane) * TileBuffers::kPixels]; }
+  // Whether the tile ran the order pass: else no sample is late.
+  bool orderPassRan() const { return lateMarked_; }
 
   // Per pixel, in TileBuffers order, bit k for sample k: the samples the
   // triangle being shaded per pixel covers (TileKernels::coverBlended). Zero

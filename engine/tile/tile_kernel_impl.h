@@ -20,6 +20,7 @@
 #include <limits>
 #include <optional>
 #include <type_traits>
+#include <utility>
 
 #include "simd/kernel_isa.h"
 #include "texture/sample_lanes.h"
@@ -132,9 +133,9 @@ class BlockLaneCoverage {
       if (!(unsigned(tested) >> e & 1u)) continue;
       const std::int64_t corner = t.edges[e].at(px, py);
       if (corner + edges.high[e] <= 0) return false;
-      if (corner + edges.low[e] > 0) continue;                      // inside over the whole block
-      const std::int64_t cornerUp = -((-corner) >> kSubpixelBits);  // ceil(corner / 256)
-      base_[crossing_] = I(std::int32_t(cornerUp)) + edges.offset[e];
+      if (corner + edges.low[e] > 0) continue;  // inside over the whole block
+      const std::int64_t cornerOver256RoundedUp = -((-corner) >> kSubpixelBits);
+      base_[crossing_] = I(std::int32_t(cornerOver256RoundedUp)) + edges.offset[e];
       a_[crossing_] = edges.a[e], b_[crossing_] = edges.b[e];
       ++crossing_;
     }
@@ -677,8 +678,8 @@ QUADRA_LANE_INLINE void updateBlockDepth(TileBuffers& tile, int block, const F& 
 // the block's corner: no block walk, no per-block edge classification, none
 // of LaneEdges' extremes (the walk ran ~750 instructions a call on
 // dense-mesh). Exact, unscaled, when the edges fit (LaneEdges::fits) and
-// each corner value is below 2^30 in magnitude: a lane's value is at most 7 (|a| + |b|) < 2^30
-// further. Returns false, having done nothing, for the rare triangles beyond
+// each corner value is below 2^30 in magnitude: a lane's value is at most
+// 7 (|a| + |b|) < 2^30 further. Returns false, having done nothing, for the rare triangles beyond
 // that (a huge one the viewport clips to one block), which walk. Coverage is
 // the walk's: an edge the walk drops over the block is positive at every lane
 // here. Extending it to triangles over 2 x 2 blocks ran more instructions, as
@@ -1057,13 +1058,14 @@ void shadeBlendedPixelsWith(const TriangleRecord& t, const Plane* p, const Shade
       for (int k = 0; k < samples; ++k) {
         M cover = simd::toFloat(held & I(std::int32_t(1) << k)) != F(0.0f);
         if (!simd::any(cover)) continue;
-        const M late = orderPassRan ? F::load_unaligned(fragments.late(k) + index) != F(0.0f)
-                                    : F(1.0f) != F(1.0f);
-        if (orderPassRan && simd::any(cover & late)) {
-          const TilePlane z{F(planes.depth.dx), F(planes.depth.dy), F(depthC[k])};
-          deferOver(fragments, k, cover & late, z.at(x, y), c, index);
-          cover = cover & ~late;
-          if (!simd::any(cover)) continue;
+        if (orderPassRan) {  // else no sample is late
+          const M late = F::load_unaligned(fragments.late(k) + index) != F(0.0f);
+          if (simd::any(cover & late)) {
+            const TilePlane z{F(planes.depth.dx), F(planes.depth.dy), F(depthC[k])};
+            deferOver(fragments, k, cover & late, z.at(x, y), c, index);
+            cover = cover & ~late;
+            if (!simd::any(cover)) continue;
+          }
         }
         TileBuffers& plane = samplePlanes[k];
         float* const color[4] = {plane.color[0] + index, plane.color[1] + index,
@@ -1588,6 +1590,17 @@ void compositeLayers(const BlendedFragments& fragments, std::size_t slot, const 
   for (int c = 0; c < 4; ++c) dst[c].store_aligned(color[c]);
 }
 
+// compositeLayers<most>, most from 1 to the budget: compared in turn, so
+// each call inlines (a table of pointers cost overlapping-glass 2-3%).
+template <std::size_t... kIndex>
+QUADRA_LANE_INLINE void compositeLayersFor(int most, std::index_sequence<kIndex...>,
+                                           const BlendedFragments& fragments, std::size_t slot,
+                                           const F& count, float* const color[4]) {
+  ((most == int(kIndex) + 1 &&
+    (compositeLayers<int(kIndex) + 1>(fragments, slot, count, color), true)) ||
+   ...);
+}
+
 void compositeBlended(BlendedFragments& fragments, TileBuffers* planes) {
   constexpr int kGroupSlots = BlendedFragments::kGroupSlots;
   static_assert(kGroupSlots % L::kWidth == 0);
@@ -1610,33 +1623,9 @@ void compositeBlended(BlendedFragments& fragments, TileBuffers* planes) {
         float* const color[4] = {plane.color[0] + pixel, plane.color[1] + pixel,
                                  plane.color[2] + pixel, plane.color[3] + pixel};
         const F count = F::load_aligned(held);
-        static_assert(BlendedFragments::kMaxPerSample == 8);
-        switch (most) {
-          case 1:
-            compositeLayers<1>(fragments, slot, count, color);
-            break;
-          case 2:
-            compositeLayers<2>(fragments, slot, count, color);
-            break;
-          case 3:
-            compositeLayers<3>(fragments, slot, count, color);
-            break;
-          case 4:
-            compositeLayers<4>(fragments, slot, count, color);
-            break;
-          case 5:
-            compositeLayers<5>(fragments, slot, count, color);
-            break;
-          case 6:
-            compositeLayers<6>(fragments, slot, count, color);
-            break;
-          case 7:
-            compositeLayers<7>(fragments, slot, count, color);
-            break;
-          default:
-            compositeLayers<8>(fragments, slot, count, color);
-            break;
-        }
+        compositeLayersFor(most,
+                           std::make_index_sequence<std::size_t(BlendedFragments::kMaxPerSample)>(),
+                           fragments, slot, count, color);
       }
     }
   fragments.clear();
