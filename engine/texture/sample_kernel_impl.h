@@ -10,6 +10,13 @@
 #include "texture/texture_sampler.h"
 
 namespace quadra {
+
+// Compiled once per ISA with that ISA's tile kernels (tile/tile_kernel_impl.h).
+extern template Rgba<simd::Lanes<QUADRA_KERNEL_ARCH>> sampleTexture(
+    const TextureView& view, const simd::Lanes<QUADRA_KERNEL_ARCH>::F& u,
+    const simd::Lanes<QUADRA_KERNEL_ARCH>::F& v,
+    const UvDerivatives<simd::Lanes<QUADRA_KERNEL_ARCH>>& d);
+
 namespace QUADRA_KERNEL_NAMESPACE {
 namespace {
 

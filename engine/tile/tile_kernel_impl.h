@@ -991,9 +991,13 @@ void rasterize(const TriangleRecord& t, const Plane* p, const ShadeState& s, Til
     return rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile), tile);
   }
   withFeatures(s, [&]<class Feat>() {
-    if (quad)
-      return rasterizeWith(t, ForwardShader<QuadFeatures<Feat>>(s, t, p, tile, deferred, plane),
-                           tile);
+    // Quad differences only feed a texture's footprint: an untextured draw's
+    // copy would be the analytic one again, and each copy is build time.
+    if constexpr (Feat::kTextured) {
+      if (quad)
+        return rasterizeWith(t, ForwardShader<QuadFeatures<Feat>>(s, t, p, tile, deferred, plane),
+                             tile);
+    }
     rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile, deferred, plane), tile);
   });
 }
@@ -1643,6 +1647,14 @@ void shade(const ShadeState& s, const ShadeRun& run, TileBuffers& tile) {
 
 }  // namespace
 }  // namespace QUADRA_KERNEL_NAMESPACE
+
+// The filters for this ISA, compiled here once: the batch lookups of the same
+// ISA (texture/sample_kernel_impl.h) call this copy rather than compiling
+// their own, which took a fifth of the kernels' build time.
+template Rgba<simd::Lanes<QUADRA_KERNEL_ARCH>> sampleTexture(
+    const TextureView& view, const simd::Lanes<QUADRA_KERNEL_ARCH>::F& u,
+    const simd::Lanes<QUADRA_KERNEL_ARCH>::F& v,
+    const UvDerivatives<simd::Lanes<QUADRA_KERNEL_ARCH>>& d);
 
 const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
   static const TileKernels kernels{QUADRA_KERNEL_ISA_ENUM,
