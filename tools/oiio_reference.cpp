@@ -49,7 +49,8 @@ std::optional<OiioPeer> loadOiioPeer(const std::string& file, std::string& whyNo
   }
   whyNot = std::string(kOiioPeerFile) + " is neither beside this quadra nor in " +
            places[1].parent_path().string() +
-           " (install libopenimageio-dev and rebuild to compare)";
+           " (it is built where libopenimageio-dev is installed, by scripts/test.sh or `cmake "
+           "--build build --target quadra_oiio_peer`)";
   return std::nullopt;
 }
 

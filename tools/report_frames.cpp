@@ -352,7 +352,8 @@ int runFramesReport(const std::vector<std::string>& args) {
            "\n";
   } else {
     out << "llvmpipe: not measured: quadra-llvmpipe is not beside this quadra (it is built "
-           "where libosmesa6-dev is installed).\n\n";
+           "where libosmesa6-dev is installed, by scripts/test.sh or `cmake --build build "
+           "--target quadra-llvmpipe`).\n\n";
     out << "| scene | triangles | quadra ms | quadra e2e s |\n|---|---:|---:|---:|\n";
   }
   csv << "scene,triangles,quadra_ms,llvmpipe_ms,ratio,quadra_e2e_s,llvmpipe_e2e_s,e2e_ratio,"
