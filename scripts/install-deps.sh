@@ -13,11 +13,13 @@ set -euo pipefail
 # (iinfo) and openexr (exrheader): the test that other tools read quadra's
 # EXR AOVs and header (AovsCli.WritesTheChannelsOtherToolsRead).
 # python3-pybind11, python3-dev and python3-numpy: the Python module
-# (python/, built for /usr/bin/python3) and its test.
+# (python/, built for /usr/bin/python3) and its test; python3-venv and
+# python3-pip: `pip install .` into a virtual environment (pyproject.toml,
+# the PipInstall test).
 packages=(build-essential cmake ninja-build pkg-config libtbb-dev libxsimd-dev libglm-dev libtinygltf-dev
   libstb-dev nlohmann-json3-dev libopenexr-dev libimath-dev libpng-dev libjpeg62-turbo-dev libbenchmark-dev
   libgtest-dev libosmesa6-dev libopenimageio-dev clang-format git clang libclang-rt-14-dev
-  openimageio-tools openexr python3-pybind11 python3-dev python3-numpy)
+  openimageio-tools openexr python3-pybind11 python3-dev python3-numpy python3-venv python3-pip)
 if [ "${1:-}" = --farm ]; then
   packages=(slurm-wlm munge)
 elif (($#)); then

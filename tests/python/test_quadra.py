@@ -212,6 +212,16 @@ class RenderFromNumpy(unittest.TestCase):
 
 
 class RenderGltfEqualsTheCli(unittest.TestCase):
+    def test_version_is_the_clis(self):
+        # The module's is the library's (quadra::version()), the CLI's its
+        # headers' QUADRA_VERSION_STRING: both project(VERSION), which the
+        # wheel of `pip install .` carries too (python/quadra_build.py).
+        if CLI is None:
+            self.skipTest("run by CTest with the CLI's path")
+        printed = run_program([CLI, "--version"], check=True, capture_output=True, text=True)
+        self.assertEqual(printed.stdout, f"quadra {quadra.__version__}\n")
+        self.assertRegex(quadra.__version__, r"^\d+\.\d+\.\d+$")
+
     def test_render_equals_the_cli_exr_bit_for_bit(self):
         # The judge is the InstallAndFindPackage test's: read_reference reads
         # the CLI's EXR (R, G, B, A, Z floats) with OpenEXR and compares every
