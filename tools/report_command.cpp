@@ -1,5 +1,5 @@
-// `quadra report SUBJECT`'s choice of subject, and `quadra report textures`:
-// every filter's speed against its error. For each
+// `quadra report SUBJECT`'s choice of subject (and the list of them), and
+// `quadra report textures`: every filter's speed against its error. For each
 // test texture (generated in code, plus --texture FILE) it draws a seeded
 // footprint set, integrates the ground truth (DESIGN.md "Accuracy"), runs each
 // filter over the same footprints, and prints a markdown table; it writes
