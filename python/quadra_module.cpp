@@ -209,7 +209,7 @@ struct PyRenderer {
 struct RenderResult {
   py::object color = py::none();
   py::object depth = py::none();
-  // The AOVs asked for (README "AOVs"), else None.
+  // The AOVs asked for (docs/cli.md "AOVs"), else None.
   py::object normal = py::none(), position = py::none(), uv = py::none(), mask = py::none();
   py::object primitiveId = py::none(), nodeId = py::none(), materialId = py::none();
 };
@@ -240,7 +240,7 @@ std::span<std::byte> bytesOf(py::array_t<T>& array) {
   return {reinterpret_cast<std::byte*>(array.mutable_data()), std::size_t(array.nbytes())};
 }
 
-// The AOV names of the CLI's --aov (README "AOVs") that the public API has.
+// The AOV names of the CLI's --aov (docs/cli.md "AOVs") that the public API has.
 enum class AovName { Normal, Position, Uv, Id, Mask };
 
 // The AOVs `names` asks for: arrays in `result` (reused from `out` when they
@@ -505,7 +505,7 @@ PYBIND11_MODULE(quadra, m) {
                     "(H, W) float32 window depth in [0, 1], 1 where nothing is drawn; or None")
       .def_readonly(
           "normal", &RenderResult::normal,
-          "aovs 'N': (H, W, 3) float32 world-space unit normal (README \"AOVs\"); or None")
+          "aovs 'N': (H, W, 3) float32 world-space unit normal (docs/cli.md \"AOVs\"); or None")
       .def_readonly("position", &RenderResult::position,
                     "aovs 'P': (H, W, 3) float32 world-space position; or None")
       .def_readonly("uv", &RenderResult::uv, "aovs 'uv': (H, W, 2) float32 TEXCOORD_0; or None")

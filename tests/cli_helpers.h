@@ -103,6 +103,29 @@ inline std::string bytesOf(const fs::path& path) {
   return bytes.str();
 }
 
+// The commands `quadra help` lists ("render", "sample", "report textures",
+// ...), without their arguments and without help and --version: each has its
+// own --help.
+inline std::vector<std::string> commandsInOverview(const std::string& overview) {
+  std::vector<std::string> commands;
+  std::istringstream lines(overview);
+  bool listing = false;
+  for (std::string line; std::getline(lines, line);) {
+    if (line == "commands:") {
+      listing = true;
+      continue;
+    }
+    if (!listing || line.rfind("  ", 0) != 0) {
+      listing = false;
+      continue;
+    }
+    std::string name = line.substr(2, line.find("   ", 2) - 2);
+    name = name.substr(0, name.find(" ["));  // "render [SCENE]"
+    if (name != "help" && name != "--version") commands.push_back(name);
+  }
+  return commands;
+}
+
 inline void expectOneLineError(const RunResult& r, const std::string& mentions) {
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;

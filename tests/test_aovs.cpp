@@ -1,4 +1,4 @@
-// The surface AOVs (README "AOVs"): depth, normal, position, uv and ids at
+// The surface AOVs (docs/cli.md "AOVs"): depth, normal, position, uv and ids at
 // pixel centres against the double-precision reference tracer on built-in
 // scenes and shared glTF models; motion against an analytic camera move;
 // lod and anisotropy against analytic footprints and against the colour
@@ -69,7 +69,7 @@ std::optional<ref::TracerHit> nearestDepthWritingHit(const Scene& scene,
   return std::nullopt;
 }
 
-// The ids README "AOVs" defines for an instance.
+// The ids docs/cli.md "AOVs" defines for an instance.
 std::uint32_t expectedNode(const Scene& scene, int instance) {
   const int node = scene.instances[std::size_t(instance)].node;
   return node >= 0 ? std::uint32_t(scene.nodes[std::size_t(node)].fileIndex)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli_helpers.h"
+#include "cli_options.h"
 #include "io/image_io.h"
 #include "param_names.h"
 #include "render_options.h"
@@ -62,30 +63,36 @@ TEST(Cli, CameraOverridesChangeTheImage) {
   EXPECT_NE(readImage(a.string()).rgba, readImage(b.string()).rgba);
 }
 
+// Exit status 2 for a command line wrong in itself, 1 for input that fails
+// (cli_options.h UsageError).
 TEST(Cli, BadOptionsAreOneLineErrorsAndWriteNothing) {
   const fs::path out = tempPath("never.png");
-  expectOneLineError(run("render builtin:checker-plane --width 0 --out " + out.string()),
-                     "--width");
-  expectOneLineError(run("render builtin:checker-plane --filter sharpest --out " + out.string()),
-                     "--filter");
-  expectOneLineError(run("render builtin:checker-plane --isa mmx --out " + out.string()), "--isa");
-  expectOneLineError(run("render builtin:checker-plane --eye 1,2 --out " + out.string()), "--eye");
-  expectOneLineError(run("render builtin:checker-plane --out " + tempPath("x.bmp").string()),
-                     ".bmp");
-  expectOneLineError(run("render builtin:no-such-scene --out " + out.string()), "no-such-scene");
-  expectOneLineError(run("render /nonexistent/model.gltf --out " + out.string()),
-                     "/nonexistent/model.gltf");
-  expectOneLineError(run("render builtin:checker-plane --frobnicate 1"), "--frobnicate");
-  expectOneLineError(
-      run("render builtin:checker-plane --texture-format rgba4 --out " + out.string()),
-      "--texture-format");
-  expectOneLineError(run("render builtin:checker-plane --depth inverted --out " + out.string()),
-                     "--depth");
-  expectOneLineError(
-      run("render builtin:checker-plane --pixel-filter gaussian --out " + out.string()),
-      "--pixel-filter");
-  expectOneLineError(run("render builtin:checker-plane --aov mask,curvature --out " + out.string()),
-                     "'curvature'");
+  const std::string scene = "render builtin:checker-plane ", to = " --out " + out.string();
+  struct Case {
+    std::string arguments, mentions;
+    int exitCode;
+  };
+  const Case cases[] = {
+      {scene + "--width 0" + to, "--width", 2},
+      {scene + "--filter sharpest" + to, "--filter", 2},
+      {scene + "--isa mmx" + to, "--isa", 2},
+      {scene + "--eye 1,2" + to, "--eye", 2},
+      {scene + "--out " + tempPath("x.bmp").string(), ".bmp", 2},
+      {"render builtin:no-such-scene" + to, "no-such-scene", 2},
+      {"render /nonexistent/model.gltf" + to, "/nonexistent/model.gltf", 1},
+      {scene + "--frobnicate 1", "--frobnicate", 2},
+      {scene + "--texture-format rgba4" + to, "--texture-format", 2},
+      {scene + "--depth inverted" + to, "--depth", 2},
+      {scene + "--pixel-filter gaussian" + to, "--pixel-filter", 2},
+      {scene + "--aov mask,curvature" + to, "'curvature'", 2},
+      {"render builtin:checker-plane builtin:showcase" + to, "more than one scene", 2},
+      {"sample --filter bilinear --in a.csv --out b.csv", "--texture is required", 2},
+  };
+  for (const Case& c : cases) {
+    const RunResult r = run(c.arguments);
+    EXPECT_EQ(r.exitCode, c.exitCode) << c.arguments;
+    expectOneLineError(r, c.mentions);
+  }
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -289,8 +296,9 @@ std::vector<CommandLineCase> everyCommand() {
   };
 }
 
+// Exit status 2: the command line is wrong in itself (cli_options.h UsageError).
 void expectUsageError(const RunResult& r, const std::string& message, const fs::path& written) {
-  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_EQ(r.exitCode, 2) << r.err;
   EXPECT_EQ(r.err, "quadra: " + message + "\n");
   EXPECT_EQ(r.out, "");
   EXPECT_TRUE(written.empty() || !fs::exists(written)) << written;
@@ -346,13 +354,17 @@ TEST(Cli, SharedOptionsSayTheSameWhicheverCommandHasThem) {
     expectUsageError(run(std::string(command) + " --lod-bias 33"),
                      "--lod-bias: must lie in -32..32", {});
   // Every command that loads glTF files takes --allow-path and --max-memory,
-  // and checks them even when its scenes are built in.
+  // and checks them even when its scenes are built in. A folder that does
+  // not exist is bad input (exit 1), as a missing scene file is.
   for (const CommandLineCase& c : everyCommand()) {
     if (c.command != "render" && c.command != "report frames" && c.command != "report samples")
       continue;
     SCOPED_TRACE(c.command);
-    expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --allow-path /nonexistent"),
-                     "--allow-path: '/nonexistent' is not an existing folder", c.written);
+    const RunResult missing =
+        run(c.command + " " + c.head + " " + c.tail + " --allow-path /nonexistent");
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_EQ(missing.err, "quadra: --allow-path: '/nonexistent' is not an existing folder\n");
+    EXPECT_TRUE(c.written.empty() || !fs::exists(c.written)) << c.written;
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --max-memory 12Q"),
                      "--max-memory: '12Q' is not a size (bytes, or a number with K, M, G or T, "
                      "1024-based: 512M, 4G)",
@@ -370,9 +382,123 @@ TEST(Cli, VersionPrintsTheProjectVersion) {
 
 TEST(Cli, UnknownTopLevelArgumentIsAOneLineError) {
   const RunResult r = run("--bogus");
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, 2);
   expectOneLineError(r, "unknown command '--bogus'");
   EXPECT_EQ(r.out, "");
+}
+
+// ---- help, suggestions and exit statuses ------------------------------------------
+
+TEST(Cli, HelpListsEveryCommandAndHelpCommandIsCommandHelp) {
+  const RunResult overview = run("help");
+  EXPECT_EQ(overview.exitCode, 0) << overview.err;
+  EXPECT_EQ(overview.err, "");
+  EXPECT_EQ(overview.out.rfind("usage: quadra COMMAND", 0), 0u) << overview.out;
+  EXPECT_EQ(run("--help").out, overview.out);
+  const RunResult bare = run("");
+  EXPECT_EQ(bare.exitCode, 2);  // nothing asked: a usage mistake, with the overview
+  EXPECT_EQ(bare.out, overview.out);
+
+  const std::vector<std::string> commands = commandsInOverview(overview.out);
+  EXPECT_EQ(commands,
+            (std::vector<std::string>{"render", "sample", "report textures", "report sat-precision",
+                                      "report stability", "report frames", "report samples"}));
+  for (const std::string& command : commands) {
+    SCOPED_TRACE(command);
+    const RunResult help = run("help " + command), own = run(command + " --help"),
+                    shortForm = run(command + " -h");
+    EXPECT_EQ(help.exitCode, 0) << help.err;
+    EXPECT_EQ(own.exitCode, 0) << own.err;
+    EXPECT_EQ(help.out, own.out);
+    EXPECT_EQ(shortForm.out, own.out);
+    EXPECT_EQ(own.out.rfind("usage: quadra " + command + " ", 0), 0u) << own.out;
+    // A command's help is its own: no other command's usage in it.
+    for (const std::string& other : commands) {
+      if (other == command) continue;
+      EXPECT_EQ(own.out.find("usage: quadra " + other), std::string::npos) << other;
+    }
+  }
+  // `quadra report --help` lists the subjects, as `quadra help report` does.
+  const RunResult report = run("report --help");
+  EXPECT_EQ(report.exitCode, 0) << report.err;
+  EXPECT_EQ(run("help report").out, report.out);
+  for (const char* subject : {"textures", "sat-precision", "stability", "frames", "samples"})
+    EXPECT_NE(report.out.find(std::string("\n  ") + subject + " "), std::string::npos) << subject;
+}
+
+TEST(Cli, MistypedNamesGetASuggestionAndExitStatus2) {
+  struct Case {
+    std::string arguments, error;
+  };
+  const Case cases[] = {
+      {"render --smaples 4", "render: unknown option '--smaples' (did you mean --samples?)"},
+      {"render --filter trilinera",
+       "--filter: unknown filter 'trilinera' (nearest, bilinear, nearest-mip, trilinear, aniso, "
+       "ewa, area, sat, ripmap) (did you mean trilinear?)"},
+      {"rendr builtin:showcase", "unknown command 'rendr' (did you mean render?)"},
+      {"help rendr", "unknown command 'rendr' (did you mean render?)"},
+      {"report frame", "report: unknown subject 'frame' (did you mean frames?)"},
+      {"report textures --out x",
+       "report textures: unknown option '--out' (did you mean "
+       "--out-dir?)"},
+      {"render --exr",
+       "render: unknown option '--exr' (did you mean --exr-compression or "
+       "--exr-colour?)"},
+      {"render --progres plain", "render: unknown option '--progres' (did you mean --progress?)"},
+      {"render builtin:showcse --width 8 --height 8",
+       "builtin:showcse: unknown built-in scene (known: "},
+      {"render --aov N,uvv", "--aov: 'uvv' is not an AOV quadra writes"},
+      {"sample --wrap clmap",
+       "--wrap: unknown wrap mode 'clmap' (repeat, mirror, clamp, border) "
+       "(did you mean clamp?)"},
+      {"report stability --sections determinsm", "--sections: unknown section 'determinsm' ("},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.arguments);
+    const RunResult r = run(c.arguments);
+    EXPECT_EQ(r.exitCode, 2);
+    expectOneLineError(r, c.error);
+    EXPECT_EQ(r.err.rfind("quadra: ", 0), 0u) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+  EXPECT_NE(run("render builtin:showcse").err.find("(did you mean showcase?)"), std::string::npos);
+  EXPECT_NE(run("render --aov N,uvv").err.find("(did you mean uv?)"), std::string::npos);
+  EXPECT_NE(run("report stability --sections determinsm").err.find("(did you mean determinism?)"),
+            std::string::npos);
+  // Nothing close: the pointer to --help instead.
+  expectUsageError(run("render --bogus"),
+                   "render: unknown option '--bogus' (see quadra render --help)", {});
+}
+
+TEST(Cli, BadInputExitsWith1) {
+  const RunResult missing = run("render /nonexistent/model.gltf --width 8 --height 8");
+  EXPECT_EQ(missing.exitCode, 1);
+  expectOneLineError(missing, "/nonexistent/model.gltf");
+  const RunResult sample = run(
+      "sample --texture /nonexistent/t.png --filter bilinear --in /nonexistent/l.csv --out v.csv");
+  EXPECT_EQ(sample.exitCode, 1);
+  expectOneLineError(sample, "/nonexistent/t.png");
+}
+
+// The suggestions themselves: close slips and unique prefixes, nothing for
+// an unrelated name, ties named together.
+TEST(CliSuggestions, NameTheClosestKnownNames) {
+  const std::vector<std::string> options = {"--samples", "--shading", "--shading-rate",
+                                            "--width",   "--out",     "--out-dir"};
+  EXPECT_EQ(didYouMean("--smaples", options), " (did you mean --samples?)");
+  EXPECT_EQ(didYouMean("--SAMPLES", options), " (did you mean --samples?)");
+  EXPECT_EQ(didYouMean("--widht", options), " (did you mean --width?)");
+  EXPECT_EQ(didYouMean("--shad", options), " (did you mean --shading or --shading-rate?)");
+  EXPECT_EQ(didYouMean("--out-di", options), " (did you mean --out-dir?)");
+  EXPECT_EQ(didYouMean("--bogus", options), "");
+  EXPECT_EQ(didYouMean("--bogus", "--boxes"), "");  // two slips in five letters: too many
+  EXPECT_EQ(didYouMean("--", options), "");
+  EXPECT_EQ(didYouMean("--w", options), "");  // one letter is no prefix to go by
+  EXPECT_EQ(didYouMean("mmx", "auto, scalar, sse2, avx2, avx512"), "");
+  EXPECT_EQ(didYouMean("avx", "auto, scalar, sse2, avx2, avx512"),
+            " (did you mean avx2 or avx512?)");
+  EXPECT_EQ(didYouMean("z", "Z, N, P, uv"), " (did you mean Z?)");
+  EXPECT_EQ(didYouMean("trilinera", "nearest, bilinear, trilinear"), " (did you mean trilinear?)");
 }
 
 }  // namespace

@@ -321,7 +321,7 @@ TEST(FrameBatchCli, BadBatchInputIsOneLineAndWritesNothing) {
   };
   for (const Case& c : cases) {
     const RunResult r = render(c.arguments);
-    EXPECT_EQ(r.exitCode, 1) << c.arguments;
+    EXPECT_EQ(r.exitCode, 2) << c.arguments;  // each the command line's fault
     expectOneLineError(r, c.mentions);
     EXPECT_TRUE(fs::is_empty(dir)) << c.arguments << " wrote a file";
   }

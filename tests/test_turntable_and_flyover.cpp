@@ -113,7 +113,7 @@ TEST(Orbit, BadOrbitInputIsOneLineAndWritesNothing) {
   };
   for (const Case& c : cases) {
     const RunResult r = run("render builtin:showcase --width 32 --height 32 " + c.arguments);
-    EXPECT_EQ(r.exitCode, 1) << c.arguments;
+    EXPECT_EQ(r.exitCode, 2) << c.arguments;  // each the command line's fault
     expectOneLineError(r, c.mentions);
     EXPECT_TRUE(fs::is_empty(dir)) << c.arguments << " wrote a file";
   }

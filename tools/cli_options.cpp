@@ -1,7 +1,8 @@
-// The quadra commands' option parser, strict value parsing, and the options
-// they share.
+// The quadra commands' option parser, strict value parsing, the options they
+// share, exit statuses and suggestions.
 #include "cli_options.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,9 @@ int runMain(const char* program, int argc, char** argv,
             const std::function<int(const std::vector<std::string>& args)>& run) {
   try {
     return run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s: %s\n", program, e.what());
+    return 2;
   } catch (const Error& e) {
     std::fprintf(stderr, "%s: %s\n", program, e.what());
   } catch (const std::bad_alloc&) {
@@ -34,15 +38,15 @@ double parseNumber(const std::string& option, const std::string& text) {
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])) || *end != '\0' ||
       !std::isfinite(value))
-    throw Error(option + ": '" + text + "' is not a number");
+    throw UsageError(option + ": '" + text + "' is not a number");
   return value;
 }
 
 int parseInteger(const std::string& option, const std::string& text, int lo, int hi) {
   const double value = parseNumber(option, text);
   if (value != std::floor(value) || value < lo || value > hi)
-    throw Error(option + ": '" + text + "' must be a whole number in " + std::to_string(lo) + ".." +
-                std::to_string(hi));
+    throw UsageError(option + ": '" + text + "' must be a whole number in " + std::to_string(lo) +
+                     ".." + std::to_string(hi));
   return int(value);
 }
 
@@ -52,7 +56,7 @@ std::vector<std::string> splitList(const std::string& option, const std::string&
   for (;;) {
     const std::size_t comma = text.find(',', start);
     const std::string entry = text.substr(start, comma - start);
-    if (entry.empty()) throw Error(option + ": empty entry in '" + text + "'");
+    if (entry.empty()) throw UsageError(option + ": empty entry in '" + text + "'");
     entries.push_back(entry);
     if (comma == std::string::npos) return entries;
     start = comma + 1;
@@ -62,7 +66,7 @@ std::vector<std::string> splitList(const std::string& option, const std::string&
 int parseSampleCount(const std::string& option, const std::string& text) {
   const double n = parseNumber(option, text);
   if (!(n >= 1 && n <= kMaxSamples) || double(int(n)) != n || !isSampleCount(int(n)))
-    throw Error(option + ": '" + text + "' must be 1, 2, 4, 8 or 16");
+    throw UsageError(option + ": '" + text + "' must be 1, 2, 4, 8 or 16");
   return int(n);
 }
 
@@ -81,22 +85,102 @@ bool isOptionName(const std::string& arg) {
   return arg.rfind("--", 0) == 0;
 }
 
+// Without leading dashes and case: what a slip is measured on.
+std::string comparable(const std::string& name) {
+  std::string out = name.substr(std::min(name.find_first_not_of('-'), name.size()));
+  for (char& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// Optimal string alignment distance: the fewest insertions, deletions,
+// substitutions and swaps of neighbours that turn a into b, no substring
+// edited twice. The swap counts once because it is the commonest slip of
+// fast typing ("smaples").
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, substitution});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
 }  // namespace
+
+std::string didYouMean(const std::string& typed, const std::vector<std::string>& known) {
+  const std::string slip = comparable(typed);
+  if (slip.empty()) return "";
+  // A third of the length: one slip in "rendr", two in "smaples", three in
+  // "trilinera"; more would match unrelated short names ("mmx" -> "avx2").
+  const std::size_t allowed = std::max<std::size_t>(1, std::min<std::size_t>(3, slip.size() / 3));
+  std::size_t best = allowed + 1;
+  std::vector<std::string> closest;
+  for (const std::string& name : known) {
+    const std::string candidate = comparable(name);
+    const std::size_t distance = slip.size() >= 2 && candidate.rfind(slip, 0) == 0
+                                     ? 0  // a prefix outranks any slip
+                                     : editDistance(slip, candidate);
+    if (distance > allowed) continue;
+    if (distance < best) {
+      best = distance;
+      closest.clear();
+    }
+    if (distance == best && closest.size() < 3) closest.push_back(name);
+  }
+  if (closest.empty()) return "";
+  std::string names;
+  for (std::size_t i = 0; i < closest.size(); ++i)
+    names += (i == 0 ? "" : i + 1 == closest.size() ? " or " : ", ") + closest[i];
+  return " (did you mean " + names + "?)";
+}
+
+std::string didYouMean(const std::string& typed, const std::string& knownList) {
+  std::vector<std::string> known;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = knownList.find(',', start);
+    const std::size_t first = knownList.find_first_not_of(' ', start);
+    if (first != std::string::npos && first < comma)
+      known.push_back(knownList.substr(first, comma - first));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return didYouMean(typed, known);
+}
+
+std::string summaryLines(const std::vector<std::pair<std::string, std::string>>& rows) {
+  std::size_t width = 0;
+  for (const auto& row : rows) width = std::max(width, row.first.size());
+  std::string lines;
+  for (const auto& [name, summary] : rows)
+    lines += "  " + name + std::string(width - name.size() + 3, ' ') + summary + "\n";
+  return lines;
+}
 
 CommandOptions::CommandOptions(std::string command, std::string usage, std::string program)
     : command_(std::move(command)), usage_(std::move(usage)), program_(std::move(program)) {}
 
-void CommandOptions::declare(const std::string& name, bool takesValue, ValueHandler handler) {
+void CommandOptions::declare(const std::string& name, bool takesValue, bool checksFiles,
+                             ValueHandler handler) {
   QUADRA_CHECK(isOptionName(name) && !find(name));
-  options_.push_back({name, {takesValue, std::move(handler)}});
+  options_.push_back({name, {takesValue, checksFiles, std::move(handler)}});
 }
 
 void CommandOptions::value(const std::string& name, ValueHandler handler) {
-  declare(name, true, std::move(handler));
+  declare(name, true, false, std::move(handler));
+}
+
+void CommandOptions::pathValue(const std::string& name, ValueHandler handler) {
+  declare(name, true, true, std::move(handler));
 }
 
 void CommandOptions::flag(const std::string& name, std::function<void()> handler) {
-  declare(name, false,
+  declare(name, false, false,
           [handler = std::move(handler)](const std::string&, const std::string&) { handler(); });
 }
 
@@ -119,7 +203,8 @@ void CommandOptions::throwUnknownChoice(const std::string& option, const std::st
                                         const std::vector<std::string>& spellings) {
   std::string list;
   for (const std::string& spelling : spellings) list += (list.empty() ? "" : ", ") + spelling;
-  throw Error(option + ": unknown " + what + " '" + text + "' (" + list + ")");
+  throw UsageError(option + ": unknown " + what + " '" + text + "' (" + list + ")" +
+                   didYouMean(text, spellings));
 }
 
 const CommandOptions::Option* CommandOptions::find(const std::string& name) const {
@@ -135,9 +220,16 @@ Parsed CommandOptions::parse(const std::vector<std::string>& args) const {
       return Parsed::HelpShown;
     }
   const std::string seeHelp = "' (see " + program_ + " " + command_ + " --help)";
-  for (const std::string& arg : args)
-    if (isOptionName(arg) && !find(arg))
-      throw Error(command_ + ": unknown option '" + arg + seeHelp);
+  for (const std::string& arg : args) {
+    if (!isOptionName(arg) || find(arg)) continue;
+    // A suggestion takes the place of the pointer to --help: it is the more
+    // likely fix, and the line stays short.
+    std::vector<std::string> names;
+    for (const auto& declared : options_) names.push_back(declared.first);
+    const std::string suggestion = didYouMean(arg, names);
+    throw UsageError(command_ + ": unknown option '" + arg +
+                     (suggestion.empty() ? seeHelp : "'" + suggestion));
+  }
 
   // The whole command line is checked before any handler runs.
   struct Step {
@@ -149,24 +241,32 @@ Parsed CommandOptions::parse(const std::vector<std::string>& args) const {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     if (!isOptionName(arg)) {
-      if (!positional_) throw Error(command_ + ": unexpected argument '" + arg + seeHelp);
+      if (!positional_) throw UsageError(command_ + ": unexpected argument '" + arg + seeHelp);
       steps.push_back({nullptr, arg, nullptr});
       continue;
     }
     const Option* option = find(arg);
     const std::string* value = nullptr;
     if (option->takesValue) {
-      if (i + 1 >= args.size() || isOptionName(args[i + 1])) throw Error(arg + ": missing value");
+      if (i + 1 >= args.size() || isOptionName(args[i + 1]))
+        throw UsageError(arg + ": missing value");
       value = &args[++i];
     }
     steps.push_back({option, arg, value});
   }
   static const std::string noValue;
   for (const Step& step : steps) {
-    if (step.option)
-      step.option->handler(step.argument, step.value ? *step.value : noValue);
-    else
-      positional_(step.argument);
+    try {
+      if (step.option)
+        step.option->handler(step.argument, step.value ? *step.value : noValue);
+      else
+        positional_(step.argument);
+    } catch (const UsageError&) {
+      throw;
+    } catch (const Error& e) {
+      if (step.option && step.option->checksFiles) throw;
+      throw UsageError(e.what());
+    }
   }
   return Parsed::Run;
 }
@@ -180,13 +280,14 @@ void addFilterOptions(CommandOptions& options, std::optional<Filter>& filter, in
   options.value("--filter", [&filter](const std::string& option, const std::string& text) {
     Filter parsed;
     if (!parseFilter(text, parsed))
-      throw Error(option + ": unknown filter '" + text + "' (" + filterNames() + ")");
+      throw UsageError(option + ": unknown filter '" + text + "' (" + filterNames() + ")" +
+                       didYouMean(text, filterNames()));
     filter = parsed;
   });
   addAnisoOption(options, maxAniso);
   options.value("--lod-bias", [&lodBias](const std::string& option, const std::string& text) {
     lodBias = float(parseNumber(option, text));
-    if (std::fabs(lodBias) > 32.0f) throw Error(option + ": must lie in -32..32");
+    if (std::fabs(lodBias) > 32.0f) throw UsageError(option + ": must lie in -32..32");
   });
 }
 
@@ -218,8 +319,10 @@ void addIsaOption(CommandOptions& options, std::optional<Isa>& isa) {
       return;
     }
     isa = parseIsa(text);
+    const std::string names = "auto, scalar, sse2, avx2, avx512";
     if (!isa)
-      throw Error(option + ": unknown ISA '" + text + "' (auto, scalar, sse2, avx2, avx512)");
+      throw UsageError(option + ": unknown ISA '" + text + "' (" + names + ")" +
+                       didYouMean(text, names));
   });
 }
 
@@ -242,9 +345,10 @@ namespace {
 TexelFormat parseTexelFormat(const std::string& option, const std::string& text,
                              const std::string& alternatives) {
   TexelFormat format;
+  const std::string names = alternatives + "rgba32f, rgba16f, rgba8, rgba8srgb";
   if (!parseFormat(text, format))
-    throw Error(option + ": unknown texel format '" + text + "' (" + alternatives +
-                "rgba32f, rgba16f, rgba8, rgba8srgb)");
+    throw UsageError(option + ": unknown texel format '" + text + "' (" + names + ")" +
+                     didYouMean(text, names));
   return format;
 }
 

@@ -1,7 +1,9 @@
 // The one option parser of the quadra commands, and the options several
 // commands share (filtering, threads, ISA, texel formats, seed), so that each
-// option's name, range and error message exist once. Every failure is an
-// Error naming the option or the command.
+// option's name, range and error message exist once; the usage errors and
+// exit statuses of the quadra programs, and the "did you mean" suggestions
+// their messages end with. Every failure is an Error naming the option or
+// the command.
 #pragma once
 
 #include <cstdint>
@@ -12,12 +14,38 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.h"
 #include "simd/isa.h"
 #include "texture/sampler_state.h"
 #include "texture/texel_format.h"
 
 namespace quadra {
 
+// A command line wrong in itself, whatever the files it names and the
+// machine it runs on: an unknown command, subject or option, a missing or
+// malformed value, options that do not combine. runMain exits 2 for it and 1
+// for any other failure, so a script tells a command it got wrong from a run
+// that failed. Tools-side: the engine's own errors are all about its input.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+// " (did you mean X?)" naming the entries of `known` closest to `typed`, for
+// the end of the message that calls `typed` unknown; "" when none is close.
+// Close: `typed` starts it (at least two characters), or it is a few slips
+// away (optimal string alignment distance, at most a third of `typed`'s
+// length and at least 1: "--smaples" -> --samples, "rendr" -> render), both
+// without case and leading dashes. Ties are all named, up to three.
+std::string didYouMean(const std::string& typed, const std::vector<std::string>& known);
+// The same with `known` as the messages list it: "a, b, c".
+std::string didYouMean(const std::string& typed, const std::string& knownList);
+
+// The lines of an overview: each name, padded to one column, then its
+// summary, indented by two spaces.
+std::string summaryLines(const std::vector<std::pair<std::string, std::string>>& rows);
+
+// These parse an option's value: their Errors are UsageErrors.
 double parseNumber(const std::string& option, const std::string& text);
 int parseInteger(const std::string& option, const std::string& text, int lo, int hi);
 bool endsWithIgnoringCase(const std::string& text, const std::string& suffix);
@@ -28,7 +56,8 @@ std::vector<std::string> splitList(const std::string& option, const std::string&
 int parseSampleCount(const std::string& option, const std::string& text);
 
 // main()'s body for a quadra program: returns run(args)'s status, and turns
-// any failure into one line on stderr, "program: message", and status 1.
+// any failure into one line on stderr, "program: message", and status 2 for a
+// UsageError, 1 for any other.
 int runMain(const char* program, int argc, char** argv,
             const std::function<int(const std::vector<std::string>& args)>& run);
 
@@ -49,7 +78,12 @@ class CommandOptions {
   // (a peer renderer has its own).
   CommandOptions(std::string command, std::string usage, std::string program = "quadra");
 
+  // A handler's Error is a UsageError: a handler reads a value, and a value
+  // it refuses is the command line's fault.
   void value(const std::string& name, ValueHandler handler);
+  // A value the handler checks against the file system (a folder that must
+  // exist): its Error stays an input error, exit 1, as a missing file's is.
+  void pathValue(const std::string& name, ValueHandler handler);
   void flag(const std::string& name, std::function<void()> handler);
   // Arguments that are not options; a command without this handler takes none.
   void positional(PositionalHandler handler);
@@ -76,19 +110,21 @@ class CommandOptions {
   }
 
   // Precedence: --help or -h anywhere, then an undeclared "--" option
-  // anywhere, then the first missing value or unexpected argument, then the
-  // handlers' own errors in command-line order.
+  // anywhere (with the declared ones closest to it), then the first missing
+  // value or unexpected argument, then the handlers' own errors in
+  // command-line order.
   Parsed parse(const std::vector<std::string>& args) const;
 
  private:
   struct Option {
     bool takesValue = false;
-    ValueHandler handler;  // flags ignore the value
+    bool checksFiles = false;  // pathValue
+    ValueHandler handler;      // flags ignore the value
   };
   [[noreturn]] static void throwUnknownChoice(const std::string& option, const std::string& what,
                                               const std::string& text,
                                               const std::vector<std::string>& spellings);
-  void declare(const std::string& name, bool takesValue, ValueHandler handler);
+  void declare(const std::string& name, bool takesValue, bool checksFiles, ValueHandler handler);
   const Option* find(const std::string& name) const;
 
   std::string command_, usage_, program_;

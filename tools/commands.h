@@ -3,9 +3,14 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace quadra {
+
+// The report subjects in the order the overviews list them, each with one
+// line on what it measures (`quadra help`, `quadra report --help`).
+std::vector<std::pair<std::string, std::string>> reportSubjects();
 
 // `quadra sample` (sample_command.cpp).
 int runSample(const std::vector<std::string>& args);

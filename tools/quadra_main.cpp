@@ -1,6 +1,8 @@
-// quadra command-line tool: the entry point and `quadra render` (DESIGN.md
-// "Contracts") on glTF files and built-in scenes. Every failure is one line on stderr and a
-// non-zero exit; outputs are written only after a frame succeeded.
+// quadra command-line tool: the entry point (the command overview, `quadra
+// help`) and `quadra render` (DESIGN.md "Contracts") on glTF files and
+// built-in scenes. Every failure is one line on stderr and a non-zero exit
+// (cli_options.h runMain: 2 for usage, 1 otherwise); outputs are written only
+// after a frame succeeded.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -32,13 +34,7 @@ namespace quadra {
 namespace {
 
 constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
-       quadra sample --help
-       quadra report textures --help
-       quadra report sat-precision --help
-       quadra report stability --help
-       quadra report frames --help
-       quadra report samples --help
-       quadra --version
+Renders a glTF file or a built-in scene, times the frames and writes the last to each --out.
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --allow-path DIR       a folder besides the glTF file's own that its buffer and image URIs
@@ -80,7 +76,7 @@ constexpr const char* kUsage = R"(usage: quadra render [SCENE] [options]
                          id.node, id.material, uint), mask (coverage, filtered as the colour),
                          lod and anisotropy (the base colour texture's mip level and probe
                          count as its filter chooses them), Z (always written); PNG outputs
-                         hold none (README "AOVs")
+                         hold none (docs/cli.md "AOVs")
   --shading-rate pixel|sample
                          with --samples: shade once per pixel and visible triangle
                          (default, multisampling) or every sample (supersampling)
@@ -131,6 +127,24 @@ std::string usage() {
   std::string list;
   for (const std::string& name : builtinSceneNames()) list += (list.empty() ? "" : ", ") + name;
   return kUsage + list + "\n";
+}
+
+// `quadra help`: one line a command; each command's own --help has its options.
+std::string overview() {
+  std::vector<std::pair<std::string, std::string>> rows = {
+      {"render [SCENE]", "render a glTF file or a built-in scene to EXR or PNG, timed"},
+      {"sample", "texture lookups from a CSV file through one filter, timed"}};
+  for (const auto& [subject, summary] : reportSubjects())
+    rows.emplace_back("report " + subject, summary);
+  rows.emplace_back("help [COMMAND]", "this overview, or COMMAND's help (as COMMAND --help)");
+  rows.emplace_back("--version", "print quadra's version");
+  return "usage: quadra COMMAND [options]\n"
+         "commands:\n" +
+         summaryLines(rows) +
+         "'quadra help COMMAND' or 'quadra COMMAND --help' prints a command's options.\n"
+         "Exit status: 0 done; 1 bad input (a file missing, malformed or unwritable, a memory\n"
+         "budget exceeded, a failed run or check); 2 usage (an unknown command, subject or\n"
+         "option, a missing or malformed value, options that do not combine).\n";
 }
 
 struct RenderCommand {
@@ -211,13 +225,15 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   addOutputOption(options, cmd.outputs);
   options.value("--exr-compression", [&cmd](const std::string& option, const std::string& value) {
     if (!parseExrCompression(value, cmd.exr.compression))
-      throw Error(option + ": '" + value + "' is not an EXR compression quadra writes (valid: " +
-                  exrCompressionNames() + ")");
+      throw UsageError(option + ": '" + value +
+                       "' is not an EXR compression quadra writes (valid: " +
+                       exrCompressionNames() + ")" + didYouMean(value, exrCompressionNames()));
     if (!cmd.exrOption) cmd.exrOption = "--exr-compression";
   });
   options.value("--exr-colour", [&cmd](const std::string& option, const std::string& value) {
     if (value != "float" && value != "half")
-      throw Error(option + ": '" + value + "' is not an EXR colour type (valid: float, half)");
+      throw UsageError(option + ": '" + value + "' is not an EXR colour type (valid: float, half)" +
+                       didYouMean(value, "float, half"));
     cmd.exr.halfColour = value == "half";
     if (!cmd.exrOption) cmd.exrOption = "--exr-colour";
   });
@@ -226,7 +242,7 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   });
   options.value("--fps", [&cmd](const std::string& option, const std::string& value) {
     cmd.fps = parseNumber(option, value);
-    if (!(cmd.fps > 0.0)) throw Error(option + ": '" + value + "' must be positive");
+    if (!(cmd.fps > 0.0)) throw UsageError(option + ": '" + value + "' must be positive");
     cmd.fpsGiven = true;
   });
   options.value("--animation",
@@ -237,36 +253,37 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   addBatchOptions(options, cmd);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (cmd.orbit) {
-    if (cmd.sequence) throw Error("--orbit: not with --sequence (a turntable poses nothing)");
+    if (cmd.sequence) throw UsageError("--orbit: not with --sequence (a turntable poses nothing)");
     if (cmd.fpsGiven || cmd.animation)
-      throw Error("--orbit: not with --fps or --animation (the scene stays at rest)");
+      throw UsageError("--orbit: not with --fps or --animation (the scene stays at rest)");
     if (cmd.camera.eye || cmd.camera.target || cmd.camera.up)
-      throw Error("--orbit: not with --eye, --target or --up (the orbit places the camera)");
+      throw UsageError("--orbit: not with --eye, --target or --up (the orbit places the camera)");
     if (cmd.framesGiven)
-      throw Error("--frames: not with --orbit (each frame of a turntable is timed once)");
+      throw UsageError("--frames: not with --orbit (each frame of a turntable is timed once)");
     cmd.sequence = FrameRange{0, *cmd.orbit - 1};
   }
   const char* const sequenceOption = cmd.orbit ? "--orbit" : "--sequence";
   if (!cmd.sequence) {
-    if (cmd.fpsGiven) throw Error("--fps: only with --sequence");
-    if (cmd.animation) throw Error("--animation: only with --sequence");
-    if (cmd.shard) throw Error("--shard: only with --sequence or --orbit");
-    if (cmd.skipExisting) throw Error("--skip-existing: only with --sequence or --orbit");
-    if (cmd.progress) throw Error("--progress: only with --sequence or --orbit");
+    if (cmd.fpsGiven) throw UsageError("--fps: only with --sequence");
+    if (cmd.animation) throw UsageError("--animation: only with --sequence");
+    if (cmd.shard) throw UsageError("--shard: only with --sequence or --orbit");
+    if (cmd.skipExisting) throw UsageError("--skip-existing: only with --sequence or --orbit");
+    if (cmd.progress) throw UsageError("--progress: only with --sequence or --orbit");
   } else {
     if (cmd.framesGiven)
-      throw Error("--frames: not with --sequence (each frame of a sequence is timed once)");
+      throw UsageError("--frames: not with --sequence (each frame of a sequence is timed once)");
     if (cmd.skipExisting && cmd.outputs.empty())
-      throw Error("--skip-existing: needs an --out (it skips the frames whose files exist)");
+      throw UsageError("--skip-existing: needs an --out (it skips the frames whose files exist)");
     for (const std::string& path : cmd.outputs) {
       if (!hasFrameField(path))
-        throw Error("--out: '" + path + "' has no run of '#' for the frame number (needed with " +
-                    sequenceOption + ")");
+        throw UsageError("--out: '" + path +
+                         "' has no run of '#' for the frame number (needed with " + sequenceOption +
+                         ")");
     }
   }
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   if (cmd.exrOption && !cmd.settings.frameDepth)
-    throw Error(std::string(cmd.exrOption) + ": no --out is an .exr file");
+    throw UsageError(std::string(cmd.exrOption) + ": no --out is an .exr file");
   cmd.settings.maxMemory = cmd.load.maxMemory;
   cmd.load.threads = cmd.config.threads;  // decoding the scene's meshes and images too
   if (cmd.settings.aovs != 0 && !cmd.outputs.empty() && !cmd.settings.frameDepth)
@@ -467,9 +484,16 @@ int renderCommand(const std::vector<std::string>& args) {
 }
 
 int run(const std::vector<std::string>& args) {
-  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
-    std::cout << usage();
+  if (args.empty() || args == std::vector<std::string>{"help"} || args[0] == "--help" ||
+      args[0] == "-h") {
+    std::cout << overview();
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "help") {
+    // "help report frames" is "report frames --help", to the byte.
+    std::vector<std::string> command(args.begin() + 1, args.end());
+    command.emplace_back("--help");
+    return run(command);
   }
   if (args[0] == "--version") {
     std::cout << "quadra " QUADRA_VERSION_STRING "\n";
@@ -479,7 +503,11 @@ int run(const std::vector<std::string>& args) {
   if (args[0] == "render") return renderCommand(commandArgs);
   if (args[0] == "sample") return runSample(commandArgs);
   if (args[0] == "report") return runReport(commandArgs);
-  throw Error("unknown command '" + args[0] + "' (commands: render, sample, report)");
+  const std::vector<std::string> commands = {"render", "sample", "report", "help", "--version"};
+  const std::string suggestion = didYouMean(args[0], commands);
+  throw UsageError(
+      "unknown command '" + args[0] + "' " +
+      (suggestion.empty() ? "(commands: render, sample, report, help)" : suggestion.substr(1)));
 }
 
 }  // namespace

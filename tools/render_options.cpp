@@ -20,7 +20,19 @@ namespace quadra {
 Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
                         const std::string& program) {
   const std::string prefix = kBuiltinScenePrefix;
-  if (scene.rfind(prefix, 0) == 0) return makeBuiltinScene(scene.substr(prefix.size()));
+  if (scene.rfind(prefix, 0) == 0) {
+    const std::string name = scene.substr(prefix.size());
+    try {
+      return makeBuiltinScene(name);
+    } catch (const Error& e) {
+      // A built-in scene reads no file: only its name (or dense-mesh's
+      // count) can be wrong, and that is the command line's fault.
+      const std::vector<std::string> known = builtinSceneNames();
+      const std::string base = name.substr(0, name.find(':'));
+      const bool knownBase = std::find(known.begin(), known.end(), base) != known.end();
+      throw UsageError(e.what() + (knownBase ? "" : didYouMean(name, known)));
+    }
+  }
   std::vector<std::string> notes;
   Scene loaded = loadGltf(scene, load, &notes);
   for (const std::string& note : notes) std::cerr << program << ": note: " << note << "\n";
@@ -57,7 +69,7 @@ void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& l
 }
 
 void addAllowPathOption(CommandOptions& options, LoadOptions& load) {
-  options.value("--allow-path", [&load](const std::string&, const std::string& folder) {
+  options.pathValue("--allow-path", [&load](const std::string&, const std::string& folder) {
     canonicalAllowedFolder(folder);  // a missing folder is an error even for builtin scenes
     load.allowedPaths.push_back(folder);
   });
@@ -118,8 +130,8 @@ void addAovOption(CommandOptions& options, RenderSettings& settings) {
       const AovName* found = std::find_if(std::begin(kAovNames), std::end(kAovNames),
                                           [&](const AovName& aov) { return name == aov.name; });
       if (found == std::end(kAovNames))
-        throw Error(option + ": '" + name + "' is not an AOV quadra writes (valid: " + aovNames() +
-                    ")");
+        throw UsageError(option + ": '" + name + "' is not an AOV quadra writes (valid: " +
+                         aovNames() + ")" + didYouMean(name, aovNames()));
       settings.aovs |= found->bits;
       if (name == kCoverageChannel) settings.frameCoverage = true;
     }

@@ -23,7 +23,8 @@ namespace quadra {
 constexpr const char* kBuiltinScenePrefix = "builtin:";
 
 // builtin:NAME from the lab, anything else a glTF file; the loader's notes go
-// to stderr, one line each, after `program` ("quadra: note: …").
+// to stderr, one line each, after `program` ("quadra: note: …"). An unknown
+// NAME is a UsageError with the names closest to it.
 Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
                         const std::string& program);
 
@@ -31,7 +32,8 @@ Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
 // --allow-path and --max-memory.
 void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& load);
 // --allow-path DIR, repeatable: a folder besides the scene's own that its URIs
-// may read (LoadOptions::allowedPaths); one that does not exist is an error.
+// may read (LoadOptions::allowedPaths); one that does not exist is an input
+// error (exit 1, as a missing scene file is), even for a built-in scene.
 void addAllowPathOption(CommandOptions& options, LoadOptions& load);
 // --max-memory SIZE (core/memory_budget.h parseMemorySize: 512M, 4G, bytes):
 // the budget of the load (LoadOptions::maxMemory), which a command that
@@ -46,7 +48,7 @@ void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs)
 // does, a PNG does not. Depth is produced only for what reads it.
 bool outputsNeedDepth(const std::vector<std::string>& outputs);
 
-// --aov LIST, repeatable: comma-separated AOV names (README "AOVs"): Z, N,
+// --aov LIST, repeatable: comma-separated AOV names (docs/cli.md "AOVs"): Z, N,
 // P, uv, motion, id, mask, lod, anisotropy. mask sets frameCoverage, Z is always in an EXR,
 // the others are RenderSettings::aovs bits; any other name is an Error
 // listing the valid ones.

@@ -1,3 +1,4 @@
+// `quadra report SUBJECT`'s choice of subject (and the list of them), and
 // `quadra report textures`: every filter's speed against its error. For each
 // test texture (generated in code, plus --texture FILE) it draws a seeded
 // footprint set, integrates the ground truth (DESIGN.md "Accuracy"), runs each
@@ -224,23 +225,7 @@ std::string svgText(const std::vector<FilterRow>& rows, const std::string& subti
   return svg.str();
 }
 
-}  // namespace
-
-int runReport(const std::vector<std::string>& args) {
-  const std::string subject = args.empty() ? "" : args[0];
-  const std::vector<std::string> rest(args.begin() + (args.empty() ? 0 : 1), args.end());
-  if (subject == "sat-precision") return runSatPrecisionReport(rest);
-  if (subject == "stability") return runStabilityReport(rest);
-  if (subject == "frames") return runFramesReport(rest);
-  if (subject == "samples") return runSamplesReport(rest);
-  if (subject == "--help" || subject == "-h") {
-    std::cout << kReportUsage;
-    return 0;
-  }
-  if (subject != "textures")
-    throw Error(
-        "report: expected a subject, 'textures', 'sat-precision', 'stability', 'frames' or "
-        "'samples' (see quadra report textures --help)");
+int runTexturesReport(const std::vector<std::string>& rest) {
   const std::optional<ReportOptions> parsed = parseReport(rest);
   if (!parsed) return 0;
   const ReportOptions& options = *parsed;
@@ -398,6 +383,42 @@ int runReport(const std::vector<std::string>& args) {
   std::cout << out.str() << "\nquadra wrote " << csvPath.string() << "\nquadra wrote "
             << svgPath.string() << "\n";
   return 0;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> reportSubjects() {
+  return {{"textures", "every texture filter's speed against its error"},
+          {"sat-precision", "the summed-area table's precision against float tables"},
+          {"stability", "numerical stability on the hard-case scenes (exit 1 on a failed check)"},
+          {"frames", "quadra's frames against Mesa llvmpipe's: times and image difference"},
+          {"samples", "samples per pixel: their cost against a reference tracer's frame"}};
+}
+
+int runReport(const std::vector<std::string>& args) {
+  const std::string subject = args.empty() ? "" : args[0];
+  const std::vector<std::string> rest(args.begin() + (args.empty() ? 0 : 1), args.end());
+  if (subject == "textures") return runTexturesReport(rest);
+  if (subject == "sat-precision") return runSatPrecisionReport(rest);
+  if (subject == "stability") return runStabilityReport(rest);
+  if (subject == "frames") return runFramesReport(rest);
+  if (subject == "samples") return runSamplesReport(rest);
+  if (subject == "--help" || subject == "-h") {
+    std::cout << "usage: quadra report SUBJECT [options]\nsubjects:\n" +
+                     summaryLines(reportSubjects()) +
+                     "'quadra report SUBJECT --help' prints a subject's options.\n";
+    return 0;
+  }
+  const std::string expected =
+      "report: expected a subject, 'textures', 'sat-precision', 'stability', 'frames' or "
+      "'samples'";
+  if (subject.empty() || subject.rfind("--", 0) == 0)
+    throw UsageError(expected + " (see quadra report --help)");
+  std::vector<std::string> names;
+  for (const auto& known : reportSubjects()) names.push_back(known.first);
+  const std::string suggestion = didYouMean(subject, names);
+  throw UsageError("report: unknown subject '" + subject + "' " +
+                   (suggestion.empty() ? "(see quadra report --help)" : suggestion.substr(1)));
 }
 
 }  // namespace quadra

@@ -149,7 +149,9 @@ std::vector<SceneEntry> chooseScenes(const FramesOptions& options) {
     if (entry.rfind(prefix, 0) == 0) {
       if (std::find(builtins.begin(), builtins.end(), entry.substr(prefix.size())) ==
           builtins.end())
-        throw Error("--scenes: unknown built-in scene '" + entry + "' (see quadra render --help)");
+        throw UsageError("--scenes: unknown built-in scene '" + entry +
+                         "' (see quadra render --help)" +
+                         didYouMean(entry.substr(prefix.size()), builtins));
       scenes.push_back({entry, entry});
     } else if ((endsWithIgnoringCase(entry, ".gltf") || endsWithIgnoringCase(entry, ".glb")) &&
                fs::is_regular_file(entry, ec)) {

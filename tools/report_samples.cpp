@@ -189,7 +189,7 @@ std::vector<std::string> chooseScenes(const SamplesOptions& options) {
   for (const std::string& entry : splitList("--scenes", options.scenes)) {
     const bool builtin = entry.rfind(kBuiltinScenePrefix, 0) == 0;
     if (!builtin && !endsWithIgnoringCase(entry, ".gltf") && !endsWithIgnoringCase(entry, ".glb"))
-      throw Error("--scenes: '" + entry + "' is neither builtin:NAME nor a .gltf/.glb file");
+      throw UsageError("--scenes: '" + entry + "' is neither builtin:NAME nor a .gltf/.glb file");
     scenes.push_back(entry);
   }
   return scenes;

@@ -562,7 +562,8 @@ int runStabilityReport(const std::vector<std::string>& args) {
       if (known) continue;
       std::string names;
       for (const auto& section : sections) names += (names.empty() ? "" : ", ") + section.first;
-      throw Error("--sections: unknown section '" + name + "' (" + names + ")");
+      throw UsageError("--sections: unknown section '" + name + "' (" + names + ")" +
+                       didYouMean(name, names));
     }
   }
   for (const auto& section : sections)

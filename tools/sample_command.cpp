@@ -53,20 +53,22 @@ std::optional<SampleCommand> parseSample(const std::vector<std::string>& args) {
   addLodRangeOptions(options, cmd.filtering.minLod, cmd.filtering.maxLod);
   options.value("--wrap", [&](const std::string& option, const std::string& value) {
     if (!parseWrap(value, cmd.wrap))
-      throw Error(option + ": unknown wrap mode '" + value + "' (repeat, mirror, clamp, border)");
+      throw UsageError(option + ": unknown wrap mode '" + value +
+                       "' (repeat, mirror, clamp, border)" +
+                       didYouMean(value, "repeat, mirror, clamp, border"));
   });
   addTexelFormatOption(options, "--format", cmd.format);
   addThreadsOption(options, cmd.threads);
   addIsaOption(options, cmd.isa);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
-  if (cmd.texturePath.empty()) throw Error("sample: --texture is required");
-  if (!cmd.filtering.filter) throw Error("sample: --filter is required");
+  if (cmd.texturePath.empty()) throw UsageError("sample: --texture is required");
+  if (!cmd.filtering.filter) throw UsageError("sample: --filter is required");
   if (cmd.filtering.minLod < 0.0f || cmd.filtering.minLod > cmd.filtering.maxLod)
-    throw Error("--min-lod/--max-lod: need 0 <= min <= max");
-  if (cmd.inPath.empty()) throw Error("sample: --in is required");
-  if (cmd.outPath.empty()) throw Error("sample: --out is required");
+    throw UsageError("--min-lod/--max-lod: need 0 <= min <= max");
+  if (cmd.inPath.empty()) throw UsageError("sample: --in is required");
+  if (cmd.outPath.empty()) throw UsageError("sample: --out is required");
   if (!endsWithIgnoringCase(cmd.outPath, ".csv"))
-    throw Error(cmd.outPath + ": output must be a .csv file");
+    throw UsageError(cmd.outPath + ": output must be a .csv file");
   return cmd;
 }
 

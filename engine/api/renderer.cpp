@@ -217,7 +217,7 @@ std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
 }
 
 // What the tile stage's AOV pass reads per draw (tile/surface_aov.h): the
-// ids as README "AOVs" defines them and the matrices, in double.
+// ids as docs/cli.md "AOVs" defines them and the matrices, in double.
 AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                       const std::vector<Draw>& draws, const std::vector<std::size_t>& instances) {
   AovFrame aov;

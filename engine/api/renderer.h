@@ -110,7 +110,7 @@ struct RenderSettings {
   // one sample, alpha 0.5 is the cutoff), so alpha-tested edges resolve to
   // their alpha instead of a hard step.
   bool alphaToCoverage = false;
-  // The surface AOVs to fill (io/frame.h Aov bits; README "AOVs"): none by
+  // The surface AOVs to fill (io/frame.h Aov bits; docs/cli.md "AOVs"): none by
   // default, and then nothing of their work is done. They need every
   // depth-writing draw in the visibility pass (analytic derivatives,
   // two-pass opaque shading, no debug view); render throws otherwise.
@@ -122,7 +122,7 @@ struct RenderSettings {
   // every texture drawn as its filter reads them (built yet or not, so the
   // outcome is the same for the first frame and the thousandth). Checked
   // before anything is allocated; over it, render throws an Error naming what
-  // and how much. The rules: README, "Memory budget".
+  // and how much. The rules: docs/cli.md, "Memory budget".
   std::uint64_t maxMemory = kDefaultMaxMemory;
 };
 

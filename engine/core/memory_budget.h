@@ -3,7 +3,7 @@
 // the frame and tile memory), charged before each allocation so that a hostile
 // or careless file ends in a one-line error instead of an out-of-memory kill.
 // It travels with the call (LoadOptions::maxMemory, RenderSettings::maxMemory):
-// no global state. The rules and defaults: README, "Memory budget".
+// no global state. The rules and defaults: docs/cli.md, "Memory budget".
 #pragma once
 
 #include <cstdint>

@@ -1,7 +1,7 @@
 // Frame: a rendered image in memory, what the tile stage resolves its tiles
 // into and the writers (io/image_io.h) read: premultiplied linear RGBA float,
 // window-space depth in [0,1] and, when asked for, coverage and the surface
-// AOVs (README "AOVs"), plus what an EXR header records about the render.
+// AOVs (docs/cli.md "AOVs"), plus what an EXR header records about the render.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +15,7 @@ namespace quadra {
 
 // The surface AOVs a render can fill besides colour, depth and coverage, as
 // bits of a set (RenderSettings::aovs). Each is taken from the nearest
-// depth-writing surface of the pixel, evaluated at the pixel centre (README
+// depth-writing surface of the pixel, evaluated at the pixel centre (docs/cli.md
 // "AOVs"); blended draws write none.
 enum class Aov : std::uint32_t {
   Normal = 1u << 0,      // N.X, N.Y, N.Z: world-space shading normal, unit length

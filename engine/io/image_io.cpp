@@ -112,7 +112,7 @@ struct ExrPlane {
   int stride;        // elements per pixel
 };
 
-// The frame's surface AOV channels (README "AOVs"), those it has.
+// The frame's surface AOV channels (docs/cli.md "AOVs"), those it has.
 std::vector<ExrPlane> exrAovPlanes(const Frame& frame) {
   std::vector<ExrPlane> planes;
   const auto floats = [&](const std::vector<float>& plane,

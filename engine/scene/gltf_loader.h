@@ -15,11 +15,11 @@ namespace quadra {
 struct LoadOptions {
   int sceneIndex = -1;  // -1: the file's default scene (or scene 0)
   // Folders besides the file's own that its buffer and image URIs may read
-  // (--allow-path); each must exist. The rules: README, "Scene sandbox".
+  // (--allow-path); each must exist. The rules: docs/cli.md, "Scene sandbox".
   std::vector<std::string> allowedPaths = {};
   // The bytes the load may allocate for what the file controls (the files
   // read, decoded buffers, meshes and images), each charged before it is
-  // allocated (--max-memory). The rules: README, "Memory budget".
+  // allocated (--max-memory). The rules: docs/cli.md, "Memory budget".
   std::uint64_t maxMemory = kDefaultMaxMemory;
   // Where meshes and images are decoded in parallel: the embedder's arena
   // (which must outlive the call), else a private one of `threads` threads
@@ -39,7 +39,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options = {},
 
 // What loadGltf charges for parsing the JSON of the file at `path` (its
 // bytes given) before it parses it: bounded from the text's structure
-// (README, "Memory budget"). Throws Error for a malformed GLB container.
+// (docs/cli.md, "Memory budget"). Throws Error for a malformed GLB container.
 std::uint64_t parsedJsonBytes(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
 }  // namespace quadra

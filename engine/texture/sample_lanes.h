@@ -1252,7 +1252,7 @@ Rgba<L> sampleTexture(const TextureView& view, const typename L::F& u, const typ
   return sampleTextureAs<L, TexelRead<TexelFormat::Rgba32F>>(view, u, v, d);
 }
 
-// What the lod and anisotropy AOVs report (README "AOVs"): the level the
+// What the lod and anisotropy AOVs report (docs/cli.md "AOVs"): the level the
 // view's filter reads for this footprint and its probe count, from the
 // functions that filter itself calls, so the AOV is the kernel's choice and
 // not a second formula of it. lod is within the chain [0, levelCount - 1]:

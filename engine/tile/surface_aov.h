@@ -1,4 +1,4 @@
-// Surface AOVs (README "AOVs"): a finished tile's visibility (each sample's
+// Surface AOVs (docs/cli.md "AOVs"): a finished tile's visibility (each sample's
 // winning triangle, TileBuffers::visible) → the frame's normal, position,
 // uv, motion and id planes. Per pixel, the triangle holding the pixel's
 // nearest sample (the one whose depth Z reports; the lowest sample on a

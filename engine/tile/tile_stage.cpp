@@ -1057,7 +1057,7 @@ void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame
     frame.kernels.wide->nearestSampleDepth(s.planes.get(), samples, frame.depthGreater);
 }
 
-// The lod and anisotropy AOVs (README "AOVs"): per pixel, the nearest
+// The lod and anisotropy AOVs (docs/cli.md "AOVs"): per pixel, the nearest
 // sample's triangle looked up by the kernel at the pixel centre as the
 // shading pass would (TileKernels::footprintLevels), one kernel call per run
 // of a textured draw's pixels; 0 and 0 where no textured surface is.

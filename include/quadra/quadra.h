@@ -190,7 +190,7 @@ typedef struct quadra_depth_target {
 
 /* The AOV targets, as quadra::api::AovTargets (quadra/renderer.hpp): each a
  * plane of the embedder's own memory with the rules of the depth target, the
- * AOV defined as the CLI's --aov channel of that name (README "AOVs").
+ * AOV defined as the CLI's --aov channel of that name (docs/cli.md "AOVs").
  * A NULL pointer: that AOV is not asked for, and not computed. */
 typedef struct quadra_aov_float_target {
   float* data; /* channels floats per pixel */

@@ -72,7 +72,7 @@ struct AovTarget {
 // when its target is given (and only then computed: a render that asks for
 // none costs nothing more). What each holds, from which surface, and its
 // value where nothing is drawn are the CLI's `--aov` channels of the same
-// name, defined in README "AOVs" (the table there). Channels per pixel:
+// name, defined in docs/cli.md "AOVs" (the table there). Channels per pixel:
 struct AovTargets {
   AovTarget normal;       // 3 floats: the N.X N.Y N.Z channels
   AovTarget position;     // 3 floats: P.X P.Y P.Z
@@ -82,7 +82,7 @@ struct AovTargets {
   AovTarget nodeId;       // 1 uint32: id.node; a Scene built in code: the InstanceHandle
   AovTarget materialId;   // 1 uint32: id.material; built in code: the MaterialHandle
 };
-// Not here: `motion` (README "AOVs"), which needs the previous frame's pose,
+// Not here: `motion` (docs/cli.md "AOVs"), which needs the previous frame's pose,
 // and a Scene has only the present one.
 
 enum class Shading : std::uint8_t {
@@ -97,7 +97,7 @@ struct RenderOptions {
   // The bytes a frame may hold (the CLI's --max-memory): its buffers, the
   // tile stage's working memory and the texture levels its filters read,
   // checked before anything is allocated; over it, render throws an Error
-  // naming what and how much (README "Memory budget").
+  // naming what and how much (docs/cli.md "Memory budget").
   std::uint64_t maxMemory = kDefaultMaxMemory;
 };
 

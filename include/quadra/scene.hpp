@@ -227,7 +227,7 @@ class QUADRA_API Scene {
 };
 
 // What a load may read and allocate: the guards for a file from someone you
-// do not trust (README "Scene sandbox" and "Memory budget" give the rules;
+// do not trust (docs/cli.md "Scene sandbox" and "Memory budget" give the rules;
 // they are the CLI's --allow-path, --max-memory and --scene).
 inline constexpr std::uint64_t kDefaultMaxMemory = std::uint64_t(8) << 30;  // 8 GiB
 struct LoadOptions {

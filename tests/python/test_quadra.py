@@ -123,7 +123,7 @@ class RenderFromNumpy(unittest.TestCase):
     def test_aovs_of_the_quad_are_its_analytic_values(self):
         # The quad of the test above: N = (0, 0, 1), P = (x, y, 0) and uv
         # linear across it at the pixel centres, its ids and full coverage;
-        # off it the clear values (README "AOVs").
+        # off it the clear values (docs/cli.md "AOVs").
         out = self.renderer.render(quad_scene(), width=40, height=40,
                                    aovs=("N", "P", "uv", "id", "mask"))
         inside = np.zeros((40, 40), bool)

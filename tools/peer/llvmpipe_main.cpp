@@ -90,8 +90,9 @@ std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   if (cmd.settings.filter && !peerSupportsFilter(*cmd.settings.filter))
-    throw Error(std::string("--filter ") + filterName(*cmd.settings.filter) +
-                ": llvmpipe has no such filter (nearest, bilinear, nearest-mip, trilinear, aniso)");
+    throw UsageError(
+        std::string("--filter ") + filterName(*cmd.settings.filter) +
+        ": llvmpipe has no such filter (nearest, bilinear, nearest-mip, trilinear, aniso)");
   return cmd;
 }
 
@@ -150,13 +151,19 @@ int renderCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
+// Its one command's usage is its overview: `help`, `help render` and
+// `render --help` print the same.
 int run(const std::vector<std::string>& args) {
-  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" ||
+      (args[0] == "help" && (args.size() == 1 || args[1] == "render"))) {
     std::cout << kUsage;
     return args.empty() ? 2 : 0;
   }
   if (args[0] == "render") return renderCommand({args.begin() + 1, args.end()});
-  throw Error("unknown command '" + args[0] + "' (commands: render)");
+  const std::string& command = args[0] == "help" ? args[1] : args[0];
+  const std::string suggestion = didYouMean(command, std::vector<std::string>{"render", "help"});
+  throw UsageError("unknown command '" + command + "' " +
+                   (suggestion.empty() ? "(commands: render, help)" : suggestion.substr(1)));
 }
 
 }  // namespace
