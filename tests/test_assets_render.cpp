@@ -22,6 +22,7 @@
 #include "lab/reference/reference_tracer.h"
 #include "param_names.h"
 #include "render_helpers.h"
+#include "sample_models.h"
 #include "scene/animation.h"
 #include "scene/gltf_loader.h"
 
@@ -30,17 +31,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The models quadra loads (those requiring an extension it lacks are
+// GltfSampleModels.EveryModelLoadsOrIsRefusedForItsRequiredExtension's).
 std::vector<std::string> sampleModels() {
   std::vector<std::string> files;
-  std::error_code error;
-  if (!fs::is_directory(QUADRA_ASSETS_DIR, error)) return files;
-  for (const fs::directory_entry& model : fs::directory_iterator(QUADRA_ASSETS_DIR, error)) {
-    const fs::path gltfDir = model.path() / "glTF";
-    if (!fs::is_directory(gltfDir, error)) continue;
-    for (const fs::directory_entry& file : fs::directory_iterator(gltfDir, error))
-      if (file.path().extension() == ".gltf") files.push_back(file.path().string());
-  }
-  std::sort(files.begin(), files.end());
+  for (const fs::path& model : loadableSampleModels()) files.push_back(model.string());
   return files;
 }
 

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -20,6 +21,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_options.h"
 #include "commands.h"
@@ -29,6 +32,7 @@
 #include "lab/scene/builtin_scenes.h"
 #include "render_options.h"
 #include "report_output.h"
+#include "scene/gltf_loader.h"
 #include "subprocess.h"
 
 namespace quadra {
@@ -116,15 +120,33 @@ fs::path modelFile(const fs::path& assets, const std::string& model) {
   return assets / model / "glTF" / (model + ".gltf");
 }
 
-// Every <Model>/glTF/<Model>.gltf under `assets`, by name; none when absent.
+// The first extension the glTF file requires that quadra lacks, or "": such a
+// model is refused (docs/gltf.md), so no frame of it can be timed.
+std::string lackedRequiredExtension(const fs::path& gltf) {
+  std::ifstream in(gltf);
+  const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+  if (json.is_discarded() || !json.contains("extensionsRequired")) return "";
+  for (const nlohmann::json& name : json["extensionsRequired"])
+    if (name.is_string() && !implementsGltfExtension(name.get<std::string>())) return name;
+  return "";
+}
+
+// Every <Model>/glTF/<Model>.gltf under `assets` that quadra loads, by name;
+// none when absent. The others are named on stderr.
 std::vector<SceneEntry> sampleModels(const fs::path& assets) {
   std::vector<SceneEntry> models;
   std::error_code ec;
   if (!fs::is_directory(assets, ec)) return models;
   for (const fs::directory_entry& folder : fs::directory_iterator(assets, ec)) {
     const std::string name = folder.path().filename().string();
-    if (fs::is_regular_file(modelFile(assets, name), ec))
-      models.push_back({name, modelFile(assets, name).string()});
+    const fs::path file = modelFile(assets, name);
+    if (!fs::is_regular_file(file, ec)) continue;
+    if (const std::string lacked = lackedRequiredExtension(file); !lacked.empty()) {
+      std::cerr << "quadra: note: report frames: " << name << " left out: it requires " << lacked
+                << "\n";
+      continue;
+    }
+    models.push_back({name, file.string()});
   }
   std::sort(models.begin(), models.end(),
             [](const SceneEntry& a, const SceneEntry& b) { return a.label < b.label; });

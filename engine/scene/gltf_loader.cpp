@@ -260,21 +260,15 @@ tinygltf::Model parseModel(const std::string& path, const std::vector<std::uint8
   return model;
 }
 
-// The extensions quadra implements: integer attribute types are read
-// generically, so quantized meshes load; the base colour texture's transform
-// is applied (the other texture slots are not drawn, so theirs do not matter).
-bool implemented(const std::string& extension) {
-  return extension == "KHR_mesh_quantization" || extension == "KHR_texture_transform";
-}
-
 // A required extension quadra does not implement would draw the scene wrong:
 // an error. An optional one leaves a valid fallback (glTF 2.0 §3.12): a note.
 void checkExtensions(const ModelRef& ref, std::vector<std::string>& notes) {
   for (const std::string& extension : ref.model.extensionsRequired) {
-    if (!implemented(extension)) throw ref.fail("unsupported required extension " + extension);
+    if (!implementsGltfExtension(extension))
+      throw ref.fail("unsupported required extension " + extension);
   }
   for (const std::string& extension : ref.model.extensionsUsed) {
-    if (!implemented(extension))
+    if (!implementsGltfExtension(extension))
       notes.push_back(ref.note("optional extension " + extension + " is not supported; ignored"));
   }
 }
@@ -770,6 +764,13 @@ Scene loadGltf(const std::string& path, const LoadOptions& options,
   } catch (const std::exception& e) {
     throw makeError(path, firstLine(e.what()));
   }
+}
+
+// Integer attribute types are read generically, so quantized meshes load; the
+// base colour texture's transform is applied (the other texture slots are not
+// drawn, so theirs do not matter).
+bool implementsGltfExtension(const std::string& name) {
+  return name == "KHR_mesh_quantization" || name == "KHR_texture_transform";
 }
 
 }  // namespace quadra

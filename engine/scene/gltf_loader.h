@@ -42,4 +42,8 @@ Scene loadGltf(const std::string& path, const LoadOptions& options = {},
 // (docs/cli.md, "Memory budget"). Throws Error for a malformed GLB container.
 std::uint64_t parsedJsonBytes(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
+// Whether quadra implements the glTF extension `name`: a file that requires
+// one it does not is refused (docs/gltf.md), one that only uses it loads.
+bool implementsGltfExtension(const std::string& name);
+
 }  // namespace quadra
