@@ -176,7 +176,7 @@ QUADRA_LANE_INLINE UvDerivatives<L> analyticFootprint(const ShadeState& shade, c
 // The colour of a draw's pixels at (x, y) from their triangles' 1/w and
 // attribute/w planes; the one shading function of the forward path, the
 // masked draws' alpha test and the shading pass, so all three agree bit for
-// bit. kQuad takes the footprint from differences across each 2x2 quad
+// bit. quadDerivatives takes the footprint from differences across each 2x2 quad
 // (lanes in quad order, helper lanes included); otherwise the derivatives are
 // the planes' own at each pixel centre: with U = u/w and W = 1/w, u = U/W and
 // du/dx = (U_x - u W_x) / W.
@@ -186,9 +186,10 @@ constexpr bool readsPlanes(bool textured, bool vertexColor, bool lit, ShadeOutpu
   return textured || vertexColor || lit || output != ShadeOutput::Color;
 }
 
-template <bool kTextured, bool kVertexColor, bool kLit, bool kQuad, ShadeOutput kOutput>
+template <bool kTextured, bool kVertexColor, bool kLit, ShadeOutput kOutput>
 QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const F& y,
-                                      const LanePlane& invW, const LanePlane* attr) {
+                                      const LanePlane& invW, const LanePlane* attr,
+                                      bool quadDerivatives) {
   // Perspective-correct: a = (a/w) / (1/w), with one exact division. A
   // colour that reads no plane reads no 1/w either (RunShader gathers none).
   F w(1.0f);
@@ -203,7 +204,7 @@ QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const
       r = u, g = v, b = F(0.0f), a = F(1.0f);
     } else {
       UvDerivatives<L> d;
-      if constexpr (kQuad) {
+      if (quadDerivatives) {
         // Coarse derivatives: one footprint per quad, from its top-left pixel.
         const F u0 = simd::quadBroadcast<0>(u), v0 = simd::quadBroadcast<0>(v);
         d = {simd::quadBroadcast<1>(u) - u0, simd::quadBroadcast<1>(v) - v0,
@@ -246,18 +247,20 @@ QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const
 // The state a draw's kernels are specialized on (template parameters), so
 // the inner loops carry no per-pixel branches for features a draw lacks.
 template <bool kTextured_, bool kVertexColor_, bool kLit_, AlphaMode kAlpha_,
-          ShadeOutput kOutput_ = ShadeOutput::Color, bool kQuad_ = false>
+          ShadeOutput kOutput_ = ShadeOutput::Color>
 struct Features {
-  static constexpr bool kTextured = kTextured_, kVertexColor = kVertexColor_, kLit = kLit_,
-                        kQuad = kQuad_;
+  static constexpr bool kTextured = kTextured_, kVertexColor = kVertexColor_, kLit = kLit_;
   static constexpr AlphaMode kAlpha = kAlpha_;
   static constexpr ShadeOutput kOutput = kOutput_;
   // RunShader gathers the planes of a draw whose colour reads them, and the
   // tile stage rebases them (rebaseShadePlanes) for those draws alone.
   static constexpr bool kReadsPlanes = readsPlanes(kTextured, kVertexColor, kLit, kOutput);
+  // quadDerivatives: the forward shader's lanes hold whole 2x2 quads, so it
+  // can take a texture's footprint from their differences (a branch, not a
+  // template parameter: another copy of every forward shader cost build time).
   static Rgba<L> color(const ShadeState& s, const F& x, const F& y, const LanePlane& invW,
-                       const LanePlane* attr) {
-    return shadeColor<kTextured, kVertexColor, kLit, kQuad, kOutput>(s, x, y, invW, attr);
+                       const LanePlane* attr, bool quadDerivatives = false) {
+    return shadeColor<kTextured, kVertexColor, kLit, kOutput>(s, x, y, invW, attr, quadDerivatives);
   }
 };
 
@@ -437,7 +440,8 @@ struct ForwardShader {
     if (shade.depthCompare != CompareFunction::Always)
       cover = cover & depthPasses(shade.depthCompare, zValue, zOld);
     if (!simd::any(cover)) return zOld;
-    Rgba<L> c = Feat::color(shade, x, y, planes.invW, planes.attr);
+    Rgba<L> c = Feat::color(shade, x, y, planes.invW, planes.attr,
+                            shade.derivatives == DerivativeMode::Quad);
     if (Feat::kAlpha == AlphaMode::Mask) cover = cover & (c.a >= F(shade.alphaCutoff));
     if (Feat::kAlpha != AlphaMode::Blend && Feat::kOutput != ShadeOutput::Derivatives)
       c.a = F(1.0f);  // A = dv/dy there
@@ -969,35 +973,19 @@ auto withFeatures(const ShadeState& s, Visit&& visit) {
   return lit.template operator()<false, false>();
 }
 
-template <class Feat>
-using QuadFeatures = Features<Feat::kTextured, Feat::kVertexColor, Feat::kLit, Feat::kAlpha,
-                              ShadeOutput::Color, true>;
-
 void rasterize(const TriangleRecord& t, const Plane* p, const ShadeState& s, TileBuffers& tile,
                BlendedFragments* deferred, int plane) {
   // Test views are opaque, untextured and unlit (api/renderer.cpp makeDraw).
   constexpr AlphaMode kOpaque = AlphaMode::Opaque;
-  const bool quad = s.derivatives == DerivativeMode::Quad;
   if (s.output == ShadeOutput::TexCoord) {
     using Feat = Features<false, false, false, kOpaque, ShadeOutput::TexCoord>;
     return rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile), tile);
   }
   if (s.output == ShadeOutput::Derivatives) {
-    if (quad) {
-      using Feat = Features<false, false, false, kOpaque, ShadeOutput::Derivatives, true>;
-      return rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile), tile);
-    }
     using Feat = Features<false, false, false, kOpaque, ShadeOutput::Derivatives>;
     return rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile), tile);
   }
   withFeatures(s, [&]<class Feat>() {
-    // Quad differences only feed a texture's footprint: an untextured draw's
-    // copy would be the analytic one again, and each copy is build time.
-    if constexpr (Feat::kTextured) {
-      if (quad)
-        return rasterizeWith(t, ForwardShader<QuadFeatures<Feat>>(s, t, p, tile, deferred, plane),
-                             tile);
-    }
     rasterizeWith(t, ForwardShader<Feat>(s, t, p, tile, deferred, plane), tile);
   });
 }
