@@ -41,7 +41,7 @@ static uint32_t node_ids[kSize * kAovRow];
 static float mask[kSize * kAovRow];
 
 /* quadra_render_with: the node ids (the instance's id on the quad,
- * 0xFFFFFFFF off it, README "AOVs") and the mask (1 on it, 0 off it) at a
+ * 0xFFFFFFFF off it, docs/cli.md "AOVs") and the mask (1 on it, 0 off it) at a
  * padded stride, the padding untouched; a short normal target is an error
  * naming it that writes nothing. */
 static void aovs_of_the_quad(quadra_renderer* renderer, const quadra_scene* scene,
