@@ -33,29 +33,26 @@ namespace quadra::api {
 
 namespace {
 
-std::string str(std::size_t n) {
-  return std::to_string(n);
-}
-
 // Size, stride and alignment of one embedder buffer of width x height
 // pixels of pixelBytes, channels of channelBytes each.
 void checkBuffer(const char* what, std::span<std::byte> bytes, int width, int height,
                  std::size_t rowStride, std::size_t pixelBytes, std::size_t channelBytes) {
   const std::size_t rowBytes = std::size_t(width) * pixelBytes;
   if (rowStride < rowBytes)
-    throw Error(std::string(what) + ": row stride " + str(rowStride) +
-                " bytes is less than a row's " + std::to_string(width) + " x " + str(pixelBytes) +
-                " = " + str(rowBytes));
+    throw Error(std::string(what) + ": row stride " + std::to_string(rowStride) +
+                " bytes is less than a row's " + std::to_string(width) + " x " +
+                std::to_string(pixelBytes) + " = " + std::to_string(rowBytes));
   if (rowStride % channelBytes != 0)
-    throw Error(std::string(what) + ": row stride " + str(rowStride) +
-                " bytes is not a multiple of the channel size " + str(channelBytes));
+    throw Error(std::string(what) + ": row stride " + std::to_string(rowStride) +
+                " bytes is not a multiple of the channel size " + std::to_string(channelBytes));
   if (reinterpret_cast<std::uintptr_t>(bytes.data()) % channelBytes != 0)
-    throw Error(std::string(what) + ": buffer is not aligned to " + str(channelBytes) + " bytes");
+    throw Error(std::string(what) + ": buffer is not aligned to " + std::to_string(channelBytes) +
+                " bytes");
   const std::size_t needed = rowStride * (std::size_t(height) - 1) + rowBytes;
   if (bytes.size() < needed)
     throw Error(std::string(what) + ": " + std::to_string(width) + "x" + std::to_string(height) +
-                " at row stride " + str(rowStride) + " needs " + str(needed) +
-                " bytes, the buffer has " + str(bytes.size()));
+                " at row stride " + std::to_string(rowStride) + " needs " + std::to_string(needed) +
+                " bytes, the buffer has " + std::to_string(bytes.size()));
 }
 
 // Rows in parallel (each row's bytes depend on that row alone, so the

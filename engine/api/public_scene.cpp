@@ -17,10 +17,6 @@ namespace quadra::api {
 
 namespace {
 
-std::string str(std::size_t n) {
-  return std::to_string(n);
-}
-
 // The attribute array `name`, `components` floats per vertex, as a vector of
 // T (glm vectors): empty stays empty; any other length but V x components is
 // an Error, so nothing reads past the embedder's array.
@@ -29,8 +25,9 @@ std::vector<T> attribute(std::span<const float> values, std::size_t vertices, in
                          const char* name) {
   if (values.empty()) return {};
   if (values.size() != vertices * components)
-    throw Error("mesh: " + std::string(name) + " hold " + str(values.size()) + " floats, " +
-                str(vertices) + " vertices need " + str(vertices * components));
+    throw Error("mesh: " + std::string(name) + " hold " + std::to_string(values.size()) +
+                " floats, " + std::to_string(vertices) + " vertices need " +
+                std::to_string(vertices * components));
   std::vector<T> out(vertices);
   std::memcpy(out.data(), values.data(), values.size() * sizeof(float));
   return out;
@@ -39,19 +36,21 @@ std::vector<T> attribute(std::span<const float> values, std::size_t vertices, in
 template <typename Index>
 std::vector<std::uint32_t> checkedIndices(std::span<const Index> indices, std::size_t vertices) {
   if (indices.size() % 3 != 0)
-    throw Error("mesh: " + str(indices.size()) + " indices are not a whole number of triangles");
+    throw Error("mesh: " + std::to_string(indices.size()) +
+                " indices are not a whole number of triangles");
   std::vector<std::uint32_t> out(indices.begin(), indices.end());
   for (std::size_t i = 0; i < out.size(); ++i)
     if (out[i] >= vertices)
-      throw Error("mesh: index " + str(out[i]) + " (entry " + str(i) + ") is out of range for " +
-                  str(vertices) + " vertices");
+      throw Error("mesh: index " + std::to_string(out[i]) + " (entry " + std::to_string(i) +
+                  ") is out of range for " + std::to_string(vertices) + " vertices");
   return out;
 }
 
 // The geometry of `data` as an engine mesh (material unset).
 quadra::Mesh meshOf(const MeshData& data) {
   if (data.positions.size() % 3 != 0)
-    throw Error("mesh: positions hold " + str(data.positions.size()) + " floats, not 3 per vertex");
+    throw Error("mesh: positions hold " + std::to_string(data.positions.size()) +
+                " floats, not 3 per vertex");
   const std::size_t vertices = data.positions.size() / 3;
   if (data.indices32.empty() == data.indices16.empty())
     throw Error(data.indices32.empty() ? "mesh: no indices (give indices32 or indices16)"
@@ -102,12 +101,13 @@ std::shared_ptr<const Texture> textureOf(const TextureData& data) {
   const std::size_t rowBytes = std::size_t(data.width) * bytesPerTexel(format);
   const std::size_t stride = data.rowStride == 0 ? rowBytes : data.rowStride;
   if (stride < rowBytes)
-    throw Error("texture: row stride " + str(stride) + " bytes is less than a row's " +
-                str(rowBytes));
+    throw Error("texture: row stride " + std::to_string(stride) + " bytes is less than a row's " +
+                std::to_string(rowBytes));
   const std::size_t needed = stride * (std::size_t(data.height) - 1) + rowBytes;
   if (data.texels.size() < needed)
     throw Error("texture: " + std::to_string(data.width) + "x" + std::to_string(data.height) +
-                " texels need " + str(needed) + " bytes, the array has " + str(data.texels.size()));
+                " texels need " + std::to_string(needed) + " bytes, the array has " +
+                std::to_string(data.texels.size()));
   auto image = std::make_shared<Image>(data.width, data.height);
   const auto* bytes = reinterpret_cast<const std::uint8_t*>(data.texels.data());
   for (int y = 0; y < data.height; ++y)
@@ -132,8 +132,9 @@ std::shared_ptr<const Texture> textureOf(const TextureData& data) {
 glm::mat4 matrixOf(const Matrix4& m, const char* what) {
   for (std::size_t i = 0; i < m.size(); ++i)
     if (!std::isfinite(m[i]))
-      throw Error(std::string(what) + ": element " + str(i) + " (column " + str(i / 4) + ", row " +
-                  str(i % 4) + ") is " + (std::isnan(m[i]) ? "NaN" : "infinite"));
+      throw Error(std::string(what) + ": element " + std::to_string(i) + " (column " +
+                  std::to_string(i / 4) + ", row " + std::to_string(i % 4) + ") is " +
+                  (std::isnan(m[i]) ? "NaN" : "infinite"));
   glm::mat4 out;
   std::memcpy(&out[0][0], m.data(), sizeof(out));
   return out;
@@ -142,8 +143,8 @@ glm::mat4 matrixOf(const Matrix4& m, const char* what) {
 template <typename Handle>
 std::size_t checkedIndex(Handle handle, std::size_t count, const char* what) {
   if (handle.index >= count)
-    throw Error(std::string(what) + ": handle " + str(handle.index) +
-                " is not one of this scene's " + str(count));
+    throw Error(std::string(what) + ": handle " + std::to_string(handle.index) +
+                " is not one of this scene's " + std::to_string(count));
   return handle.index;
 }
 

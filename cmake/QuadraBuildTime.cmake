@@ -1,0 +1,36 @@
+# What makes the build shorter without changing a bit of the code it builds
+# (issue 45: a first image in minutes; docs/performance.md "Build time and the
+# first run").
+#
+# Precompiled headers: half of a typical translation unit's compile was
+# parsing the standard library and GLM (128k preprocessed lines for
+# api/renderer.cpp, 7 of its 13 CPU-seconds), so each target parses them once.
+# Unity batches: the engine's and the CLI library's small files compiled
+# eight to a translation unit, which parses their own headers once a batch
+# and halves those files' compile. The per-ISA kernel copies take part in
+# neither (quadra_isa_sources): their ISA flags differ from the header's, and
+# each is a large file of its own.
+#
+# Sanitizer and fuzz builds compile every file on its own without either, so
+# a source that forgets an include a batch or the header happens to provide
+# still fails to build somewhere. Headers read from a PCH lose their
+# system-header status in GCC 12, so its false -Warray-bounds alarms inside
+# std::string (char_traits.h) surface as errors where the inliner meets them:
+# three test files did, so the test program, which no first run builds,
+# compiles without it.
+option(QUADRA_FAST_BUILD "Precompiled headers and unity batches for the engine, lab and CLI" ON)
+set(QUADRA_PCH_HEADERS <algorithm> <array> <cmath> <cstdint> <cstdio> <cstring> <filesystem>
+    <functional> <limits> <map> <memory> <optional> <sstream> <string> <utility> <vector>
+    <glm/glm.hpp>)
+
+# quadra_build_fast(<target> [PCH_ONLY]): PCH_ONLY for a target whose files
+# each keep same-named helpers of their own (the lab's kPi, the reports'
+# SceneResult, ...).
+function(quadra_build_fast target)
+  if(QUADRA_FAST_BUILD AND NOT QUADRA_SANITIZE AND NOT QUADRA_FUZZ)
+    target_precompile_headers(${target} PRIVATE ${QUADRA_PCH_HEADERS})
+    if(NOT "${ARGN}" STREQUAL "PCH_ONLY")
+      set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+    endif()
+  endif()
+endfunction()
