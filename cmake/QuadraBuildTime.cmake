@@ -25,10 +25,17 @@ set(QUADRA_PCH_HEADERS <algorithm> <array> <cmath> <cstdint> <cstdio> <cstring> 
 
 # quadra_build_fast(<target> [PCH_ONLY]): PCH_ONLY for a target whose files
 # each keep same-named helpers of their own (the lab's kPi, the reports'
-# SceneResult, ...).
+# SceneResult, ...). The engine's header serves the other static libraries,
+# which compile with the same flags; an executable (-fPIE, not -fPIC) needs
+# its own.
 function(quadra_build_fast target)
   if(QUADRA_FAST_BUILD AND NOT QUADRA_SANITIZE AND NOT QUADRA_FUZZ)
-    target_precompile_headers(${target} PRIVATE ${QUADRA_PCH_HEADERS})
+    get_target_property(type ${target} TYPE)
+    if(type STREQUAL "STATIC_LIBRARY" AND NOT target STREQUAL "quadra_engine")
+      target_precompile_headers(${target} REUSE_FROM quadra_engine)
+    else()
+      target_precompile_headers(${target} PRIVATE ${QUADRA_PCH_HEADERS})
+    endif()
     if(NOT "${ARGN}" STREQUAL "PCH_ONLY")
       set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
     endif()
