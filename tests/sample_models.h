@@ -1,17 +1,14 @@
 // The shared sample models (../shared/assets, beside the checkout) as the
-// tests see them: every model's .gltf file, and which of them quadra must
-// refuse because the file requires an extension quadra does not implement.
+// tests see them: every model's .gltf file, and those quadra loads (not those
+// whose file requires an extension quadra does not implement).
 #pragma once
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "scene/gltf_loader.h"
+#include "lab/scene/sample_models.h"
 
 namespace quadra {
 
@@ -32,23 +29,11 @@ inline std::vector<std::filesystem::path> allSampleModels() {
   return models;
 }
 
-// The extensions the file lists in extensionsRequired that quadra lacks,
-// read from its JSON independently of the loader.
-inline std::vector<std::string> unimplementedRequiredExtensions(const std::filesystem::path& gltf) {
-  std::ifstream in(gltf);
-  const nlohmann::json json = nlohmann::json::parse(in);
-  std::vector<std::string> lacking;
-  if (const auto found = json.find("extensionsRequired"); found != json.end())
-    for (const auto& name : *found)
-      if (!implementsGltfExtension(name.get<std::string>())) lacking.push_back(name);
-  return lacking;
-}
-
 // The models quadra loads: all but those requiring what it lacks.
 inline std::vector<std::filesystem::path> loadableSampleModels() {
   std::vector<std::filesystem::path> models = allSampleModels();
   std::erase_if(models, [](const std::filesystem::path& model) {
-    return !unimplementedRequiredExtensions(model).empty();
+    return !lackedRequiredGltfExtension(model).empty();
   });
   return models;
 }

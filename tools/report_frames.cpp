@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -22,17 +21,15 @@
 #include <thread>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "cli_options.h"
 #include "commands.h"
 #include "core/error.h"
 #include "io/image_io.h"
 #include "lab/image/image_difference.h"
 #include "lab/scene/builtin_scenes.h"
+#include "lab/scene/sample_models.h"
 #include "render_options.h"
 #include "report_output.h"
-#include "scene/gltf_loader.h"
 #include "subprocess.h"
 
 namespace quadra {
@@ -120,19 +117,9 @@ fs::path modelFile(const fs::path& assets, const std::string& model) {
   return assets / model / "glTF" / (model + ".gltf");
 }
 
-// The first extension the glTF file requires that quadra lacks, or "": such a
-// model is refused (docs/gltf.md), so no frame of it can be timed.
-std::string lackedRequiredExtension(const fs::path& gltf) {
-  std::ifstream in(gltf);
-  const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
-  if (json.is_discarded() || !json.contains("extensionsRequired")) return "";
-  for (const nlohmann::json& name : json["extensionsRequired"])
-    if (name.is_string() && !implementsGltfExtension(name.get<std::string>())) return name;
-  return "";
-}
-
 // Every <Model>/glTF/<Model>.gltf under `assets` that quadra loads, by name;
-// none when absent. The others are named on stderr.
+// none when absent. The others (refused for an extension they require, so
+// no frame of them can be timed) are named on stderr.
 std::vector<SceneEntry> sampleModels(const fs::path& assets) {
   std::vector<SceneEntry> models;
   std::error_code ec;
@@ -141,7 +128,7 @@ std::vector<SceneEntry> sampleModels(const fs::path& assets) {
     const std::string name = folder.path().filename().string();
     const fs::path file = modelFile(assets, name);
     if (!fs::is_regular_file(file, ec)) continue;
-    if (const std::string lacked = lackedRequiredExtension(file); !lacked.empty()) {
+    if (const std::string lacked = lackedRequiredGltfExtension(file); !lacked.empty()) {
       std::cerr << "quadra: note: report frames: " << name << " left out: it requires " << lacked
                 << "\n";
       continue;
