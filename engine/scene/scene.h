@@ -42,6 +42,18 @@ struct TextureTransform {
   glm::mat3x2 matrix() const;
 };
 
+// A texture a material reads besides its base colour: which one, through
+// which TEXCOORD_n set, and that set's KHR_texture_transform.
+struct MaterialTexture {
+  int texture = -1;  // index into Scene::textures, -1 when none
+  int texCoord = 0;  // 0 or 1
+  TextureTransform transform;
+  bool present() const { return texture >= 0; }
+};
+
+// glTF 2.0's metallic-roughness material. The lit shading's reading of each
+// field is ../shared/LIGHTING.md "The material"; unlit and lit shading read
+// only the base colour, alpha and sidedness.
 struct Material {
   glm::vec4 baseColorFactor{1.0f};
   int baseColorTexture = -1;            // index into Scene::textures, -1 when none
@@ -51,6 +63,25 @@ struct Material {
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
   int fileIndex = -1;  // the material's index in the glTF file; -1: built in
+
+  float metallicFactor = 1.0f;
+  float roughnessFactor = 1.0f;
+  MaterialTexture metallicRoughness;  // linear; B metallic, G roughness
+  MaterialTexture normal;             // linear tangent-space normal map
+  float normalScale = 1.0f;
+  MaterialTexture occlusion;  // linear; R
+  float occlusionStrength = 1.0f;
+  MaterialTexture emissive;  // sRGB
+  glm::vec3 emissiveFactor{0.0f};
+  float emissiveStrength = 1.0f;  // KHR_materials_emissive_strength
+  float ior = 1.5f;               // KHR_materials_ior
+  // KHR_materials_specular: the specular weight (A of its texture) and the
+  // f0 colour (RGB of its texture, sRGB).
+  float specularFactor = 1.0f;
+  MaterialTexture specular;
+  glm::vec3 specularColorFactor{1.0f};
+  MaterialTexture specularColor;
+  bool unlit = false;  // KHR_materials_unlit: every shading shows the unlit colour
 };
 
 // A morph target's per-vertex deltas (glTF 2.0 §3.7.2.2). Each array is
@@ -60,7 +91,8 @@ struct MorphTarget {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> texcoords[2];
-  std::vector<glm::vec4> colors;  // COLOR_0 deltas (vec3 inputs get alpha delta 0)
+  std::vector<glm::vec4> colors;    // COLOR_0 deltas (vec3 inputs get alpha delta 0)
+  std::vector<glm::vec3> tangents;  // TANGENT deltas (xyz; w is the base's)
 };
 
 // One glTF primitive, as a triangle list. Attribute arrays are empty when the
@@ -70,8 +102,12 @@ struct Mesh {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> texcoords[2];  // TEXCOORD_0, TEXCOORD_1
   std::vector<glm::vec4> colors;        // COLOR_0 (vec3 inputs get alpha 1)
-  std::vector<std::uint32_t> indices;   // 3 per triangle, all < positions.size()
-  int material = -1;                    // -1: the glTF default material
+  // TANGENT: xyz a unit vector, w = +-1 the bitangent's sign (B = w N x T).
+  // Where a primitive whose material has a normal map has none, the
+  // MikkTSpace tangents of its (u, 1 - v) are generated at load (LIGHTING.md).
+  std::vector<glm::vec4> tangents;
+  std::vector<std::uint32_t> indices;  // 3 per triangle, all < positions.size()
+  int material = -1;                   // -1: the glTF default material
   // JOINTS_0/1 and WEIGHTS_0/1: up to 8 skin influences per vertex (indices
   // into the skin's joints, weights as decoded). Set 1 only with set 0.
   std::vector<glm::u16vec4> joints[2];
@@ -262,6 +298,21 @@ struct Camera {
   int node = -1;          // the Scene::nodes entry it hangs from; -1: placed once
 };
 
+// KHR_lights_punctual: a light at its node's origin shining down the node's
+// -Z, in the extension's units (intensity in candela for point and spot
+// lights, lux for directional ones; colour linear).
+struct Light {
+  enum class Type : std::uint8_t { Directional, Point, Spot };
+  Type type = Type::Point;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;                     // 0: unlimited
+  float innerConeAngle = 0.0f;            // radians, spot only
+  float outerConeAngle = 0.78539816339f;  // pi / 4
+  glm::mat4 world{1.0f};                  // the node's world transform (scale ignored)
+  int node = -1;                          // the Scene::nodes entry it hangs from; -1: placed once
+};
+
 struct Scene {
   std::string name;  // file path or builtin:NAME, for messages
   std::vector<Mesh> meshes;
@@ -272,6 +323,7 @@ struct Scene {
   std::vector<Node> nodes;  // empty for scenes not loaded from a node tree
   std::vector<Skin> skins;
   std::vector<Animation> animations;
+  std::vector<Light> lights;  // KHR_lights_punctual, placed by their nodes
 
   std::size_t triangleCount() const;  // over instances
   // World-space bounds of all instances, skinned and morphed ones as posed;
