@@ -18,11 +18,12 @@ install(TARGETS quadra_shared EXPORT quadraTargets
 # pkg-config, relocatable: paths relative to where quadra.pc is installed.
 configure_file(${PROJECT_SOURCE_DIR}/cmake/quadra.pc.in ${PROJECT_BINARY_DIR}/quadra.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/quadra.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
-# The command-line tool, for offline users of the installed package.
-install(TARGETS quadra RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The command-line tool, for offline users of the installed package, with the
+# program its `report` runs from beside it (tools/CMakeLists.txt).
+install(TARGETS quadra quadra-report RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 # And the OpenImageIO module its `report textures` loads, where it was built
 # (tools/CMakeLists.txt), in the folder that tools/CMakeLists.txt tells
-# quadra to look in (QUADRA_OIIO_PEER_INSTALL_DIR).
+# quadra-report to look in (QUADRA_OIIO_PEER_INSTALL_DIR).
 if(TARGET quadra_oiio_peer)
   install(TARGETS quadra_oiio_peer LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/quadra)
 endif()

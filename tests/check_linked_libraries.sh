@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# QuadraLinksNoPeerLibraries: the quadra binary never loads OpenImageIO
-# (`report textures` dlopens quadra_oiio_peer.so instead) nor Mesa
-# (quadra-llvmpipe is a program of its own): linked in, their dependency trees
-# cost every command their loading and relocation at start-up, 0.2 s for
-# OpenImageIO's (docs/performance.md "Start-up"). Both the binary's own
-# NEEDED entries (readelf -d) and everything the dynamic loader would load
-# with them (ldd) are checked, so a dependency that drags them in fails too.
+# QuadraLinksNoPeerLibraries, QuadraReportLinksNoPeerLibraries: the quadra and
+# quadra-report binaries never load OpenImageIO (`report textures` dlopens
+# quadra_oiio_peer.so instead) nor Mesa (quadra-llvmpipe is a program of its
+# own): linked in, their dependency trees cost every command their loading
+# and relocation at start-up, 0.2 s for OpenImageIO's (docs/performance.md
+# "Start-up"). Both the binary's own NEEDED entries (readelf -d) and
+# everything the dynamic loader would load with them (ldd) are checked, so a
+# dependency that drags them in fails too.
 #   check_linked_libraries.sh BINARY                passes when BINARY loads none of them
 #   check_linked_libraries.sh --expect-found FILE   passes when FILE does: the self-test,
 #                                                   on the module or peer that links them

@@ -480,6 +480,34 @@ TEST(Cli, BadInputExitsWith1) {
   expectOneLineError(sample, "/nonexistent/t.png");
 }
 
+// `quadra report` is quadra-report beside quadra, run in quadra's place
+// (tools/quadra_main.cpp): its exit status is the command's, and a quadra
+// without it says in one line which target builds it.
+TEST(Cli, ReportRunsTheProgramBesideQuadraOrNamesItsTarget) {
+  const RunResult bad =
+      run("report textures --size 8 --lookups 36 --texture /nonexistent/t.png "
+          "--out-dir " +
+          (testDir() / "report_bad_input").string());
+  EXPECT_EQ(bad.exitCode, 1);
+  expectOneLineError(bad, "/nonexistent/t.png");
+  EXPECT_EQ(bad.err.rfind("quadra: ", 0), 0u) << bad.err;
+
+  const fs::path alone = emptyFolder("quadra_alone") / "quadra";
+  fs::copy_file(QUADRA_CLI_PATH, alone);
+  for (const char* arguments : {"report textures --size 8", "report --help", "help report"}) {
+    SCOPED_TRACE(arguments);
+    const RunResult r = runProgram(alone.string(), arguments);
+    EXPECT_EQ(r.exitCode, 1);
+    expectOneLineError(r, "quadra-report is not beside this quadra");
+    EXPECT_NE(r.err.find("cmake --build build --target quadra-report"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+  }
+  // What quadra itself answers still works without it.
+  const RunResult overview = runProgram(alone.string(), "help");
+  EXPECT_EQ(overview.exitCode, 0) << overview.err;
+  EXPECT_EQ(overview.out, run("help").out);
+}
+
 // The suggestions themselves: close slips and unique prefixes, nothing for
 // an unrelated name, ties named together.
 TEST(CliSuggestions, NameTheClosestKnownNames) {

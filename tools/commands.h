@@ -1,20 +1,17 @@
-// The quadra commands behind the entry point (quadra_main.cpp), each given
-// the arguments after its own name.
+// The quadra commands behind the entry points, each given the arguments after
+// its own name: `sample` in quadra (quadra_main.cpp), the reports in
+// quadra-report (report_command.cpp), which `quadra report` runs.
 #pragma once
 
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace quadra {
 
-// The report subjects in the order the overviews list them, each with one
-// line on what it measures (`quadra help`, `quadra report --help`).
-std::vector<std::pair<std::string, std::string>> reportSubjects();
-
 // `quadra sample` (sample_command.cpp).
 int runSample(const std::vector<std::string>& args);
-// `quadra report SUBJECT` (report_command.cpp); args start with the subject.
+// `quadra report SUBJECT` (report_command.cpp, quadra-report's main); args
+// start with the subject.
 int runReport(const std::vector<std::string>& args);
 // `quadra report sat-precision` (report_sat_precision.cpp).
 int runSatPrecisionReport(const std::vector<std::string>& args);

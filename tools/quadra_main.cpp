@@ -1,11 +1,15 @@
 // quadra command-line tool: the entry point (the command overview, `quadra
-// help`) and `quadra render` (DESIGN.md "Contracts") on glTF files and
-// built-in scenes. Every failure is one line on stderr and a non-zero exit
-// (cli_options.h runMain: 2 for usage, 1 otherwise); outputs are written only
-// after a frame succeeded.
+// help`), `quadra render` (DESIGN.md "Contracts") on glTF files and
+// built-in scenes, and the hand-over of `quadra report` to quadra-report.
+// Every failure is one line on stderr and a non-zero exit (cli_options.h
+// runMain: 2 for usage, 1 otherwise); outputs are written only after a frame
+// succeeded.
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <mutex>
 #include <optional>
@@ -25,9 +29,11 @@
 #include "lab/scene/builtin_scenes.h"
 #include "progress.h"
 #include "render_options.h"
+#include "report_subjects.h"
 #include "scene/animation.h"
 #include "sequence_options.h"
 #include "sequence_writer.h"
+#include "subprocess.h"
 #include "window/sample_pattern.h"
 
 namespace quadra {
@@ -483,6 +489,19 @@ int renderCommand(const std::vector<std::string>& args) {
   return 0;
 }
 
+// `quadra report ...`: the reports and the lab code only they use are a
+// program of their own, quadra-report beside this one (tools/CMakeLists.txt
+// says why), which takes this process's place with the same arguments, so
+// its output and exit status are the command's.
+int runReportProgram(const std::vector<std::string>& args) {
+  const std::filesystem::path program = executablePath().parent_path() / "quadra-report";
+  if (::access(program.c_str(), X_OK) != 0)
+    throw Error(
+        "report: quadra-report is not beside this quadra (it is built by `cmake --build "
+        "build --target quadra-report`)");
+  replaceProcess(program, args);
+}
+
 int run(const std::vector<std::string>& args) {
   if (args.empty() || args == std::vector<std::string>{"help"} || args[0] == "--help" ||
       args[0] == "-h") {
@@ -502,7 +521,7 @@ int run(const std::vector<std::string>& args) {
   const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
   if (args[0] == "render") return renderCommand(commandArgs);
   if (args[0] == "sample") return runSample(commandArgs);
-  if (args[0] == "report") return runReport(commandArgs);
+  if (args[0] == "report") return runReportProgram(commandArgs);
   const std::vector<std::string> commands = {"render", "sample", "report", "help", "--version"};
   const std::string suggestion = didYouMean(args[0], commands);
   throw UsageError(

@@ -1,10 +1,11 @@
-// `quadra report SUBJECT`'s choice of subject (and the list of them), and
-// `quadra report textures`: every filter's speed against its error. For each
-// test texture (generated in code, plus --texture FILE) it draws a seeded
-// footprint set, integrates the ground truth (DESIGN.md "Accuracy"), runs each
-// filter over the same footprints, and prints a markdown table; it writes
-// DIR/textures.csv (every figure, per scale and anisotropy bucket) and
-// DIR/textures.svg (log-log ns/lookup against RMSE with the Pareto front).
+// quadra-report, the program `quadra report SUBJECT` runs (quadra_main.cpp):
+// its entry point and choice of subject, and `quadra report textures`: every
+// filter's speed against its error. For each test texture (generated in code,
+// plus --texture FILE) it draws a seeded footprint set, integrates the ground
+// truth (DESIGN.md "Accuracy"), runs each filter over the same footprints,
+// and prints a markdown table; it writes DIR/textures.csv (every figure, per
+// scale and anisotropy bucket) and DIR/textures.svg (log-log ns/lookup
+// against RMSE with the Pareto front).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -28,6 +29,7 @@
 #include "lab/texture/texture_error.h"
 #include "oiio_reference.h"
 #include "report_output.h"
+#include "report_subjects.h"
 #include "svg_plot.h"
 #include "texture/texture_sampler.h"
 
@@ -387,14 +389,6 @@ int runTexturesReport(const std::vector<std::string>& rest) {
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> reportSubjects() {
-  return {{"textures", "every texture filter's speed against its error"},
-          {"sat-precision", "the summed-area table's precision against float tables"},
-          {"stability", "numerical stability on the hard-case scenes (exit 1 on a failed check)"},
-          {"frames", "quadra's frames against Mesa llvmpipe's: times and image difference"},
-          {"samples", "samples per pixel: their cost against a reference tracer's frame"}};
-}
-
 int runReport(const std::vector<std::string>& args) {
   const std::string subject = args.empty() ? "" : args[0];
   const std::vector<std::string> rest(args.begin() + (args.empty() ? 0 : 1), args.end());
@@ -422,3 +416,9 @@ int runReport(const std::vector<std::string>& args) {
 }
 
 }  // namespace quadra
+
+// `quadra report ARGS` replaces itself with `quadra-report ARGS`, so the
+// messages name quadra, as every other command's do.
+int main(int argc, char** argv) {
+  return quadra::runMain("quadra", argc, argv, quadra::runReport);
+}

@@ -1,7 +1,7 @@
 // `quadra report frames`: quadra against Mesa's llvmpipe on the same frames,
 // in the same run. For every built-in scene and every sample model (or the
 // --scenes list) it runs `quadra render` and `quadra-llvmpipe render`
-// (tools/peer/, found beside this quadra) as separate processes with the same
+// (tools/peer/; both found beside quadra-report) as separate processes with the same
 // arguments, over R rounds, the two taking turns at going first: a timing run
 // (K timed frames after a warm-up; its median frame time; the frame written
 // as EXR) and an end-to-end run (--frames 1 writing a PNG,
@@ -140,7 +140,7 @@ std::vector<SceneEntry> sampleModels(const fs::path& assets) {
   return models;
 }
 
-std::vector<SceneEntry> chooseScenes(const FramesOptions& options) {
+std::vector<SceneEntry> chooseFramesScenes(const FramesOptions& options) {
   const std::vector<std::string> builtins = builtinSceneNames();
   std::vector<SceneEntry> scenes;
   if (options.scenes.empty()) {
@@ -188,7 +188,7 @@ struct Measurements {
   std::map<std::string, std::string> line;  // the last frame_ms line's key=value pairs
 };
 
-struct SceneResult {
+struct FramesSceneResult {
   SceneEntry scene;
   std::vector<Measurements> byContender;
   std::optional<ImageDifference> difference;
@@ -270,13 +270,13 @@ int runFramesReport(const std::vector<std::string>& args) {
   const std::optional<FramesOptions> parsed = parseFrames(args);
   if (!parsed) return 0;
   const FramesOptions& options = *parsed;
-  const std::vector<SceneEntry> scenes = chooseScenes(options);
+  const std::vector<SceneEntry> scenes = chooseFramesScenes(options);
   if (scenes.empty()) throw Error("report frames: no scenes to render");
   const fs::path outDir(options.outDir), imageDir = outDir / "frames";
   std::error_code ec;
-  const fs::path self = executablePath();
-  std::vector<Contender> contenders = {{"quadra", self, {}}};
-  const fs::path peer = self.parent_path() / "quadra-llvmpipe";
+  const fs::path bin = executablePath().parent_path();
+  std::vector<Contender> contenders = {{"quadra", bin / "quadra", {}}};
+  const fs::path peer = bin / "quadra-llvmpipe";
   const bool havePeer = fs::is_regular_file(peer, ec) && ::access(peer.c_str(), X_OK) == 0;
   if (havePeer)
     contenders.push_back({"llvmpipe", peer, {"--framebuffer", options.peerFramebuffer}});
@@ -295,12 +295,12 @@ int runFramesReport(const std::vector<std::string>& args) {
   if (ec || !fs::is_directory(imageDir))
     throw Error(options.outDir + ": cannot create the output directory");
 
-  std::vector<SceneResult> results;
+  std::vector<FramesSceneResult> results;
   for (const SceneEntry& scene : scenes)
     results.push_back({scene, std::vector<Measurements>(contenders.size()), std::nullopt});
   for (int round = 0; round < options.rounds; ++round)
     for (std::size_t s = 0; s < results.size(); ++s) {
-      SceneResult& result = results[s];
+      FramesSceneResult& result = results[s];
       progress("report frames: round " + std::to_string(round + 1) + "/" +
                std::to_string(options.rounds) + ", scene " + std::to_string(s + 1) + "/" +
                std::to_string(results.size()) + " " + result.scene.label);
@@ -371,7 +371,7 @@ int runFramesReport(const std::vector<std::string>& args) {
          "psnr_db,max_abs_diff,quadra_ms_rounds,llvmpipe_ms_rounds,quadra_e2e_s_rounds,"
          "llvmpipe_e2e_s_rounds\n";
   std::vector<double> frameRatios, endToEndRatios;
-  for (const SceneResult& result : results) {
+  for (const FramesSceneResult& result : results) {
     const Measurements& q = result.byContender[0];
     const double qMs = medianOf(q.frameMs), qSeconds = medianOf(q.endToEndSeconds);
     out << "| " << result.scene.label << " | " << withThousands(q.triangles) << " | "

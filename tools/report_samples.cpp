@@ -177,7 +177,7 @@ std::optional<SamplesOptions> parseSamples(const std::vector<std::string>& args)
 }
 
 // The SCENE arguments to measure, each checked to load before any work starts.
-std::vector<std::string> chooseScenes(const SamplesOptions& options) {
+std::vector<std::string> chooseSamplesScenes(const SamplesOptions& options) {
   std::vector<std::string> scenes;
   if (options.scenes.empty()) {
     for (const std::string& name : builtinSceneNames())
@@ -248,7 +248,7 @@ void setRatioToOneSample(Measured& row, const Measured& base) {
   row.ratioHigh = medians[kResamples - 1 - kResamples / 40];
 }
 
-struct SceneResult {
+struct SamplesSceneResult {
   std::string label;
   std::size_t triangles = 0;
   double referenceSeconds = 0.0;
@@ -273,10 +273,10 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-SceneResult measureScene(const std::string& argument, const Scene& scene,
-                         const SamplesOptions& options, Renderer& renderer,
-                         tbb::task_arena& arena) {
-  SceneResult result;
+SamplesSceneResult measureScene(const std::string& argument, const Scene& scene,
+                                const SamplesOptions& options, Renderer& renderer,
+                                tbb::task_arena& arena) {
+  SamplesSceneResult result;
   result.label = argument;
   result.triangles = scene.triangleCount();
   const Camera camera = firstCameraOrDefault(scene);
@@ -378,11 +378,11 @@ std::string ratioCell(const Measured& row) {
          format("%.2f", row.ratioHigh) + "]";
 }
 
-std::string tableText(const std::vector<SceneResult>& results) {
+std::string tableText(const std::vector<SamplesSceneResult>& results) {
   std::ostringstream out;
   out << "| scene | samples | shading | ms/frame | x 1 sample | PSNR dB | max diff |\n"
          "|---|---:|---|---:|---:|---:|---:|\n";
-  for (const SceneResult& scene : results)
+  for (const SamplesSceneResult& scene : results)
     for (const Measured& row : scene.rows)
       out << "| " << scene.label << " | " << row.configuration.samples << " | "
           << row.configuration.rateName() << " | " << figures(row.ms()) << " | " << ratioCell(row)
@@ -391,11 +391,11 @@ std::string tableText(const std::vector<SceneResult>& results) {
   return out.str();
 }
 
-std::string csvText(const std::vector<SceneResult>& results) {
+std::string samplesCsvText(const std::vector<SamplesSceneResult>& results) {
   std::ostringstream csv;
   csv << "scene,triangles,samples,shading,ms_per_frame,psnr_db,max_abs_diff,reference_s,"
          "reference_check_db,ms_rounds,ratio_to_1_sample,ratio_low,ratio_high\n";
-  for (const SceneResult& scene : results)
+  for (const SamplesSceneResult& scene : results)
     for (const Measured& row : scene.rows) {
       const bool scored = scene.scored;
       csv << scene.label << ',' << scene.triangles << ',' << row.configuration.samples << ','
@@ -423,9 +423,10 @@ const char* sceneColour(std::size_t index) {
 // dashed line (sample rate), both from the 1-sample point, each point labelled
 // with its sample count. An infinite PSNR (a frame equal to the reference) is
 // drawn on the top edge; a NaN one (NaN pixels) is left out.
-std::string svgText(const std::vector<SceneResult>& results, const std::string& subtitle) {
+std::string samplesSvgText(const std::vector<SamplesSceneResult>& results,
+                           const std::string& subtitle) {
   double msMin = 1e300, msMax = 0, psnrMin = 1e300, psnrMax = -1e300;
-  for (const SceneResult& scene : results)
+  for (const SamplesSceneResult& scene : results)
     for (const Measured& row : scene.rows) {
       msMin = std::min(msMin, row.ms());
       msMax = std::max(msMax, row.ms());
@@ -445,7 +446,7 @@ std::string svgText(const std::vector<SceneResult>& results, const std::string& 
     return std::isinf(psnr) ? plot.toY(plot.y.hi) : plot.toY(psnr);
   };
   for (std::size_t s = 0; s < results.size(); ++s) {
-    const SceneResult& scene = results[s];
+    const SamplesSceneResult& scene = results[s];
     for (const ShadingRate rate : {ShadingRate::Pixel, ShadingRate::Sample}) {
       std::ostringstream points;
       for (const Measured& row : scene.rows)
@@ -494,7 +495,7 @@ int runSamplesReport(const std::vector<std::string>& args) {
   const std::optional<SamplesOptions> parsed = parseSamples(args);
   if (!parsed) return 0;
   const SamplesOptions& options = *parsed;
-  const std::vector<std::string> scenes = chooseScenes(options);
+  const std::vector<std::string> scenes = chooseSamplesScenes(options);
   // Every scene is loaded before the first slow reference: a typo in the
   // last one should not cost the first ones' minutes.
   std::vector<Scene> loaded;
@@ -508,7 +509,7 @@ int runSamplesReport(const std::vector<std::string>& args) {
     throw Error(options.outDir + ": cannot create the output directory");
 
   tbb::task_arena arena(options.threads);
-  std::vector<SceneResult> results;
+  std::vector<SamplesSceneResult> results;
   for (std::size_t s = 0; s < scenes.size(); ++s) {
     progress("report samples: scene " + std::to_string(s + 1) + "/" +
              std::to_string(scenes.size()) + " " + scenes[s]);
@@ -545,7 +546,7 @@ int runSamplesReport(const std::vector<std::string>& args) {
   if (!scored) {
     // Nothing to plot against: the table and the CSV only. An earlier
     // scored run's plot would sit beside this CSV describing other frames.
-    writeText(csvPath, csvText(results));
+    writeText(csvPath, samplesCsvText(results));
     std::cout << out.str() << "\nquadra wrote " << csvPath.string() << "\n";
     std::error_code ignored;
     if (fs::remove(svgPath, ignored))
@@ -567,7 +568,7 @@ int runSamplesReport(const std::vector<std::string>& args) {
          "measure the reference as much as quadra. Exact: the share of the frame's area "
          "integrated exactly (the rest took rays).\n\n"
          "| scene | triangles | reference s | check dB | exact % |\n|---|---:|---:|---:|---:|\n";
-  for (const SceneResult& scene : results)
+  for (const SamplesSceneResult& scene : results)
     out << "| " << scene.label << " | " << scene.triangles << " | "
         << format("%.1f", scene.referenceSeconds) << " | "
         << psnrText(scene.referenceCheckPsnr, "-") << " | "
@@ -580,12 +581,12 @@ int runSamplesReport(const std::vector<std::string>& args) {
          "what N point samples there resolve to at best, for untextured scenes the limit "
          "of N coverage samples.\n\n| scene | samples | points PSNR dB | max diff |\n"
          "|---|---:|---:|---:|\n";
-  for (const SceneResult& scene : results)
+  for (const SamplesSceneResult& scene : results)
     for (const auto& [count, difference] : scene.points)
       out << "| " << scene.label << " | " << count << " | " << psnrText(difference.psnr) << " | "
           << format("%.3f", difference.maxAbs) << " |\n";
 
-  const std::string csv = csvText(results), svg = svgText(results, settings);
+  const std::string csv = samplesCsvText(results), svg = samplesSvgText(results, settings);
   writeText(csvPath, csv);
   writeText(svgPath, svg);
   std::cout << out.str() << "\nquadra wrote " << csvPath.string() << "\nquadra wrote "

@@ -23,7 +23,7 @@
 namespace quadra {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kSatPrecisionUsage =
     R"(usage: quadra report sat-precision [--size N] [--boxes N] [--seed S] [--threads N]
   --size N     the noise texture is N x N (default 8192; memory about 80 bytes per texel)
   --boxes N    random boxes per size bucket (default 2000)
@@ -114,7 +114,7 @@ void measureTables(const char* name, const Image& image, int boxes, std::uint64_
 int runSatPrecisionReport(const std::vector<std::string>& args) {
   int size = 8192, boxes = 2000, threads = 0;
   std::uint64_t seed = 1;
-  CommandOptions options("report sat-precision", kUsage);
+  CommandOptions options("report sat-precision", kSatPrecisionUsage);
   options.integer("--size", size, 16, 16384);
   options.integer("--boxes", boxes, 1, 1 << 20);
   addSeedOption(options, seed);

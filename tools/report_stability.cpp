@@ -26,7 +26,7 @@
 namespace quadra {
 namespace {
 
-constexpr const char* kUsage =
+constexpr const char* kStabilityUsage =
     R"(usage: quadra report stability [--threads N] [--isa auto|scalar|sse2|avx2|avx512]
                               [--sections LIST]
   --threads N  threads for the frames (default: all cores; the determinism
@@ -521,7 +521,7 @@ std::string formatBound(const Row& row) {
 
 int runStabilityReport(const std::vector<std::string>& args) {
   Context ctx;
-  CommandOptions options("report stability", kUsage);
+  CommandOptions options("report stability", kStabilityUsage);
   addThreadsOption(options, ctx.threads);
   addIsaOption(options, ctx.isa);
   std::string sectionList;

@@ -1,4 +1,4 @@
-// posix_spawn with stdout and stderr redirected to scratch files.
+// posix_spawn with stdout and stderr redirected to scratch files; execv.
 #include "subprocess.h"
 
 #include <fcntl.h>
@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -26,6 +27,25 @@ std::string readWhole(const std::filesystem::path& path) {
   return text.str();
 }
 
+// argv for posix_spawn and execv: the program, its arguments, a null.
+class ArgumentVector {
+ public:
+  ArgumentVector(const std::filesystem::path& program, const std::vector<std::string>& arguments)
+      : text_{program.string()} {
+    text_.insert(text_.end(), arguments.begin(), arguments.end());
+    for (std::string& argument : text_) pointers_.push_back(argument.data());
+    pointers_.push_back(nullptr);
+  }
+  ArgumentVector(const ArgumentVector&) = delete;  // the pointers point into text_
+  ArgumentVector& operator=(const ArgumentVector&) = delete;
+  char* const* data() const { return pointers_.data(); }
+  const char* program() const { return pointers_[0]; }
+
+ private:
+  std::vector<std::string> text_;
+  std::vector<char*> pointers_;
+};
+
 }  // namespace
 
 ProcessResult runProcess(const std::filesystem::path& program,
@@ -34,11 +54,7 @@ ProcessResult runProcess(const std::filesystem::path& program,
   const std::string tag = std::to_string(::getpid());
   const std::filesystem::path outPath = scratchDir / ("stdout-" + tag + ".txt"),
                               errPath = scratchDir / ("stderr-" + tag + ".txt");
-  std::vector<std::string> argvText{program.string()};
-  argvText.insert(argvText.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (std::string& argument : argvText) argv.push_back(argument.data());
-  argv.push_back(nullptr);
+  ArgumentVector argv(program, arguments);
 
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
@@ -50,7 +66,7 @@ ProcessResult runProcess(const std::filesystem::path& program,
   ProcessResult result;
   const auto start = std::chrono::steady_clock::now();
   pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int spawned = posix_spawn(&pid, argv.program(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (spawned != 0)
     throw Error(program.string() + ": cannot start (" + std::strerror(spawned) + ")");
@@ -64,6 +80,14 @@ ProcessResult runProcess(const std::filesystem::path& program,
   std::filesystem::remove(outPath);
   std::filesystem::remove(errPath);
   return result;
+}
+
+void replaceProcess(const std::filesystem::path& program,
+                    const std::vector<std::string>& arguments) {
+  ArgumentVector argv(program, arguments);
+  std::fflush(nullptr);  // what this process printed comes before the program's
+  ::execv(argv.program(), argv.data());
+  throw Error(program.string() + ": cannot start (" + std::strerror(errno) + ")");
 }
 
 std::filesystem::path executablePath() {

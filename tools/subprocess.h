@@ -1,6 +1,7 @@
-// Running another program to completion, for reports that time whole
-// processes (`quadra report frames` runs quadra and its peer renderers):
-// its exit status, what it printed, and its wall time from spawn to exit.
+// Running another program: to completion, for reports that time whole
+// processes (`quadra report frames` runs quadra and its peer renderers), with
+// its exit status, what it printed, and its wall time from spawn to exit; or
+// in this process's place (`quadra report` becomes quadra-report).
 #pragma once
 
 #include <filesystem>
@@ -22,6 +23,12 @@ struct ProcessResult {
 ProcessResult runProcess(const std::filesystem::path& program,
                          const std::vector<std::string>& arguments,
                          const std::filesystem::path& scratchDir);
+
+// Replaces this process with `program` and `arguments` (execv: the same
+// stdin, stdout, stderr and environment; its exit status is this process's).
+// Returns only by throwing Error, when the program cannot be started.
+[[noreturn]] void replaceProcess(const std::filesystem::path& program,
+                                 const std::vector<std::string>& arguments);
 
 // The running executable (/proc/self/exe); the programs built with it are in
 // the same folder.
