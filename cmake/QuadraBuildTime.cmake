@@ -5,11 +5,13 @@
 # Precompiled headers: half of a typical translation unit's compile was
 # parsing the standard library and GLM (128k preprocessed lines for
 # api/renderer.cpp, 7 of its 13 CPU-seconds), so each target parses them once.
-# Unity batches: the engine's and the CLI library's small files compiled
-# eight to a translation unit, which parses their own headers once a batch
-# and halves those files' compile. The per-ISA kernel copies take part in
-# neither (quadra_isa_sources): their ISA flags differ from the header's, and
-# each is a large file of its own.
+# Unity batches: the small files of the engine, the lab, the CLI library and
+# the programs compiled eight to a translation unit, which parses their own
+# headers once a batch and halves those files' compile; so file-local names
+# (anonymous-namespace helpers, constants) must differ between the files of
+# one target. The per-ISA kernel copies take part in neither
+# (quadra_isa_sources): their ISA flags differ from the header's, and each is
+# a large file of its own.
 #
 # Sanitizer and fuzz builds compile every file on its own without either, so
 # a source that forgets an include a batch or the header happens to provide
@@ -23,11 +25,9 @@ set(QUADRA_PCH_HEADERS <algorithm> <array> <cmath> <cstdint> <cstdio> <cstring> 
     <functional> <limits> <map> <memory> <optional> <sstream> <string> <utility> <vector>
     <glm/glm.hpp>)
 
-# quadra_build_fast(<target> [PCH_ONLY]): PCH_ONLY for a target whose files
-# each keep same-named helpers of their own (the lab's kPi, the reports'
-# SceneResult, ...). The engine's header serves the other static libraries,
-# which compile with the same flags; an executable (-fPIE, not -fPIC) needs
-# its own.
+# quadra_build_fast(<target>): the engine's header serves the other static
+# libraries, which compile with the same flags; an executable (-fPIE, not
+# -fPIC) needs its own.
 function(quadra_build_fast target)
   if(QUADRA_FAST_BUILD AND NOT QUADRA_SANITIZE AND NOT QUADRA_FUZZ)
     get_target_property(type ${target} TYPE)
@@ -36,8 +36,6 @@ function(quadra_build_fast target)
     else()
       target_precompile_headers(${target} PRIVATE ${QUADRA_PCH_HEADERS})
     endif()
-    if(NOT "${ARGN}" STREQUAL "PCH_ONLY")
-      set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
-    endif()
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
   endif()
 endfunction()
