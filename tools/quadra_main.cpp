@@ -168,6 +168,7 @@ struct RenderCommand {
   const char* exrOption = nullptr;  // the first EXR storage option given, for messages
   CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
+  LightingOptions lighting;
 };
 
 // The options that split a sequence among processes and report on it.
@@ -198,8 +199,10 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--depth", "depth mode",
                  {{"standard", DepthMode::Standard}, {"reversed", DepthMode::Reversed}},
                  cmd.settings.depth);
-  options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}},
+  options.choice("--shading", "shading",
+                 {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}, {"pbr", Shading::Pbr}},
                  cmd.settings.shading);
+  addLightingOptions(options, cmd.settings, cmd.lighting);
   options.choice("--derivatives", "derivative mode",
                  {{"analytic", DerivativeMode::Analytic}, {"quad", DerivativeMode::Quad}},
                  cmd.settings.derivatives);
@@ -291,9 +294,13 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   return cmd;
 }
 
-Scene loadScene(const RenderCommand& cmd) {
+// The scene, and for pbr shading the environment into cmd.settings: loaded
+// once, before the first frame.
+Scene loadScene(RenderCommand& cmd) {
   Scene scene = loadSceneArgument(cmd.scenePath, cmd.load, "quadra");
   if (cmd.textureFormat) setTextureStorage(scene, *cmd.textureFormat);
+  if (cmd.settings.shading == Shading::Pbr)
+    cmd.settings.environment = loadEnvironmentArgument(cmd.lighting.environment, cmd.load);
   return scene;
 }
 
@@ -443,9 +450,9 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
 }
 
 int renderCommand(const std::vector<std::string>& args) {
-  const std::optional<RenderCommand> parsed = parseRender(args);
+  std::optional<RenderCommand> parsed = parseRender(args);
   if (!parsed) return 0;
-  const RenderCommand& cmd = *parsed;
+  RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
   // OpenEXR compresses scanline blocks on its own process-wide pool, off by
   // default; the tool (not the library, which keeps no global state) sizes it

@@ -3,6 +3,7 @@
 #include "render_options.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -143,18 +144,73 @@ std::string describeRenderSettings(const RenderSettings& s) {
   out << "width=" << s.width << " height=" << s.height
       << " filter=" << (s.filter ? filterName(*s.filter) : "per-sampler") << " aniso=" << s.maxAniso
       << " lod-bias=" << s.lodBias << " lod=" << (s.lodRule == LodRule::Box ? "box" : "gl")
-      << " shading=" << (s.shading == Shading::Lit ? "lit" : "unlit")
+      << " shading="
+      << (s.shading == Shading::Pbr   ? "pbr"
+          : s.shading == Shading::Lit ? "lit"
+                                      : "unlit")
       << " depth=" << (s.depth == DepthMode::Reversed ? "reversed" : "standard")
       << " samples=" << s.samples
       << " shading-rate=" << (s.shadingRate == ShadingRate::Sample ? "sample" : "pixel")
       << " pixel-filter="
       << (s.pixelFilter == PixelFilter::BlackmanHarris ? "blackman-harris" : "box")
-      << " alpha-to-coverage=" << (s.alphaToCoverage ? "on" : "off") << " aov=Z";
+      << " alpha-to-coverage=" << (s.alphaToCoverage ? "on" : "off");
+  if (s.shading == Shading::Pbr)
+    out << " env-rotation=" << s.environmentRotation << " env-intensity=" << s.environmentIntensity
+        << " lights=" << (s.punctualLights ? "on" : "off") << " background="
+        << (s.background == Background::Environment ? "env"
+            : s.background == Background::Color     ? "color"
+                                                    : "transparent");
+  if (s.exposure != 0.0f) out << " exposure=" << s.exposure;
+  out << " aov=Z";
   for (const AovName& aov : kAovNames)
     if ((aov.bits != 0 && (s.aovs & aov.bits) != 0) ||
         (aov.name == std::string(kCoverageChannel) && s.frameCoverage))
       out << "," << aov.name;
   return out.str();
+}
+
+void addLightingOptions(CommandOptions& options, RenderSettings& settings,
+                        LightingOptions& lighting) {
+  options.value("--env", [&lighting](const std::string&, const std::string& value) {
+    lighting.environment = value;
+  });
+  options.value("--env-rotation", [&settings](const std::string& option, const std::string& value) {
+    const double degrees = parseNumber(option, value);
+    if (!(std::fabs(degrees) <= 36000.0))
+      throw UsageError(option + ": '" + value + "' is out of range (-36000..36000 degrees)");
+    settings.environmentRotation = float(degrees);
+  });
+  options.value("--env-intensity",
+                [&settings](const std::string& option, const std::string& value) {
+                  const double scale = parseNumber(option, value);
+                  if (!(scale >= 0.0 && scale <= 1e9))
+                    throw UsageError(option + ": '" + value + "' must be in 0..1e9");
+                  settings.environmentIntensity = float(scale);
+                });
+  options.choice("--background", "background",
+                 {{"env", Background::Environment},
+                  {"color", Background::Color},
+                  {"transparent", Background::Transparent}},
+                 settings.background);
+  options.value("--background-color",
+                [&settings](const std::string& option, const std::string& value) {
+                  const glm::vec3 c = parseVector(option, value);
+                  if (!(c.r >= 0.0f && c.g >= 0.0f && c.b >= 0.0f))
+                    throw UsageError(option + ": '" + value + "' must not be negative");
+                  settings.clearColor = glm::vec4(c, 1.0f);
+                });
+  options.choice("--lights", "punctual lights", {{"on", true}, {"off", false}},
+                 settings.punctualLights);
+  options.value("--exposure", [&settings](const std::string& option, const std::string& value) {
+    const double ev = parseNumber(option, value);
+    if (!(std::fabs(ev) <= 64.0))
+      throw UsageError(option + ": '" + value + "' is out of range (-64..64 EV)");
+    settings.exposure = float(ev);
+  });
+  options.choice("--tonemap", "tone map",
+                 {{"pbr-neutral", ToneMap::PbrNeutral}, {"aces", ToneMap::Aces},
+                  {"none", ToneMap::None}},
+                 lighting.toneMap);
 }
 
 void describeRender(const RenderSettings& settings, FrameMetadata& metadata) {

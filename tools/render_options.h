@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "api/renderer.h"
 #include "cli_options.h"
 #include "io/frame.h"
+#include "io/tone_map.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
@@ -55,6 +57,24 @@ bool outputsNeedDepth(const std::vector<std::string>& outputs);
 void addAovOption(CommandOptions& options, RenderSettings& settings);
 // The AOV names --aov accepts, for messages: "Z, N, P, uv, motion, id, mask, lod, anisotropy".
 std::string aovNames();
+
+// Pbr shading's light and output (LIGHTING.md, docs/lighting.md), as
+// `quadra render` and its lit peer read them: --env FILE|builtin:NAME (kept
+// here, loaded by loadEnvironmentArgument), --env-rotation DEG,
+// --env-intensity S, --background env|color|transparent, --background-color
+// R,G,B, --lights on|off, --exposure EV, --tonemap pbr-neutral|aces|none.
+struct LightingOptions {
+  std::string environment = kDefaultEnvironment;
+  ToneMap toneMap = ToneMap::PbrNeutral;
+  static constexpr const char* kDefaultEnvironment = "builtin:studio";
+};
+void addLightingOptions(CommandOptions& options, RenderSettings& settings,
+                        LightingOptions& lighting);
+// The environment --env names, decoded (a file within the load's memory
+// budget) or built in; an unknown builtin NAME is a UsageError with the
+// names closest to it.
+std::shared_ptr<const EnvironmentImage> loadEnvironmentArgument(const std::string& environment,
+                                                                const LoadOptions& load);
 
 // The settings that decide a frame's pixels, as "key=value" words for the
 // EXR header (FrameMetadata::strings); nothing that differs between runs
