@@ -57,7 +57,27 @@ Renders a glTF file or a built-in scene, times the frames and writes the last to
                          texel storage (default auto: rgba16f for 8-bit images, else rgba32f)
   --depth standard|reversed
                          depth buffer: standard (0 near, LESS) or reversed (1 near, GREATER)
-  --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
+  --shading unlit|lit|pbr
+                         unlit = baseColorFactor x baseColorTexture x vertex colour;
+                         lit = that x a Lambert head light; pbr = glTF's metallic-roughness
+                         material under the environment and the scene's KHR_lights_punctual
+                         lights (docs/lighting.md); KHR_materials_unlit materials stay unlit
+  --env FILE.hdr|FILE.exr|builtin:NAME
+                         pbr's environment: an equirectangular panorama of linear radiance
+                         (default builtin:studio; `quadra env --help` lists the built-ins)
+  --env-rotation DEG     turn the environment about +Y, counter-clockwise seen from above
+  --env-intensity S      scale the environment's radiance (default 1)
+  --background env|color|transparent
+                         what pbr shows where no surface is: the environment seen through
+                         the pixel (default), --background-color, or alpha 0
+  --background-color R,G,B
+                         linear radiance of --background color (default 0,0,0)
+  --lights on|off        the scene's KHR_lights_punctual lights (default on)
+  --exposure EV          outputs hold radiance x 2^EV (default 0)
+  --tonemap pbr-neutral|aces|none
+                         how PNG outputs map radiance to [0, 1] before sRGB encoding:
+                         Khronos PBR Neutral (default), ACES (Hill's fit) or a clamp;
+                         EXR outputs stay linear
   --derivatives analytic|quad
                          texture footprints: the triangles' exact derivatives at each pixel
                          (default) or 2x2 quad differences, as GPUs take them
@@ -284,6 +304,8 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                          ")");
     }
   }
+  // --background color is opaque: black unless --background-color says.
+  if (cmd.settings.background == Background::Color) cmd.settings.clearColor.a = 1.0f;
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   if (cmd.exrOption && !cmd.settings.frameDepth)
     throw UsageError(std::string(cmd.exrOption) + ": no --out is an .exr file");

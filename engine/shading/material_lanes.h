@@ -61,6 +61,21 @@ QUADRA_LANE_INLINE Vec3Lanes<L> toWorld(const glm::mat3& m, const Vec3Lanes<L>& 
 
 }  // namespace material
 
+// The base colour's alpha alone: factor x texture x COLOR_0 (what a masked
+// draw's visibility pass tests).
+template <class L>
+QUADRA_LANE_INLINE typename L::F materialAlpha(const MaterialShading& m,
+                                               const MaterialLaneInputs<L>& in) {
+  using F = typename L::F;
+  F a(m.baseColorFactor.a);
+  if (m.baseColor.present()) {
+    Rgba<L> texel = material::lookup<L>(m.baseColor, m, in);
+    a = a * texel.a;
+  }
+  if (m.color >= 0) a = a * in.attribute[m.color + 3];
+  return a;
+}
+
 // The material at the lanes and the radiance it sends toward the eye
 // (LIGHTING.md "The light"), alpha as the unlit shading makes it.
 template <class L>

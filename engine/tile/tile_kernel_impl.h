@@ -223,6 +223,23 @@ QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const
   return materialRadiance<L>(material, in);
 }
 
+// A lit draw's alpha alone, for the visibility pass's alpha test: the base
+// colour's (materialAlpha), without the light.
+[[gnu::noinline]] F litMaterialAlpha(const ShadeState& shade, const F& x, const F& y,
+                                     const LanePlane& invW, const LanePlane* attr) {
+  const F w = F(1.0f) / invW.at(x, y);
+  F value[kMaxShadedAttributes];
+  for (int k = 0; k < shade.attributes.count; ++k) value[k] = attr[k].at(x, y) * w;
+  const MaterialShading& material = *shade.material;
+  MaterialLaneInputs<L> in{value, {}};
+  const int t = material.baseColor.present() ? material.texcoordAttribute[material.baseColor.texcoord]
+                                             : -1;
+  if (t >= 0)
+    in.footprint[material.baseColor.texcoord] =
+        analyticFootprint(shade, value[t], value[t + 1], w, invW, attr[t], attr[t + 1]);
+  return materialAlpha<L>(material, in);
+}
+
 template <bool kTextured, bool kVertexColor, bool kLit, ShadeOutput kOutput>
 QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const F& y,
                                       const LanePlane& invW, const LanePlane* attr,
@@ -293,6 +310,14 @@ struct Features {
   static Rgba<L> color(const ShadeState& s, const F& x, const F& y, const LanePlane& invW,
                        const LanePlane* attr, bool quadDerivatives = false) {
     return shadeColor<kTextured, kVertexColor, kLit, kOutput>(s, x, y, invW, attr, quadDerivatives);
+  }
+  // The alpha a masked draw's visibility pass tests (the two-pass draws take
+  // analytic footprints).
+  static F alpha(const ShadeState& s, const F& x, const F& y, const LanePlane& invW,
+                 const LanePlane* attr) {
+    if constexpr (kLit)
+      if (s.material != nullptr) return litMaterialAlpha(s, x, y, invW, attr);
+    return color(s, x, y, invW, attr).a;
   }
 };
 
@@ -620,8 +645,7 @@ struct VisibilityShader {
     cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
     if (!simd::any(cover)) return zOld;
     if constexpr (Feat::kAlpha == AlphaMode::Mask) {
-      const Rgba<L> c = Feat::color(shade, x, y, planes.invW, planes.attr);
-      cover = cover & (c.a >= F(shade.alphaCutoff));
+      cover = cover & (Feat::alpha(shade, x, y, planes.invW, planes.attr) >= F(shade.alphaCutoff));
       if (!simd::any(cover)) return zOld;
     }
     won = true;
