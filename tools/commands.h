@@ -14,6 +14,8 @@ std::vector<std::pair<std::string, std::string>> reportSubjects();
 
 // `quadra sample` (sample_command.cpp).
 int runSample(const std::vector<std::string>& args);
+// `quadra env` (env_command.cpp).
+int runEnv(const std::vector<std::string>& args);
 // `quadra report SUBJECT` (report_command.cpp); args start with the subject.
 int runReport(const std::vector<std::string>& args);
 // `quadra report sat-precision` (report_sat_precision.cpp).

@@ -153,7 +153,8 @@ std::string usage() {
 std::string overview() {
   std::vector<std::pair<std::string, std::string>> rows = {
       {"render [SCENE]", "render a glTF file or a built-in scene to EXR or PNG, timed"},
-      {"sample", "texture lookups from a CSV file through one filter, timed"}};
+      {"sample", "texture lookups from a CSV file through one filter, timed"},
+      {"env [ENV]", "write an environment's texels, as quadra lights with them, to EXR"}};
   for (const auto& [subject, summary] : reportSubjects())
     rows.emplace_back("report " + subject, summary);
   rows.emplace_back("help [COMMAND]", "this overview, or COMMAND's help (as COMMAND --help)");
@@ -531,12 +532,14 @@ int run(const std::vector<std::string>& args) {
   const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
   if (args[0] == "render") return renderCommand(commandArgs);
   if (args[0] == "sample") return runSample(commandArgs);
+  if (args[0] == "env") return runEnv(commandArgs);
   if (args[0] == "report") return runReport(commandArgs);
-  const std::vector<std::string> commands = {"render", "sample", "report", "help", "--version"};
+  const std::vector<std::string> commands = {"render", "sample", "env",
+                                             "report", "help",   "--version"};
   const std::string suggestion = didYouMean(args[0], commands);
-  throw UsageError(
-      "unknown command '" + args[0] + "' " +
-      (suggestion.empty() ? "(commands: render, sample, report, help)" : suggestion.substr(1)));
+  throw UsageError("unknown command '" + args[0] + "' " +
+                   (suggestion.empty() ? "(commands: render, sample, env, report, help)"
+                                       : suggestion.substr(1)));
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "core/memory_budget.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
+#include "shading/builtin_environments.h"
 
 namespace quadra {
 
@@ -38,6 +39,21 @@ Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
   Scene loaded = loadGltf(scene, load, &notes);
   for (const std::string& note : notes) std::cerr << program << ": note: " << note << "\n";
   return loaded;
+}
+
+EnvironmentImage loadEnvironmentArgument(const std::string& source, MemoryBudget& budget,
+                                         TexelRepairs* repairs) {
+  try {
+    return loadEnvironment(source, budget, repairs);
+  } catch (const Error& e) {
+    // A built-in reads no file: an unknown name is the command line's fault.
+    const std::string prefix = "builtin:";
+    if (source.rfind(prefix, 0) != 0) throw;
+    const std::string name = source.substr(prefix.size());
+    const std::vector<std::string>& known = builtinEnvironmentNames();
+    if (std::find(known.begin(), known.end(), name) != known.end()) throw;
+    throw UsageError(e.what() + didYouMean(name, known));
+  }
 }
 
 namespace {

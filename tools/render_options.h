@@ -19,6 +19,7 @@
 #include "io/tone_map.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
+#include "shading/environment_source.h"
 
 namespace quadra {
 
@@ -37,6 +38,12 @@ void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& l
 // may read (LoadOptions::allowedPaths); one that does not exist is an input
 // error (exit 1, as a missing scene file is), even for a built-in scene.
 void addAllowPathOption(CommandOptions& options, LoadOptions& load);
+// An environment argument (--env, `quadra env`): builtin:NAME or a panorama
+// file (shading/environment_source.h loadEnvironment). An unknown NAME is a
+// UsageError with the names closest to it; a file's problems stay Errors.
+EnvironmentImage loadEnvironmentArgument(const std::string& source, MemoryBudget& budget,
+                                         TexelRepairs* repairs = nullptr);
+
 // --max-memory SIZE (core/memory_budget.h parseMemorySize: 512M, 4G, bytes):
 // the budget of the load (LoadOptions::maxMemory), which a command that
 // renders in-process also gives its RenderSettings::maxMemory.

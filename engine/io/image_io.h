@@ -9,6 +9,7 @@
 #include <string>
 
 #include "io/frame.h"
+#include "io/rgb_image.h"
 #include "texture/image.h"
 
 namespace quadra {
@@ -58,6 +59,17 @@ void writeFrame(const Frame& frame, const std::string& path, const Executor* exe
 // an EXR (already linear; missing channels: RGB 0, A 1) into linear float
 // RGBA.
 Image readImage(const std::string& path);
+
+// An EXR's R, G, B as linear float (a luminance-only file's Y in all three;
+// a missing one of R, G, B is 0; alpha and other channels ignored), for
+// panoramas; `admit` sees the data window's size before the pixels are
+// allocated. Throws Error("<path>: <problem>"), also for a file without R, G,
+// B or Y.
+RgbImage readExrRgb(const std::string& path, const AdmitImageSize& admit);
+// Writes FLOAT R, G, B (rgb: width x height x 3, row by row from the top),
+// ZIP compressed (lossless: the floats read back bit for bit), through a
+// temporary file as writeExr does.
+void writeExrRgb(const float* rgb, int width, int height, const std::string& path);
 
 // Whether the bytes start with the PNG signature.
 bool isPng(const std::uint8_t* data, std::size_t size);
