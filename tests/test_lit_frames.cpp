@@ -175,8 +175,8 @@ TEST(LitFrames, EnvironmentRotationTurnsThePanoramaAboutY) {
   const Frame frame = renderOnce(empty, lookingDownMinusZ(0.0f), settings);
   // The four pixels around the centre straddle the view axis.
   double red = 0.0, green = 0.0;
-  for (const auto& [x, y] : {std::pair{31, 15}, std::pair{32, 15}, std::pair{31, 16},
-                             std::pair{32, 16}}) {
+  for (const auto& [x, y] :
+       {std::pair{31, 15}, std::pair{32, 15}, std::pair{31, 16}, std::pair{32, 16}}) {
     red += 0.25 * pixel(frame, x, y)[0];
     green += 0.25 * pixel(frame, x, y)[1];
   }
@@ -240,8 +240,7 @@ TEST(LitFrames, SameBitsOnEveryKernelPathAndThreadCount) {
   metal.metallicFactor = 0.7f;
   metal.roughnessFactor = 0.3f;
   scenes.emplace_back("sphere", sphereScene(metal));
-  const std::string bottle =
-      std::string(QUADRA_ASSETS_DIR) + "/WaterBottle/glTF/WaterBottle.gltf";
+  const std::string bottle = std::string(QUADRA_ASSETS_DIR) + "/WaterBottle/glTF/WaterBottle.gltf";
   if (std::filesystem::exists(bottle)) scenes.emplace_back("WaterBottle", loadGltf(bottle));
   for (const auto& [name, scene] : scenes) {
     const Camera camera = defaultCamera(scene);

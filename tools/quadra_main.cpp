@@ -317,6 +317,13 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   return cmd;
 }
 
+// --tonemap, or by default what the shading asks for: pbr's radiance
+// through Khronos PBR Neutral, the unlit shadings' colours clamped.
+ToneMap pngToneMap(const RenderCommand& cmd) {
+  if (cmd.lighting.toneMap) return *cmd.lighting.toneMap;
+  return cmd.settings.shading == Shading::Pbr ? ToneMap::PbrNeutral : ToneMap::None;
+}
+
 // The scene, and for pbr shading the environment into cmd.settings: loaded
 // once, before the first frame.
 Scene loadScene(RenderCommand& cmd) {
@@ -407,7 +414,7 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   std::mutex reporting;
   // Frame k is written on the writer's thread while frame k + 1 renders; two
   // frames may wait, so a slow disk holds the loop back by at most that.
-  SequenceWriter writer(renderer.threadCount(), 2, cmd.exr);
+  SequenceWriter writer(renderer.threadCount(), 2, cmd.exr, pngToneMap(cmd));
   NodePose pose;
   std::vector<double> times;
   std::vector<StageTimes> stages;
@@ -504,7 +511,7 @@ int renderCommand(const std::vector<std::string>& args) {
   const auto writeStart = std::chrono::steady_clock::now();
   const Executor writer(renderer.threadCount());
   for (const std::string& path : cmd.outputs) {
-    writeFrame(frame, path, &writer, cmd.exr);
+    writeFrame(frame, path, &writer, cmd.exr, pngToneMap(cmd));
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);

@@ -16,6 +16,7 @@
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
 #include "shading/builtin_environments.h"
+#include "shading/environment_source.h"
 
 namespace quadra {
 
@@ -223,10 +224,28 @@ void addLightingOptions(CommandOptions& options, RenderSettings& settings,
       throw UsageError(option + ": '" + value + "' is out of range (-64..64 EV)");
     settings.exposure = float(ev);
   });
+  using OptionalToneMap = std::optional<ToneMap>;
   options.choice("--tonemap", "tone map",
-                 {{"pbr-neutral", ToneMap::PbrNeutral}, {"aces", ToneMap::Aces},
-                  {"none", ToneMap::None}},
+                 {{"pbr-neutral", OptionalToneMap(ToneMap::PbrNeutral)},
+                  {"aces", OptionalToneMap(ToneMap::Aces)},
+                  {"none", OptionalToneMap(ToneMap::None)}},
                  lighting.toneMap);
+}
+
+std::shared_ptr<const EnvironmentImage> loadEnvironmentArgument(const std::string& environment,
+                                                                const LoadOptions& load) {
+  MemoryBudget budget(load.maxMemory, "--env");
+  if (environment.rfind(kBuiltinScenePrefix, 0) == 0) {
+    const std::string name = environment.substr(std::string(kBuiltinScenePrefix).size());
+    const std::vector<std::string>& names = builtinEnvironmentNames();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::string list;
+      for (const std::string& known : names) list += (list.empty() ? "" : ", ") + known;
+      throw UsageError("--env: unknown built-in environment '" + name + "' (built-ins: " + list +
+                       ")" + didYouMean(name, names));
+    }
+  }
+  return std::make_shared<const EnvironmentImage>(loadEnvironment(environment, budget));
 }
 
 void describeRender(const RenderSettings& settings, FrameMetadata& metadata) {

@@ -71,9 +71,9 @@ std::string aovNames();
 // --env-intensity S, --background env|color|transparent, --background-color
 // R,G,B, --lights on|off, --exposure EV, --tonemap pbr-neutral|aces|none.
 struct LightingOptions {
-  std::string environment = kDefaultEnvironment;
-  ToneMap toneMap = ToneMap::PbrNeutral;
   static constexpr const char* kDefaultEnvironment = "builtin:studio";
+  std::string environment = kDefaultEnvironment;
+  std::optional<ToneMap> toneMap;  // unset: the shading's default
 };
 void addLightingOptions(CommandOptions& options, RenderSettings& settings,
                         LightingOptions& lighting);

@@ -125,8 +125,8 @@ const MaterialShading* litMaterial(const FrameContext& frame, const Material& ma
   m.roughness = material.roughnessFactor;
   m.normalScale = material.normalScale;
   m.occlusionStrength = material.occlusionStrength;
-  m.emission = material.emissiveFactor * material.emissiveStrength *
-               std::exp2(frame.settings.exposure);
+  m.emission =
+      material.emissiveFactor * material.emissiveStrength * std::exp2(frame.settings.exposure);
   m.ior = material.ior;
   m.specularFactor = material.specularFactor;
   m.specularColorFactor = material.specularColorFactor;
@@ -500,7 +500,8 @@ void prepareLighting(Renderer::Impl& impl, const Scene& scene, const Camera& cam
     const double started = stageClockMs();
     impl.prepared.reset();
     impl.prepared = std::make_unique<PreparedEnvironment>(
-        *settings.environment, settings.environmentRotation, scale, impl.executor);
+        *settings.environment, EnvironmentPlacement{settings.environmentRotation, scale},
+        impl.executor);
     impl.preparedFrom = settings.environment;
     impl.preparedRotation = settings.environmentRotation;
     impl.preparedScale = scale;
@@ -643,21 +644,20 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   if (lighting && settings.background != Background::Color) clearColor = glm::vec4(0.0f);
   if (settings.exposure != 0.0f)
     clearColor = glm::vec4(glm::vec3(clearColor) * std::exp2(settings.exposure), clearColor.a);
-  const TileFrame tileFrame{grid,
-                            draws,
-                            chunks,
-                            impl_->kernels,
-                            clearColor,
-                            clearDepth,
-                            settings.depth == DepthMode::Reversed,
-                            samples,
-                            settings.shadingRate == ShadingRate::Sample,
-                            pixelFilter ? &*pixelFilter : nullptr,
-                            settings.frameCoverage,
-                            aov ? &*aov : nullptr,
-                            lighting && settings.background == Background::Environment
-                                ? &lighting->background
-                                : nullptr};
+  const TileFrame tileFrame{
+      grid,
+      draws,
+      chunks,
+      impl_->kernels,
+      clearColor,
+      clearDepth,
+      settings.depth == DepthMode::Reversed,
+      samples,
+      settings.shadingRate == ShadingRate::Sample,
+      pixelFilter ? &*pixelFilter : nullptr,
+      settings.frameCoverage,
+      aov ? &*aov : nullptr,
+      lighting && settings.background == Background::Environment ? &lighting->background : nullptr};
   renderTiles(tileFrame, executor, impl_->tiles, out, impl_->tileTimes);
   const double tilesDone = stageClockMs();
 

@@ -337,14 +337,21 @@ struct PngBand {
   bool failed = false;
 };
 
-void deflateBand(const Frame& frame, int firstRow, int rows, bool last, PngBand& band) {
+void deflateBand(const Frame& frame, ToneMap toneMap, int firstRow, int rows, bool last,
+                 PngBand& band) {
+  const ToneMapping mapping{toneMap, 0.0f};
   const std::size_t rowBytes = 1 + std::size_t(frame.width) * 4;  // filter byte, then RGBA
   std::vector<std::uint8_t> raw(rowBytes * std::size_t(rows));
   for (int y = 0; y < rows; ++y) {
     std::uint8_t* row = &raw[std::size_t(y) * rowBytes];
     row[0] = 0;  // filter type None
-    encodeSrgb8Row(&frame.rgba[std::size_t(firstRow + y) * std::size_t(frame.width) * 4],
-                   frame.width, row + 1);
+    const float* rgba = &frame.rgba[std::size_t(firstRow + y) * std::size_t(frame.width) * 4];
+    // A clamp is what encodeSrgb8Row does: frames written before tone maps
+    // existed keep their bytes.
+    if (toneMap == ToneMap::None)
+      encodeSrgb8Row(rgba, frame.width, row + 1);
+    else
+      toneMapSrgb8Row(mapping, rgba, frame.width, row + 1);
   }
   band.rawBytes = raw.size();
   band.adler = adler32(adler32(0, nullptr, 0), raw.data(), uInt(raw.size()));
@@ -387,14 +394,15 @@ bool writePngChunk(std::FILE* file, const char type[4], const std::uint8_t* data
 
 }  // namespace
 
-void writePng(const Frame& frame, const std::string& path, const Executor* executor) {
+void writePng(const Frame& frame, const std::string& path, const Executor* executor,
+              ToneMap toneMap) {
   checkFrame(frame, path, false);
   const int bands = (frame.height + kPngBandRows - 1) / kPngBandRows;
   std::vector<PngBand> deflated(static_cast<std::size_t>(bands));
   const auto deflateBands = [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; ++b) {
       const int first = int(b) * kPngBandRows;
-      deflateBand(frame, first, std::min(kPngBandRows, frame.height - first),
+      deflateBand(frame, toneMap, first, std::min(kPngBandRows, frame.height - first),
                   b + 1 == deflated.size(), deflated[b]);
     }
   };
@@ -446,10 +454,10 @@ void writePng(const Frame& frame, const std::string& path, const Executor* execu
 }
 
 void writeFrame(const Frame& frame, const std::string& path, const Executor* executor,
-                const ExrSettings& exr) {
+                const ExrSettings& exr, ToneMap pngToneMap) {
   const std::string ext = lowerExtension(path);
   if (ext == ".exr") return writeExr(frame, path, exr, executor);
-  if (ext == ".png") return writePng(frame, path, executor);
+  if (ext == ".png") return writePng(frame, path, executor, pngToneMap);
   throw makeError(path, "unsupported output format (use .exr or .png)");
 }
 

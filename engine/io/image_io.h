@@ -10,6 +10,7 @@
 
 #include "io/frame.h"
 #include "io/rgb_image.h"
+#include "io/tone_map.h"
 #include "texture/image.h"
 
 namespace quadra {
@@ -46,14 +47,16 @@ std::string exrCompressionNames();
 // its own pool). Throws Error("<path>: <problem>") on failure.
 void writeExr(const Frame& frame, const std::string& path, const ExrSettings& settings = {},
               const Executor* executor = nullptr);
-// PNG, 8-bit sRGB RGBA (colour un-premultiplied before encoding), encoded
-// and compressed in bands of rows in parallel on `executor` when one is
-// given; the file's bytes are the same either way.
-void writePng(const Frame& frame, const std::string& path, const Executor* executor = nullptr);
+// PNG, 8-bit sRGB RGBA (colour un-premultiplied, then tone mapped: none
+// clamps to [0, 1]; io/tone_map.h), encoded and compressed in bands of rows
+// in parallel on `executor` when one is given; the file's bytes are the same
+// either way.
+void writePng(const Frame& frame, const std::string& path, const Executor* executor = nullptr,
+              ToneMap toneMap = ToneMap::None);
 // Chooses the writer from the extension (.exr or .png, any case); `exr`
-// applies to EXR files only.
+// applies to EXR files only, `pngToneMap` to PNG files only.
 void writeFrame(const Frame& frame, const std::string& path, const Executor* executor = nullptr,
-                const ExrSettings& exr = {});
+                const ExrSettings& exr = {}, ToneMap pngToneMap = ToneMap::None);
 
 // Reads a PNG or JPEG (decoded from sRGB to linear; alpha stays linear) or
 // an EXR (already linear; missing channels: RGB 0, A 1) into linear float

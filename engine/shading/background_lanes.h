@@ -5,18 +5,19 @@
 #pragma once
 
 #include "shading/background_view.h"
-#include "shading/lighting_lanes.h"
+#include "shading/shade_lanes.h"
 
 namespace quadra {
 
 // Radiance seen through the pixels centred at window (x, y).
 template <class L>
-QUADRA_LANE_INLINE RgbLanes<L> backgroundRadiance(const BackgroundView& view, const typename L::F& x,
-                                                  const typename L::F& y) {
+QUADRA_LANE_INLINE RgbLanes<L> backgroundThroughPixels(const BackgroundView& view,
+                                                       const typename L::F& x,
+                                                       const typename L::F& y) {
   using F = typename L::F;
   if (!view.perspective) {
     const glm::vec3 d = view.worldFromView * glm::vec3(0.0f, 0.0f, -1.0f);
-    return environmentRadiance<L>(*view.lighting, {F(d.x), F(d.y), F(d.z)}, F(0.0f));
+    return backgroundRadiance<L>(*view.lighting, {F(d.x), F(d.y), F(d.z)}, F(0.0f));
   }
   const F dx = F(view.scaleX) * (x - F(view.centreX));
   const F dy = F(view.scaleY) * (F(view.centreY) - y);
@@ -30,7 +31,7 @@ QUADRA_LANE_INLINE RgbLanes<L> backgroundRadiance(const BackgroundView& view, co
   const Vec3Lanes<L> d{F(m[0][0]) * vx + F(m[1][0]) * vy + F(m[2][0]) * vz,
                        F(m[0][1]) * vx + F(m[1][1]) * vy + F(m[2][1]) * vz,
                        F(m[0][2]) * vx + F(m[1][2]) * vy + F(m[2][2]) * vz};
-  return environmentRadiance<L>(*view.lighting, d, solidAngle);
+  return backgroundRadiance<L>(*view.lighting, d, solidAngle);
 }
 
 }  // namespace quadra

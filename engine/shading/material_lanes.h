@@ -6,8 +6,8 @@
 // Written once over lanes; the tile kernels of each ISA include it.
 #pragma once
 
-#include "shading/lighting_lanes.h"
 #include "shading/material_shading.h"
+#include "shading/shade_lanes.h"
 #include "texture/sample_lanes.h"
 
 namespace quadra {
@@ -22,7 +22,7 @@ struct MaterialLaneInputs {
   UvDerivatives<L> footprint[2];
 };
 
-namespace material {
+namespace material_reads {
 
 template <class L>
 QUADRA_LANE_INLINE Rgba<L> lookup(const MaterialTextureLookup& t, const MaterialShading& m,
@@ -38,16 +38,27 @@ QUADRA_LANE_INLINE Rgba<L> lookup(const MaterialTextureLookup& t, const Material
   const glm::mat3x2& k = t.transform;
   const F tu = F(k[0][0]) * u + F(k[1][0]) * v + F(k[2][0]);
   const F tv = F(k[0][1]) * u + F(k[1][1]) * v + F(k[2][1]);
-  const UvDerivatives<L> td{F(k[0][0]) * d.dudx + F(k[1][0]) * d.dvdx,
-                            F(k[0][1]) * d.dudx + F(k[1][1]) * d.dvdx,
-                            F(k[0][0]) * d.dudy + F(k[1][0]) * d.dvdy,
-                            F(k[0][1]) * d.dudy + F(k[1][1]) * d.dvdy};
+  const UvDerivatives<L> td{
+      F(k[0][0]) * d.dudx + F(k[1][0]) * d.dvdx, F(k[0][1]) * d.dudx + F(k[1][1]) * d.dvdx,
+      F(k[0][0]) * d.dudy + F(k[1][0]) * d.dvdy, F(k[0][1]) * d.dudy + F(k[1][1]) * d.dvdy};
   return sampleTexture<L>(t.view, tu, tv, td);
 }
 
 template <class L>
 QUADRA_LANE_INLINE Vec3Lanes<L> attributeVector(const MaterialLaneInputs<L>& in, int first) {
   return {in.attribute[first], in.attribute[first + 1], in.attribute[first + 2]};
+}
+
+template <class L>
+QUADRA_LANE_INLINE Vec3Lanes<L> normalized(const Vec3Lanes<L>& v) {
+  using F = typename L::F;
+  const F inverse = F(1.0f) / simd::sqrt(simd::max(shading::dot<L>(v, v), F(1e-30f)));
+  return {v.x * inverse, v.y * inverse, v.z * inverse};
+}
+
+template <class L>
+QUADRA_LANE_INLINE Vec3Lanes<L> cross(const Vec3Lanes<L>& a, const Vec3Lanes<L>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
 // v in view space turned into world space.
@@ -59,7 +70,7 @@ QUADRA_LANE_INLINE Vec3Lanes<L> toWorld(const glm::mat3& m, const Vec3Lanes<L>& 
           F(m[0][2]) * v.x + F(m[1][2]) * v.y + F(m[2][2]) * v.z};
 }
 
-}  // namespace material
+}  // namespace material_reads
 
 // The base colour's alpha alone: factor x texture x COLOR_0 (what a masked
 // draw's visibility pass tests).
@@ -69,7 +80,7 @@ QUADRA_LANE_INLINE typename L::F materialAlpha(const MaterialShading& m,
   using F = typename L::F;
   F a(m.baseColorFactor.a);
   if (m.baseColor.present()) {
-    Rgba<L> texel = material::lookup<L>(m.baseColor, m, in);
+    Rgba<L> texel = material_reads::lookup<L>(m.baseColor, m, in);
     a = a * texel.a;
   }
   if (m.color >= 0) a = a * in.attribute[m.color + 3];
@@ -82,11 +93,10 @@ template <class L>
 QUADRA_LANE_INLINE Rgba<L> materialRadiance(const MaterialShading& m,
                                             const MaterialLaneInputs<L>& in) {
   using F = typename L::F;
-  using namespace material;
+  using namespace material_reads;
   SurfaceLanes<L> s;
   // Base colour: factor x texture (sRGB-decoded when loaded) x COLOR_0.
-  F r(m.baseColorFactor.r), g(m.baseColorFactor.g), b(m.baseColorFactor.b),
-      a(m.baseColorFactor.a);
+  F r(m.baseColorFactor.r), g(m.baseColorFactor.g), b(m.baseColorFactor.b), a(m.baseColorFactor.a);
   if (m.baseColor.present()) {
     Rgba<L> texel = lookup<L>(m.baseColor, m, in);
     if (m.baseColor.view.premultiplied) texel = unpremultiplied<L>(texel);
@@ -116,14 +126,13 @@ QUADRA_LANE_INLINE Rgba<L> materialRadiance(const MaterialShading& m,
     const F tz = texel.b * F(2.0f) - F(1.0f);
     // A minified normal map's filtered normal is shorter the more its
     // texels' normals spread: that spread widens the lobe.
-    const F tangentLength = simd::sqrt(tx * tx + ty * ty + tz * tz);
-    s.roughness = spreadRoughness<L>(s.roughness, tangentLength, scale);
+    s.roughness = toksvigRoughness<L>(s.roughness, simd::sqrt(tx * tx + ty * ty + tz * tz));
     const Vec3Lanes<L> t = normalized<L>(attributeVector(in, m.tangent));
     const F sign = simd::select(in.attribute[m.tangent + 3] < F(0.0f), F(-1.0f), F(1.0f));
     const Vec3Lanes<L> bt = cross<L>(n, t);
-    n = normalized<L>(
-        {t.x * tx + bt.x * sign * ty + n.x * tz, t.y * tx + bt.y * sign * ty + n.y * tz,
-         t.z * tx + bt.z * sign * ty + n.z * tz});
+    n = normalized<L>({t.x * tx + bt.x * sign * ty + n.x * tz,
+                       t.y * tx + bt.y * sign * ty + n.y * tz,
+                       t.z * tx + bt.z * sign * ty + n.z * tz});
   }
   // Occlusion scales the environment's light only.
   s.occlusion = F(1.0f);
@@ -137,25 +146,26 @@ QUADRA_LANE_INLINE Rgba<L> materialRadiance(const MaterialShading& m,
     er = er * texel.r, eg = eg * texel.g, eb = eb * texel.b;
   }
   s.emission = {er, eg, eb};
-  // KHR_materials_specular: the weight from the texture's A, the colour
-  // from its RGB (sRGB).
-  s.specularWeight = F(m.specularFactor);
-  if (m.specular.present()) s.specularWeight = s.specularWeight * lookup<L>(m.specular, m, in).a;
+  // KHR_materials_ior and _specular: the dielectric's f0 and f90, from the
+  // weight (the texture's A) and the colour (its RGB, sRGB).
+  F specular(m.specularFactor);
+  if (m.specular.present()) specular = specular * lookup<L>(m.specular, m, in).a;
   F sr(m.specularColorFactor.r), sg(m.specularColorFactor.g), sb(m.specularColorFactor.b);
   if (m.specularColor.present()) {
     const Rgba<L> texel = lookup<L>(m.specularColor, m, in);
     sr = sr * texel.r, sg = sg * texel.g, sb = sb * texel.b;
   }
-  s.specularColor = {sr, sg, sb};
-  s.ior = F(m.ior);
+  s.dielectricF0 = shading::dielectricF0<L>(F(m.ior), {sr, sg, sb}, specular);
+  s.dielectricF90 = specular;
   // World space: the view direction is toward the eye at the origin.
   const Vec3Lanes<L> p = attributeVector(in, m.position);
   const Vec3Lanes<L> offset = toWorld<L>(m.worldFromView, p);
   s.position = {offset.x + F(m.eye.x), offset.y + F(m.eye.y), offset.z + F(m.eye.z)};
   s.normal = toWorld<L>(m.worldFromView, n);
-  s.view = toWorld<L>(m.worldFromView, normalized<L>({F(0.0f) - p.x, F(0.0f) - p.y, F(0.0f) - p.z}));
-  const Vec3Lanes<L> radiance = surfaceRadiance<L>(*m.lighting, s);
-  return {radiance.x, radiance.y, radiance.z, a};
+  s.view =
+      toWorld<L>(m.worldFromView, normalized<L>({F(0.0f) - p.x, F(0.0f) - p.y, F(0.0f) - p.z}));
+  const RgbLanes<L> radiance = surfaceRadiance<L>(*m.lighting, s);
+  return {radiance.r, radiance.g, radiance.b, a};
 }
 
 }  // namespace quadra

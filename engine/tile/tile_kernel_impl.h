@@ -190,8 +190,7 @@ constexpr bool readsPlanes(bool textured, bool vertexColor, bool lit, ShadeOutpu
 
 // The footprint of (u, v) from differences across each 2x2 quad (lanes in
 // quad order, helper lanes included): one per quad, from its top-left pixel.
-QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const F& u,
-                                                  const F& v) {
+QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const F& u, const F& v) {
   const F u0 = simd::quadBroadcast<0>(u), v0 = simd::quadBroadcast<0>(v);
   UvDerivatives<L> d{simd::quadBroadcast<1>(u) - u0, simd::quadBroadcast<1>(v) - v0,
                      simd::quadBroadcast<2>(u) - u0, simd::quadBroadcast<2>(v) - v0};
@@ -217,8 +216,8 @@ QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const
     const int t = material.texcoordAttribute[set];
     if (t < 0) continue;
     in.footprint[set] = quadDerivatives ? quadFootprint(shade, value[t], value[t + 1])
-                                        : analyticFootprint(shade, value[t], value[t + 1], w,
-                                                            invW, attr[t], attr[t + 1]);
+                                        : analyticFootprint(shade, value[t], value[t + 1], w, invW,
+                                                            attr[t], attr[t + 1]);
   }
   return materialRadiance<L>(material, in);
 }
@@ -232,8 +231,8 @@ QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const
   for (int k = 0; k < shade.attributes.count; ++k) value[k] = attr[k].at(x, y) * w;
   const MaterialShading& material = *shade.material;
   MaterialLaneInputs<L> in{value, {}};
-  const int t = material.baseColor.present() ? material.texcoordAttribute[material.baseColor.texcoord]
-                                             : -1;
+  const int t =
+      material.baseColor.present() ? material.texcoordAttribute[material.baseColor.texcoord] : -1;
   if (t >= 0)
     in.footprint[material.baseColor.texcoord] =
         analyticFootprint(shade, value[t], value[t + 1], w, invW, attr[t], attr[t + 1]);
@@ -261,10 +260,10 @@ QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const
     if constexpr (kOutput == ShadeOutput::TexCoord) {
       r = u, g = v, b = F(0.0f), a = F(1.0f);
     } else {
-      const UvDerivatives<L> d = quadDerivatives
-                                     ? quadFootprint(shade, u, v)
-                                     : analyticFootprint(shade, u, v, w, invW, attr[layout.texcoord],
-                                                         attr[layout.texcoord + 1]);
+      const UvDerivatives<L> d =
+          quadDerivatives ? quadFootprint(shade, u, v)
+                          : analyticFootprint(shade, u, v, w, invW, attr[layout.texcoord],
+                                              attr[layout.texcoord + 1]);
       if constexpr (kOutput == ShadeOutput::Derivatives) {
         r = d.dudx, g = d.dvdx, b = d.dudy, a = d.dvdy;
       } else {
@@ -1686,7 +1685,7 @@ void compositeBackground(const BackgroundView& view, TileBuffers& tile) {
     if (!simd::any(a < F(1.0f))) continue;
     const F x = lane.x + F(float(tile.originX + TileBuffers::xAt(first)) + 0.5f);
     const F y = lane.y + F(float(tile.originY + TileBuffers::yAt(first)) + 0.5f);
-    const RgbLanes<L> behind = backgroundRadiance<L>(view, x, y);
+    const RgbLanes<L> behind = backgroundThroughPixels<L>(view, x, y);
     const F keep = F(1.0f) - a;
     float* const c[3] = {tile.color[0] + first, tile.color[1] + first, tile.color[2] + first};
     (F::load_aligned(c[0]) + keep * behind.r).store_aligned(c[0]);

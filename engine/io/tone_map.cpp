@@ -1,5 +1,5 @@
 // The tone maps of tone_map.h, each from its published formula.
-#include "shading/tone_map.h"
+#include "io/tone_map.h"
 
 #include <algorithm>
 #include <cmath>
