@@ -400,9 +400,9 @@ TEST(Cli, HelpListsEveryCommandAndHelpCommandIsCommandHelp) {
   EXPECT_EQ(bare.out, overview.out);
 
   const std::vector<std::string> commands = commandsInOverview(overview.out);
-  EXPECT_EQ(commands,
-            (std::vector<std::string>{"render", "sample", "report textures", "report sat-precision",
-                                      "report stability", "report frames", "report samples"}));
+  EXPECT_EQ(commands, (std::vector<std::string>{"render", "sample", "env", "report textures",
+                                                "report sat-precision", "report stability",
+                                                "report frames", "report samples"}));
   for (const std::string& command : commands) {
     SCOPED_TRACE(command);
     const RunResult help = run("help " + command), own = run(command + " --help"),

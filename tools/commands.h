@@ -10,6 +10,8 @@ namespace quadra {
 
 // `quadra sample` (sample_command.cpp).
 int runSample(const std::vector<std::string>& args);
+// `quadra env` (env_command.cpp).
+int runEnv(const std::vector<std::string>& args);
 // `quadra report SUBJECT` (report_command.cpp, quadra-report's main); args
 // start with the subject.
 int runReport(const std::vector<std::string>& args);

@@ -63,7 +63,27 @@ Renders a glTF file or a built-in scene, times the frames and writes the last to
                          texel storage (default auto: rgba16f for 8-bit images, else rgba32f)
   --depth standard|reversed
                          depth buffer: standard (0 near, LESS) or reversed (1 near, GREATER)
-  --shading unlit|lit    unlit = baseColorFactor x baseColorTexture x vertex colour
+  --shading unlit|lit|pbr
+                         unlit = baseColorFactor x baseColorTexture x vertex colour;
+                         lit = that x a Lambert head light; pbr = glTF's metallic-roughness
+                         material under the environment and the scene's KHR_lights_punctual
+                         lights (docs/lighting.md); KHR_materials_unlit materials stay unlit
+  --env FILE.hdr|FILE.exr|builtin:NAME
+                         pbr's environment: an equirectangular panorama of linear radiance
+                         (default builtin:studio; `quadra env --help` lists the built-ins)
+  --env-rotation DEG     turn the environment about +Y, counter-clockwise seen from above
+  --env-intensity S      scale the environment's radiance (default 1)
+  --background env|color|transparent
+                         what pbr shows where no surface is: the environment seen through
+                         the pixel (default), --background-color, or alpha 0
+  --background-color R,G,B
+                         linear radiance of --background color (default 0,0,0)
+  --lights on|off        the scene's KHR_lights_punctual lights (default on)
+  --exposure EV          outputs hold radiance x 2^EV (default 0)
+  --tonemap pbr-neutral|aces|none
+                         how PNG outputs map radiance to [0, 1] before sRGB encoding:
+                         Khronos PBR Neutral (default), ACES (Hill's fit) or a clamp;
+                         EXR outputs stay linear
   --derivatives analytic|quad
                          texture footprints: the triangles' exact derivatives at each pixel
                          (default) or 2x2 quad differences, as GPUs take them
@@ -139,7 +159,8 @@ std::string usage() {
 std::string overview() {
   std::vector<std::pair<std::string, std::string>> rows = {
       {"render [SCENE]", "render a glTF file or a built-in scene to EXR or PNG, timed"},
-      {"sample", "texture lookups from a CSV file through one filter, timed"}};
+      {"sample", "texture lookups from a CSV file through one filter, timed"},
+      {"env [ENV]", "write an environment's texels, as quadra lights with them, to EXR"}};
   for (const auto& [subject, summary] : reportSubjects())
     rows.emplace_back("report " + subject, summary);
   rows.emplace_back("help [COMMAND]", "this overview, or COMMAND's help (as COMMAND --help)");
@@ -174,6 +195,7 @@ struct RenderCommand {
   const char* exrOption = nullptr;  // the first EXR storage option given, for messages
   CameraOverrides camera;
   std::optional<TexelFormat> textureFormat;  // unset: as the loader chose
+  LightingOptions lighting;
 };
 
 // The options that split a sequence among processes and report on it.
@@ -204,8 +226,10 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--depth", "depth mode",
                  {{"standard", DepthMode::Standard}, {"reversed", DepthMode::Reversed}},
                  cmd.settings.depth);
-  options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}},
+  options.choice("--shading", "shading",
+                 {{"unlit", Shading::Unlit}, {"lit", Shading::Lit}, {"pbr", Shading::Pbr}},
                  cmd.settings.shading);
+  addLightingOptions(options, cmd.settings, cmd.lighting);
   options.choice("--derivatives", "derivative mode",
                  {{"analytic", DerivativeMode::Analytic}, {"quad", DerivativeMode::Quad}},
                  cmd.settings.derivatives);
@@ -287,6 +311,8 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
                          ")");
     }
   }
+  // --background color is opaque: black unless --background-color says.
+  if (cmd.settings.background == Background::Color) cmd.settings.clearColor.a = 1.0f;
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
   if (cmd.exrOption && !cmd.settings.frameDepth)
     throw UsageError(std::string(cmd.exrOption) + ": no --out is an .exr file");
@@ -297,9 +323,20 @@ std::optional<RenderCommand> parseRender(const std::vector<std::string>& args) {
   return cmd;
 }
 
-Scene loadScene(const RenderCommand& cmd) {
+// --tonemap, or by default what the shading asks for: pbr's radiance
+// through Khronos PBR Neutral, the unlit shadings' colours clamped.
+ToneMap pngToneMap(const RenderCommand& cmd) {
+  if (cmd.lighting.toneMap) return *cmd.lighting.toneMap;
+  return cmd.settings.shading == Shading::Pbr ? ToneMap::PbrNeutral : ToneMap::None;
+}
+
+// The scene, and for pbr shading the environment into cmd.settings: loaded
+// once, before the first frame.
+Scene loadScene(RenderCommand& cmd) {
   Scene scene = loadSceneArgument(cmd.scenePath, cmd.load, "quadra");
   if (cmd.textureFormat) setTextureStorage(scene, *cmd.textureFormat);
+  if (cmd.settings.shading == Shading::Pbr)
+    cmd.settings.environment = loadEnvironmentArgument(cmd.lighting.environment, cmd.load);
   return scene;
 }
 
@@ -383,7 +420,7 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
   std::mutex reporting;
   // Frame k is written on the writer's thread while frame k + 1 renders; two
   // frames may wait, so a slow disk holds the loop back by at most that.
-  SequenceWriter writer(renderer.threadCount(), 2, cmd.exr);
+  SequenceWriter writer(renderer.threadCount(), 2, cmd.exr, pngToneMap(cmd));
   NodePose pose;
   std::vector<double> times;
   std::vector<StageTimes> stages;
@@ -449,9 +486,9 @@ int renderSequence(const RenderCommand& cmd, Renderer& renderer, Scene& scene, d
 }
 
 int renderCommand(const std::vector<std::string>& args) {
-  const std::optional<RenderCommand> parsed = parseRender(args);
+  std::optional<RenderCommand> parsed = parseRender(args);
   if (!parsed) return 0;
-  const RenderCommand& cmd = *parsed;
+  RenderCommand& cmd = *parsed;
   Renderer renderer(cmd.config);  // checks --isa before any slow loading
   // OpenEXR compresses scanline blocks on its own process-wide pool, off by
   // default; the tool (not the library, which keeps no global state) sizes it
@@ -480,7 +517,7 @@ int renderCommand(const std::vector<std::string>& args) {
   const auto writeStart = std::chrono::steady_clock::now();
   const Executor writer(renderer.threadCount());
   for (const std::string& path : cmd.outputs) {
-    writeFrame(frame, path, &writer, cmd.exr);
+    writeFrame(frame, path, &writer, cmd.exr, pngToneMap(cmd));
     std::cout << "quadra wrote " << path << "\n";
   }
   const double writeMs = millisecondsSince(writeStart);
@@ -521,12 +558,14 @@ int run(const std::vector<std::string>& args) {
   const std::vector<std::string> commandArgs(args.begin() + 1, args.end());
   if (args[0] == "render") return renderCommand(commandArgs);
   if (args[0] == "sample") return runSample(commandArgs);
+  if (args[0] == "env") return runEnv(commandArgs);
   if (args[0] == "report") return runReportProgram(commandArgs);
-  const std::vector<std::string> commands = {"render", "sample", "report", "help", "--version"};
+  const std::vector<std::string> commands = {"render", "sample", "env",
+                                             "report", "help",   "--version"};
   const std::string suggestion = didYouMean(args[0], commands);
-  throw UsageError(
-      "unknown command '" + args[0] + "' " +
-      (suggestion.empty() ? "(commands: render, sample, report, help)" : suggestion.substr(1)));
+  throw UsageError("unknown command '" + args[0] + "' " +
+                   (suggestion.empty() ? "(commands: render, sample, env, report, help)"
+                                       : suggestion.substr(1)));
 }
 
 }  // namespace

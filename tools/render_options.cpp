@@ -3,6 +3,7 @@
 #include "render_options.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -14,6 +15,8 @@
 #include "core/memory_budget.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
+#include "shading/builtin_environments.h"
+#include "shading/environment_source.h"
 
 namespace quadra {
 
@@ -37,6 +40,21 @@ Scene loadSceneArgument(const std::string& scene, const LoadOptions& load,
   Scene loaded = loadGltf(scene, load, &notes);
   for (const std::string& note : notes) std::cerr << program << ": note: " << note << "\n";
   return loaded;
+}
+
+EnvironmentImage loadEnvironmentArgument(const std::string& source, MemoryBudget& budget,
+                                         TexelRepairs* repairs) {
+  try {
+    return loadEnvironment(source, budget, repairs);
+  } catch (const Error& e) {
+    // A built-in reads no file: an unknown name is the command line's fault.
+    const std::string prefix = "builtin:";
+    if (source.rfind(prefix, 0) != 0) throw;
+    const std::string name = source.substr(prefix.size());
+    const std::vector<std::string>& known = builtinEnvironmentNames();
+    if (std::find(known.begin(), known.end(), name) != known.end()) throw;
+    throw UsageError(e.what() + didYouMean(name, known));
+  }
 }
 
 namespace {
@@ -143,18 +161,91 @@ std::string describeRenderSettings(const RenderSettings& s) {
   out << "width=" << s.width << " height=" << s.height
       << " filter=" << (s.filter ? filterName(*s.filter) : "per-sampler") << " aniso=" << s.maxAniso
       << " lod-bias=" << s.lodBias << " lod=" << (s.lodRule == LodRule::Box ? "box" : "gl")
-      << " shading=" << (s.shading == Shading::Lit ? "lit" : "unlit")
+      << " shading="
+      << (s.shading == Shading::Pbr   ? "pbr"
+          : s.shading == Shading::Lit ? "lit"
+                                      : "unlit")
       << " depth=" << (s.depth == DepthMode::Reversed ? "reversed" : "standard")
       << " samples=" << s.samples
       << " shading-rate=" << (s.shadingRate == ShadingRate::Sample ? "sample" : "pixel")
       << " pixel-filter="
       << (s.pixelFilter == PixelFilter::BlackmanHarris ? "blackman-harris" : "box")
-      << " alpha-to-coverage=" << (s.alphaToCoverage ? "on" : "off") << " aov=Z";
+      << " alpha-to-coverage=" << (s.alphaToCoverage ? "on" : "off");
+  if (s.shading == Shading::Pbr)
+    out << " env-rotation=" << s.environmentRotation << " env-intensity=" << s.environmentIntensity
+        << " lights=" << (s.punctualLights ? "on" : "off") << " background="
+        << (s.background == Background::Environment ? "env"
+            : s.background == Background::Color     ? "color"
+                                                    : "transparent");
+  if (s.exposure != 0.0f) out << " exposure=" << s.exposure;
+  out << " aov=Z";
   for (const AovName& aov : kAovNames)
     if ((aov.bits != 0 && (s.aovs & aov.bits) != 0) ||
         (aov.name == std::string(kCoverageChannel) && s.frameCoverage))
       out << "," << aov.name;
   return out.str();
+}
+
+void addLightingOptions(CommandOptions& options, RenderSettings& settings,
+                        LightingOptions& lighting) {
+  options.value("--env", [&lighting](const std::string&, const std::string& value) {
+    lighting.environment = value;
+  });
+  options.value("--env-rotation", [&settings](const std::string& option, const std::string& value) {
+    const double degrees = parseNumber(option, value);
+    if (!(std::fabs(degrees) <= 36000.0))
+      throw UsageError(option + ": '" + value + "' is out of range (-36000..36000 degrees)");
+    settings.environmentRotation = float(degrees);
+  });
+  options.value("--env-intensity",
+                [&settings](const std::string& option, const std::string& value) {
+                  const double scale = parseNumber(option, value);
+                  if (!(scale >= 0.0 && scale <= 1e9))
+                    throw UsageError(option + ": '" + value + "' must be in 0..1e9");
+                  settings.environmentIntensity = float(scale);
+                });
+  options.choice("--background", "background",
+                 {{"env", Background::Environment},
+                  {"color", Background::Color},
+                  {"transparent", Background::Transparent}},
+                 settings.background);
+  options.value("--background-color",
+                [&settings](const std::string& option, const std::string& value) {
+                  const glm::vec3 c = parseVector(option, value);
+                  if (!(c.r >= 0.0f && c.g >= 0.0f && c.b >= 0.0f))
+                    throw UsageError(option + ": '" + value + "' must not be negative");
+                  settings.clearColor = glm::vec4(c, 1.0f);
+                });
+  options.choice("--lights", "punctual lights", {{"on", true}, {"off", false}},
+                 settings.punctualLights);
+  options.value("--exposure", [&settings](const std::string& option, const std::string& value) {
+    const double ev = parseNumber(option, value);
+    if (!(std::fabs(ev) <= 64.0))
+      throw UsageError(option + ": '" + value + "' is out of range (-64..64 EV)");
+    settings.exposure = float(ev);
+  });
+  using OptionalToneMap = std::optional<ToneMap>;
+  options.choice("--tonemap", "tone map",
+                 {{"pbr-neutral", OptionalToneMap(ToneMap::PbrNeutral)},
+                  {"aces", OptionalToneMap(ToneMap::Aces)},
+                  {"none", OptionalToneMap(ToneMap::None)}},
+                 lighting.toneMap);
+}
+
+std::shared_ptr<const EnvironmentImage> loadEnvironmentArgument(const std::string& environment,
+                                                                const LoadOptions& load) {
+  MemoryBudget budget(load.maxMemory, "--env");
+  if (environment.rfind(kBuiltinScenePrefix, 0) == 0) {
+    const std::string name = environment.substr(std::string(kBuiltinScenePrefix).size());
+    const std::vector<std::string>& names = builtinEnvironmentNames();
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      std::string list;
+      for (const std::string& known : names) list += (list.empty() ? "" : ", ") + known;
+      throw UsageError("--env: unknown built-in environment '" + name + "' (built-ins: " + list +
+                       ")" + didYouMean(name, names));
+    }
+  }
+  return std::make_shared<const EnvironmentImage>(loadEnvironment(environment, budget));
 }
 
 void describeRender(const RenderSettings& settings, FrameMetadata& metadata) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,8 +16,10 @@
 #include "api/renderer.h"
 #include "cli_options.h"
 #include "io/frame.h"
+#include "io/tone_map.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
+#include "shading/environment_source.h"
 
 namespace quadra {
 
@@ -35,6 +38,12 @@ void addSceneOptions(CommandOptions& options, std::string& scene, LoadOptions& l
 // may read (LoadOptions::allowedPaths); one that does not exist is an input
 // error (exit 1, as a missing scene file is), even for a built-in scene.
 void addAllowPathOption(CommandOptions& options, LoadOptions& load);
+// An environment argument (--env, `quadra env`): builtin:NAME or a panorama
+// file (shading/environment_source.h loadEnvironment). An unknown NAME is a
+// UsageError with the names closest to it; a file's problems stay Errors.
+EnvironmentImage loadEnvironmentArgument(const std::string& source, MemoryBudget& budget,
+                                         TexelRepairs* repairs = nullptr);
+
 // --max-memory SIZE (core/memory_budget.h parseMemorySize: 512M, 4G, bytes):
 // the budget of the load (LoadOptions::maxMemory), which a command that
 // renders in-process also gives its RenderSettings::maxMemory.
@@ -55,6 +64,24 @@ bool outputsNeedDepth(const std::vector<std::string>& outputs);
 void addAovOption(CommandOptions& options, RenderSettings& settings);
 // The AOV names --aov accepts, for messages: "Z, N, P, uv, motion, id, mask, lod, anisotropy".
 std::string aovNames();
+
+// Pbr shading's light and output (LIGHTING.md, docs/lighting.md), as
+// `quadra render` and its lit peer read them: --env FILE|builtin:NAME (kept
+// here, loaded by loadEnvironmentArgument), --env-rotation DEG,
+// --env-intensity S, --background env|color|transparent, --background-color
+// R,G,B, --lights on|off, --exposure EV, --tonemap pbr-neutral|aces|none.
+struct LightingOptions {
+  static constexpr const char* kDefaultEnvironment = "builtin:studio";
+  std::string environment = kDefaultEnvironment;
+  std::optional<ToneMap> toneMap;  // unset: the shading's default
+};
+void addLightingOptions(CommandOptions& options, RenderSettings& settings,
+                        LightingOptions& lighting);
+// The environment --env names, decoded (a file within the load's memory
+// budget) or built in; an unknown builtin NAME is a UsageError with the
+// names closest to it.
+std::shared_ptr<const EnvironmentImage> loadEnvironmentArgument(const std::string& environment,
+                                                                const LoadOptions& load);
 
 // The settings that decide a frame's pixels, as "key=value" words for the
 // EXR header (FrameMetadata::strings); nothing that differs between runs

@@ -9,10 +9,12 @@
 
 namespace quadra {
 
-SequenceWriter::SequenceWriter(int threads, std::size_t queueDepth, const ExrSettings& exr)
+SequenceWriter::SequenceWriter(int threads, std::size_t queueDepth, const ExrSettings& exr,
+                               ToneMap pngToneMap)
     : executor_(threads),
       queueDepth_(queueDepth < 1 ? 1 : queueDepth),
       exr_(exr),
+      pngToneMap_(pngToneMap),
       thread_([this] { run(); }) {}
 
 SequenceWriter::~SequenceWriter() {
@@ -60,7 +62,8 @@ void SequenceWriter::run() {
     std::exception_ptr failure;
     const auto start = std::chrono::steady_clock::now();
     try {
-      for (const std::string& path : job.paths) writeFrame(job.frame, path, &executor_, exr_);
+      for (const std::string& path : job.paths)
+        writeFrame(job.frame, path, &executor_, exr_, pngToneMap_);
       if (job.written) job.written(job.paths);
     } catch (...) {
       failure = std::current_exception();

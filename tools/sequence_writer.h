@@ -29,8 +29,10 @@ class SequenceWriter {
   // threads: for the writers' own compression (io/image_io.h). queueDepth:
   // how many handed-over frames may wait unwritten before submit blocks, and
   // so how many frame buffers (besides the one rendering) the writer keeps.
-  // exr: how the EXR files store their pixels.
-  SequenceWriter(int threads, std::size_t queueDepth, const ExrSettings& exr = {});
+  // exr: how the EXR files store their pixels; pngToneMap: how the PNG
+  // files map radiance to [0, 1].
+  SequenceWriter(int threads, std::size_t queueDepth, const ExrSettings& exr = {},
+                 ToneMap pngToneMap = ToneMap::None);
   // Writes what is still queued (each frame handed over is complete), then
   // stops; errors at this point are dropped, finish() is the way to see them.
   ~SequenceWriter();
@@ -58,6 +60,7 @@ class SequenceWriter {
   Executor executor_;
   const std::size_t queueDepth_;
   const ExrSettings exr_;
+  const ToneMap pngToneMap_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Job> queue_;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <optional>
 #include <set>
 #include <string>
@@ -15,6 +16,8 @@
 #include "core/parallel.h"
 #include "core/stage_clock.h"
 #include "setup/triangle_setup.h"
+#include "shading/lighting.h"
+#include "shading/prepared_environment.h"
 #include "texture/texture_sampler.h"
 #include "tile/tile_stage.h"
 #include "vertex/vertex_stage.h"
@@ -34,6 +37,11 @@ struct Renderer::Impl {
   std::vector<FrontEndChunk> chunks;
   std::vector<TileTimes> tileTimes;
   TileWorkspace tiles;  // the tile stage's per-worker scratch, kept likewise
+  // The last lit frame's environment, prepared (shading/prepared_environment.h),
+  // and what it was prepared from: kept while frames ask for the same image.
+  std::shared_ptr<const EnvironmentImage> preparedFrom;
+  float preparedRotation = 0.0f, preparedScale = 1.0f;
+  std::unique_ptr<PreparedEnvironment> prepared;
   Impl(const RendererConfig& config, Isa isa)
       : executor(config.arena ? Executor(*config.arena) : Executor(config.threads)),
         kernels(selectTileKernels(isa)),
@@ -55,7 +63,75 @@ struct FrameContext {
   glm::mat4 view, projection;
   MemoryBudget& budget;                       // charged for each texture's levels once
   std::set<const Texture*>& chargedTextures;  // the texture variants charged so far
+  // Lit frames: the light, and where each lit draw's material is kept (a
+  // deque: the draws point into it).
+  const LightingView* lighting;
+  std::deque<MaterialShading>& materials;
 };
+
+// A view of texture `index` (the variant `alpha` asks for) as the frame's
+// filter settings read it, its levels charged to the frame once.
+TextureView frameTextureView(const FrameContext& frame, int index, const TextureAlpha& alpha) {
+  const RenderSettings& settings = frame.settings;
+  FilterSettings filtering(settings.filter, settings.maxAniso);
+  filtering.lodBias = settings.lodBias;
+  filtering.lodRule = settings.lodRule;
+  const Texture& texture = frame.scene.textures.at(std::size_t(index))->forAlpha(alpha);
+  if (frame.chargedTextures.insert(&texture).second)
+    frame.budget.charge("texture " + std::to_string(index) + " (" +
+                            std::to_string(texture.image().width) + "x" +
+                            std::to_string(texture.image().height) + ") levels",
+                        textureViewBytes(texture, filtering));
+  return makeTextureView(texture, filtering, &frame.executor);
+}
+
+// Lit shading's draw state for `material` on `mesh`: the attributes it
+// interpolates (into `a`) and each texture it can read (one whose
+// coordinate set the mesh has; a normal map needs the mesh's tangents too).
+const MaterialShading* litMaterial(const FrameContext& frame, const Material& material,
+                                   const Mesh& mesh, AttributeLayout& a) {
+  MaterialShading& m = frame.materials.emplace_back();
+  m.lighting = frame.lighting;
+  const glm::mat4 worldFromView = glm::inverse(frame.view);
+  m.worldFromView = glm::mat3(worldFromView);
+  m.eye = glm::vec3(worldFromView[3]);
+  m.position = a.position = a.count, a.count += 3;
+  m.normalAttribute = a.normal = a.count, a.count += 3;
+  const auto texture = [&](const MaterialTexture& from, MaterialTextureLookup& to,
+                           const TextureAlpha& alpha) {
+    const int set = std::clamp(from.texCoord, 0, 1);
+    if (!from.present() || mesh.texcoords[set].empty()) return;
+    if (m.texcoordAttribute[set] < 0) {
+      int& attribute = set == 0 ? a.texcoord : a.texcoord1;
+      m.texcoordAttribute[set] = attribute = a.count, a.count += 2;
+    }
+    to.texcoord = set;
+    to.transformed = !from.transform.isIdentity();
+    if (to.transformed) to.transform = from.transform.matrix();
+    to.view = frameTextureView(frame, from.texture, alpha);
+  };
+  texture({material.baseColorTexture, material.baseColorTexCoord, material.baseColorTransform},
+          m.baseColor, textureAlphaOf(material));
+  texture(material.metallicRoughness, m.metallicRoughness, {});
+  if (!mesh.tangents.empty()) texture(material.normal, m.normal, {});
+  if (m.normal.present()) m.tangent = a.tangent = a.count, a.count += 4;
+  texture(material.occlusion, m.occlusion, {});
+  texture(material.emissive, m.emissive, {});
+  texture(material.specular, m.specular, {});
+  texture(material.specularColor, m.specularColor, {});
+  if (!mesh.colors.empty()) m.color = a.color = a.count, a.count += 4;
+  m.baseColorFactor = material.baseColorFactor;
+  m.metallic = material.metallicFactor;
+  m.roughness = material.roughnessFactor;
+  m.normalScale = material.normalScale;
+  m.occlusionStrength = material.occlusionStrength;
+  m.emission =
+      material.emissiveFactor * material.emissiveStrength * std::exp2(frame.settings.exposure);
+  m.ior = material.ior;
+  m.specularFactor = material.specularFactor;
+  m.specularColorFactor = material.specularColorFactor;
+  return &m;
+}
 
 const Material& materialOf(const Scene& scene, const Mesh& mesh) {
   static const Material kDefaultMaterial;
@@ -91,27 +167,20 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance, bool afterFor
   const bool mirrored = glm::determinant(glm::mat3(instance.world)) < 0.0f;
   g.cullBackFaces = !material.doubleSided;
   g.frontIsClockwise = mirrored;
+  g.mirrored = mirrored;
   g.texcoordSet = std::clamp(material.baseColorTexCoord, 0, 1);
 
+  // The unlit shadings' colour is the radiance they show.
   s.baseColor = material.baseColorFactor;
+  if (settings.exposure != 0.0f)
+    s.baseColor = glm::vec4(glm::vec3(s.baseColor) * std::exp2(settings.exposure), s.baseColor.a);
   s.alphaMode = material.alphaMode;
   s.alphaCutoff = material.alphaCutoff;
   s.textured = material.baseColorTexture >= 0 && !mesh.texcoords[g.texcoordSet].empty();
   g.transformTexcoords = s.textured && !material.baseColorTransform.isIdentity();
   if (g.transformTexcoords) g.texcoordTransform = material.baseColorTransform.matrix();
-  if (s.textured) {
-    FilterSettings filtering(settings.filter, settings.maxAniso);
-    filtering.lodBias = settings.lodBias;
-    filtering.lodRule = settings.lodRule;
-    const Texture& texture = scene.textures.at(std::size_t(material.baseColorTexture))
-                                 ->forAlpha(textureAlphaOf(material));
-    if (frame.chargedTextures.insert(&texture).second)
-      frame.budget.charge("texture " + std::to_string(material.baseColorTexture) + " (" +
-                              std::to_string(texture.image().width) + "x" +
-                              std::to_string(texture.image().height) + ") levels",
-                          textureViewBytes(texture, filtering));
-    s.texture = makeTextureView(texture, filtering, &frame.executor);
-  }
+  if (s.textured && !(settings.shading == Shading::Pbr && !material.unlit))
+    s.texture = frameTextureView(frame, material.baseColorTexture, textureAlphaOf(material));
   s.vertexColor = !mesh.colors.empty();
   s.depthGreater = settings.depth == DepthMode::Reversed;
   s.depthCompare = compareForDepth(CompareFunction::Less, s.depthGreater);
@@ -175,6 +244,23 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance, bool afterFor
 
   // Interpolate only what the shading reads.
   AttributeLayout& a = g.attributes;
+  if (settings.shading == Shading::Pbr && !material.unlit && s.output == ShadeOutput::Color &&
+      settings.debugView == DebugView::None) {
+    // The material reads its own textures and coordinate sets, as stored.
+    s.textured = s.vertexColor = false;
+    s.lit = true;
+    g.texcoordSet = 0;
+    g.transformTexcoords = false;
+    s.material = litMaterial(frame, material, mesh, a);
+    if (mesh.normals.empty()) g.faceNormal = a.normal;
+    if (material.doubleSided) {
+      for (int k = 0; k < 3; ++k) g.negatedOnBackFaces |= 1u << (a.normal + k);
+      if (a.tangent >= 0)
+        for (int k = 0; k < 4; ++k) g.negatedOnBackFaces |= 1u << (a.tangent + k);
+    }
+    s.attributes = a;
+    return draw;
+  }
   if (s.textured || s.output != ShadeOutput::Color) a.texcoord = a.count, a.count += 2;
   if (s.vertexColor) a.color = a.count, a.count += 4;
   if (s.lit) a.normal = a.count, a.count += 3;
@@ -185,7 +271,9 @@ Draw makeDraw(const FrameContext& frame, const Instance& instance, bool afterFor
 // The frame's draws, and in `instances` each one's index in scene.instances.
 std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
                                 const RenderSettings& settings, const Executor& executor,
-                                std::vector<std::size_t>& instances, MemoryBudget& budget) {
+                                std::vector<std::size_t>& instances, MemoryBudget& budget,
+                                const LightingView* lighting,
+                                std::deque<MaterialShading>& materials) {
   std::set<const Texture*> chargedTextures;
   const FrameContext frame{
       scene,
@@ -194,7 +282,9 @@ std::vector<Draw> buildDrawList(const Scene& scene, const Camera& camera,
       viewMatrix(camera),
       projectionMatrix(camera, double(settings.width) / settings.height, settings.depth),
       budget,
-      chargedTextures};
+      chargedTextures,
+      lighting,
+      materials};
   std::vector<Draw> draws;
   instances.clear();
   if (settings.debugView == DebugView::None) {
@@ -390,15 +480,70 @@ int Renderer::threadCount() const {
   return impl_->executor.threadCount();
 }
 
+// A lit frame's light: the environment (prepared on first use, kept in
+// `impl` while later frames ask for the same one) and the scene's punctual
+// lights, all scaled by 2^exposure.
+struct FrameLighting {
+  std::vector<PunctualLight> lights;
+  LightingView view;
+  BackgroundView background;
+  double prepareMs = 0.0;
+};
+
+void prepareLighting(Renderer::Impl& impl, const Scene& scene, const Camera& camera,
+                     const RenderSettings& settings, FrameLighting& lighting) {
+  if (!settings.environment)
+    throw Error("render: pbr shading needs an environment (RenderSettings::environment)");
+  const float scale = settings.environmentIntensity * std::exp2(settings.exposure);
+  if (impl.preparedFrom != settings.environment ||
+      impl.preparedRotation != settings.environmentRotation || impl.preparedScale != scale) {
+    const double started = stageClockMs();
+    impl.prepared.reset();
+    impl.prepared = std::make_unique<PreparedEnvironment>(
+        *settings.environment, EnvironmentPlacement{settings.environmentRotation, scale},
+        impl.executor);
+    impl.preparedFrom = settings.environment;
+    impl.preparedRotation = settings.environmentRotation;
+    impl.preparedScale = scale;
+    lighting.prepareMs = stageClockMs() - started;
+  }
+  if (settings.punctualLights) {
+    const float exposure = std::exp2(settings.exposure);
+    for (const Light& light : scene.lights) {
+      Light scaled = light;
+      scaled.intensity *= exposure;
+      lighting.lights.push_back(punctualLightOf(scaled));
+    }
+  }
+  lighting.view = lightingViewOf(impl.prepared.get(), lighting.lights);
+  BackgroundView& b = lighting.background;
+  b.lighting = &lighting.view;
+  b.worldFromView = glm::mat3(glm::inverse(viewMatrix(camera)));
+  b.perspective = camera.type == Camera::Type::Perspective;
+  const double aspect = double(settings.width) / settings.height;
+  const double tanY = std::tan(0.5 * double(camera.yfov));
+  b.scaleX = float(2.0 * tanY * aspect / settings.width);
+  b.scaleY = float(2.0 * tanY / settings.height);
+  b.centreX = 0.5f * float(settings.width);
+  b.centreY = 0.5f * float(settings.height);
+}
+
 FrameStats Renderer::render(const Scene& scene, const Camera& camera,
                             const RenderSettings& settings, Frame& out) {
   checkSettings(settings);
   const Executor& executor = impl_->executor;
   const double start = stageClockMs();
   MemoryBudget budget(settings.maxMemory, "render");
+  std::optional<FrameLighting> lighting;
+  if (settings.shading == Shading::Pbr && settings.debugView == DebugView::None) {
+    lighting.emplace();
+    prepareLighting(*impl_, scene, camera, settings, *lighting);
+  }
   std::vector<std::size_t> drawInstances;
+  std::deque<MaterialShading> materials;
   const std::vector<Draw> draws =
-      buildDrawList(scene, camera, settings, executor, drawInstances, budget);
+      buildDrawList(scene, camera, settings, executor, drawInstances, budget,
+                    lighting ? &lighting->view : nullptr, materials);
   chargeFrame(settings, executor.threadCount(), draws, budget);
   std::optional<AovFrame> aov;
   if (settings.aovs != 0) {
@@ -493,18 +638,26 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   if (settings.pixelFilter == PixelFilter::BlackmanHarris)
     pixelFilter = PixelFilterWeights::blackmanHarris(samples);
   const float clearDepth = settings.depth == DepthMode::Reversed ? 0.0f : 1.0f;
-  const TileFrame tileFrame{grid,
-                            draws,
-                            chunks,
-                            impl_->kernels,
-                            settings.clearColor,
-                            clearDepth,
-                            settings.depth == DepthMode::Reversed,
-                            samples,
-                            settings.shadingRate == ShadingRate::Sample,
-                            pixelFilter ? &*pixelFilter : nullptr,
-                            settings.frameCoverage,
-                            aov ? &*aov : nullptr};
+  // A lit frame's uncovered pixels: the environment composited behind its
+  // surfaces, the clear colour, or nothing.
+  glm::vec4 clearColor = settings.clearColor;
+  if (lighting && settings.background != Background::Color) clearColor = glm::vec4(0.0f);
+  if (settings.exposure != 0.0f)
+    clearColor = glm::vec4(glm::vec3(clearColor) * std::exp2(settings.exposure), clearColor.a);
+  const TileFrame tileFrame{
+      grid,
+      draws,
+      chunks,
+      impl_->kernels,
+      clearColor,
+      clearDepth,
+      settings.depth == DepthMode::Reversed,
+      samples,
+      settings.shadingRate == ShadingRate::Sample,
+      pixelFilter ? &*pixelFilter : nullptr,
+      settings.frameCoverage,
+      aov ? &*aov : nullptr,
+      lighting && settings.background == Background::Environment ? &lighting->background : nullptr};
   renderTiles(tileFrame, executor, impl_->tiles, out, impl_->tileTimes);
   const double tilesDone = stageClockMs();
 
@@ -524,6 +677,7 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   FrameStats stats;
   StageTimes& stages = stats.stages;
   stages.draws = drawsDone - start;
+  stages.environment = lighting ? lighting->prepareMs : 0.0;
   stages.vertex = vertexDone - drawsDone;
   splitWallTime(frontEndDone - vertexDone, setupMs, binMs, stages.setup, stages.bin);
   // Three ways: raster and shade against resolve, then raster against shade.

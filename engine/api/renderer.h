@@ -20,6 +20,7 @@
 #include "core/parallel.h"
 #include "io/frame.h"
 #include "scene/scene.h"
+#include "shading/environment_image.h"
 #include "simd/isa.h"
 #include "texture/sampler_state.h"
 #include "window/sample_pattern.h"
@@ -38,7 +39,16 @@ struct RendererConfig {
 enum class Shading : std::uint8_t {
   Unlit,  // baseColorFactor x baseColorTexture (sRGB-decoded) x COLOR_0
   Lit,    // unlit colour x Lambert term of a head light (needs NORMAL)
+  // glTF's metallic-roughness material under the environment and the
+  // scene's punctual lights: ../shared/LIGHTING.md (docs/lighting.md).
+  // KHR_materials_unlit materials stay unlit.
+  Pbr,
 };
+
+// What a Pbr frame's pixels show where no surface covers them: the
+// environment seen through the pixel (filtered over its footprint), the
+// frame's clear colour, or nothing (alpha 0).
+enum class Background : std::uint8_t { Environment, Color, Transparent };
 
 // What a test or report can ask the tile stage to output instead of colour.
 enum class DebugView : std::uint8_t {
@@ -83,6 +93,19 @@ struct RenderSettings {
   LodRule lodRule = LodRule::Box;
   Shading shading = Shading::Unlit;
   glm::vec4 clearColor{0.0f};  // premultiplied linear
+  // Pbr shading's light (LIGHTING.md "The environment", "The light"): the
+  // panorama (required for Pbr), turned about +Y by environmentRotation
+  // degrees and scaled by environmentIntensity, and the scene's
+  // KHR_lights_punctual lights unless punctualLights is off. The renderer
+  // preprocesses a panorama once and keeps the result while the same image
+  // (the same shared object) is asked for again.
+  std::shared_ptr<const EnvironmentImage> environment;
+  float environmentRotation = 0.0f;
+  float environmentIntensity = 1.0f;
+  bool punctualLights = true;
+  Background background = Background::Environment;
+  // Every shading: the frame holds radiance x 2^exposure.
+  float exposure = 0.0f;
   // Reversed: depth 1 at near and 0 at far, test GREATER, clear to 0; the
   // frame's depth (and the EXR Z channel) then holds reversed depth.
   DepthMode depth = DepthMode::Standard;
@@ -131,6 +154,9 @@ struct RenderSettings {
 // one task per tile: such a pass's wall time is split among its stages in
 // proportion to the thread time each took, so the stages add up to the frame.
 struct StageTimes {
+  // Preparing a lit frame's environment (shading/prepared_environment.h),
+  // within `draws`; 0 for a frame that reused the one before's.
+  double environment = 0.0;
   double draws = 0.0;   // the draw list, with texture levels built on first use
   double vertex = 0.0;  // vertex stage
   double setup = 0.0;   // clip and triangle setup
@@ -155,6 +181,7 @@ struct FrameStats {
 
 class Renderer {
  public:
+  struct Impl;
   explicit Renderer(const RendererConfig& config = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
@@ -172,7 +199,6 @@ class Renderer {
                     Frame& out);
 
  private:
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -337,14 +337,21 @@ struct PngBand {
   bool failed = false;
 };
 
-void deflateBand(const Frame& frame, int firstRow, int rows, bool last, PngBand& band) {
+void deflateBand(const Frame& frame, ToneMap toneMap, int firstRow, int rows, bool last,
+                 PngBand& band) {
+  const ToneMapping mapping{toneMap, 0.0f};
   const std::size_t rowBytes = 1 + std::size_t(frame.width) * 4;  // filter byte, then RGBA
   std::vector<std::uint8_t> raw(rowBytes * std::size_t(rows));
   for (int y = 0; y < rows; ++y) {
     std::uint8_t* row = &raw[std::size_t(y) * rowBytes];
     row[0] = 0;  // filter type None
-    encodeSrgb8Row(&frame.rgba[std::size_t(firstRow + y) * std::size_t(frame.width) * 4],
-                   frame.width, row + 1);
+    const float* rgba = &frame.rgba[std::size_t(firstRow + y) * std::size_t(frame.width) * 4];
+    // A clamp is what encodeSrgb8Row does: frames written before tone maps
+    // existed keep their bytes.
+    if (toneMap == ToneMap::None)
+      encodeSrgb8Row(rgba, frame.width, row + 1);
+    else
+      toneMapSrgb8Row(mapping, rgba, frame.width, row + 1);
   }
   band.rawBytes = raw.size();
   band.adler = adler32(adler32(0, nullptr, 0), raw.data(), uInt(raw.size()));
@@ -387,14 +394,15 @@ bool writePngChunk(std::FILE* file, const char type[4], const std::uint8_t* data
 
 }  // namespace
 
-void writePng(const Frame& frame, const std::string& path, const Executor* executor) {
+void writePng(const Frame& frame, const std::string& path, const Executor* executor,
+              ToneMap toneMap) {
   checkFrame(frame, path, false);
   const int bands = (frame.height + kPngBandRows - 1) / kPngBandRows;
   std::vector<PngBand> deflated(static_cast<std::size_t>(bands));
   const auto deflateBands = [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; ++b) {
       const int first = int(b) * kPngBandRows;
-      deflateBand(frame, first, std::min(kPngBandRows, frame.height - first),
+      deflateBand(frame, toneMap, first, std::min(kPngBandRows, frame.height - first),
                   b + 1 == deflated.size(), deflated[b]);
     }
   };
@@ -446,10 +454,10 @@ void writePng(const Frame& frame, const std::string& path, const Executor* execu
 }
 
 void writeFrame(const Frame& frame, const std::string& path, const Executor* executor,
-                const ExrSettings& exr) {
+                const ExrSettings& exr, ToneMap pngToneMap) {
   const std::string ext = lowerExtension(path);
   if (ext == ".exr") return writeExr(frame, path, exr, executor);
-  if (ext == ".png") return writePng(frame, path, executor);
+  if (ext == ".png") return writePng(frame, path, executor, pngToneMap);
   throw makeError(path, "unsupported output format (use .exr or .png)");
 }
 
@@ -742,31 +750,46 @@ ExrSources exrSources(const Imf::ChannelList& channels, const std::string& path)
   return sources;
 }
 
-Image readExr(const std::string& path) {
-  Imf::InputFile file(path.c_str());
+// The data window's size, refused when empty or over kMaxImagePixels.
+void exrSize(const Imf::InputFile& file, const std::string& path, std::int64_t& width,
+             std::int64_t& height) {
   const Imath::Box2i window = file.header().dataWindow();
-  const std::int64_t width = std::int64_t(window.max.x) - window.min.x + 1;
-  const std::int64_t height = std::int64_t(window.max.y) - window.min.y + 1;
+  width = std::int64_t(window.max.x) - window.min.x + 1;
+  height = std::int64_t(window.max.y) - window.min.y + 1;
   if (width <= 0 || height <= 0) throw makeError(path, "empty EXR data window");
   if (width * height > kMaxImagePixels) throw makeError(path, tooLargeText(width, height));
+}
+
+// Reads R, G, B (and A when texelFloats is 4) of the whole data window into
+// `pixels`, texelFloats floats a texel, row by row; missing channels are 0
+// (A: 1).
+void readExrPixels(Imf::InputFile& file, const std::string& path, int texelFloats, float* pixels) {
+  const Imath::Box2i window = file.header().dataWindow();
+  const std::size_t width = std::size_t(std::int64_t(window.max.x) - window.min.x + 1);
   const ExrSources sources = exrSources(file.header().channels(), path);
-  Image image(static_cast<int>(width), static_cast<int>(height));
-  const std::size_t texelBytes = 4 * sizeof(float);
+  const std::size_t texelBytes = std::size_t(texelFloats) * sizeof(float);
   Imf::FrameBuffer buffer;
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < texelFloats; ++c) {
     if (sources.greyFromY && c > 0 && c < 3) continue;
     const double fill = c == 3 ? 1.0 : 0.0;
-    buffer.insert(sources.names[c],
-                  Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, window, texelBytes,
-                                   texelBytes * std::size_t(width), 1, 1, fill));
+    buffer.insert(sources.names[c], Imf::Slice::Make(Imf::FLOAT, pixels + c, window, texelBytes,
+                                                     texelBytes * width, 1, 1, fill));
   }
   file.setFrameBuffer(buffer);
   file.readPixels(window.min.y, window.max.y);
   if (sources.greyFromY) {
-    for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
-      image.rgba[i + 1] = image.rgba[i + 2] = image.rgba[i];
-    }
+    const std::size_t floats = width * std::size_t(window.max.y - window.min.y + 1) * texelFloats;
+    for (std::size_t i = 0; i < floats; i += std::size_t(texelFloats))
+      pixels[i + 1] = pixels[i + 2] = pixels[i];
   }
+}
+
+Image readExr(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  std::int64_t width = 0, height = 0;
+  exrSize(file, path, width, height);
+  Image image(static_cast<int>(width), static_cast<int>(height));
+  readExrPixels(file, path, 4, image.rgba.data());
   return image;
 }
 
@@ -847,6 +870,62 @@ Image readImage(const std::string& path) {
                     std::string("invalid or truncated ") + format + " (" + oneLine(e.what()) + ")");
   }
   throw makeError(path, "not a PNG, JPEG or OpenEXR image");
+}
+
+RgbImage readExrRgb(const std::string& path, const AdmitImageSize& admit) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imf::ChannelList& channels = file.header().channels();
+    if (!channels.findChannel("R") && !channels.findChannel("G") && !channels.findChannel("B") &&
+        !channels.findChannel("Y"))
+      throw makeError(path, "EXR has no colour channel (R, G, B or Y)");
+    std::int64_t width = 0, height = 0;
+    exrSize(file, path, width, height);
+    admit(width, height);
+    RgbImage image;
+    image.width = int(width);
+    image.height = int(height);
+    image.rgb.resize(std::size_t(width) * std::size_t(height) * 3);
+    readExrPixels(file, path, 3, image.rgb.data());
+    return image;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw makeError(path, "out of memory while reading EXR");
+  } catch (const std::exception& e) {
+    throw makeError(path, "invalid or truncated EXR (" + oneLine(e.what()) + ")");
+  }
+}
+
+void writeExrRgb(const float* rgb, int width, int height, const std::string& path) {
+  if (width <= 0 || height <= 0) throw makeError(path, "cannot write an empty image");
+  TempFile temp(path);
+  std::ofstream stream;
+  errno = 0;
+  stream.open(temp.path(), std::ios::binary | std::ios::out | std::ios::trunc);
+  if (!stream)
+    throw makeError(path, "cannot create file (" + errnoText(errno, "open failed") + ")");
+  try {
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    const std::size_t texelBytes = 3 * sizeof(float);
+    Imf::FrameBuffer buffer;
+    const char* const names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+      header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+      buffer.insert(names[c], Imf::Slice::Make(Imf::FLOAT, rgb + c, Imath::V2i(0, 0), width, height,
+                                               texelBytes, texelBytes * std::size_t(width)));
+    }
+    Imf::StdOFStream exrStream(stream, path.c_str());
+    Imf::OutputFile file(exrStream, header);
+    file.setFrameBuffer(buffer);
+    file.writePixels(height);
+  } catch (const std::exception& e) {
+    throw makeError(path, "cannot write EXR (" + oneLine(e.what()) + ")");
+  }
+  stream.close();
+  if (stream.fail()) throw makeError(path, "cannot write EXR (write failed)");
+  temp.commit();
 }
 
 }  // namespace quadra

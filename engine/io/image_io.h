@@ -9,6 +9,8 @@
 #include <string>
 
 #include "io/frame.h"
+#include "io/rgb_image.h"
+#include "io/tone_map.h"
 #include "texture/image.h"
 
 namespace quadra {
@@ -45,19 +47,32 @@ std::string exrCompressionNames();
 // its own pool). Throws Error("<path>: <problem>") on failure.
 void writeExr(const Frame& frame, const std::string& path, const ExrSettings& settings = {},
               const Executor* executor = nullptr);
-// PNG, 8-bit sRGB RGBA (colour un-premultiplied before encoding), encoded
-// and compressed in bands of rows in parallel on `executor` when one is
-// given; the file's bytes are the same either way.
-void writePng(const Frame& frame, const std::string& path, const Executor* executor = nullptr);
+// PNG, 8-bit sRGB RGBA (colour un-premultiplied, then tone mapped: none
+// clamps to [0, 1]; io/tone_map.h), encoded and compressed in bands of rows
+// in parallel on `executor` when one is given; the file's bytes are the same
+// either way.
+void writePng(const Frame& frame, const std::string& path, const Executor* executor = nullptr,
+              ToneMap toneMap = ToneMap::None);
 // Chooses the writer from the extension (.exr or .png, any case); `exr`
-// applies to EXR files only.
+// applies to EXR files only, `pngToneMap` to PNG files only.
 void writeFrame(const Frame& frame, const std::string& path, const Executor* executor = nullptr,
-                const ExrSettings& exr = {});
+                const ExrSettings& exr = {}, ToneMap pngToneMap = ToneMap::None);
 
 // Reads a PNG or JPEG (decoded from sRGB to linear; alpha stays linear) or
 // an EXR (already linear; missing channels: RGB 0, A 1) into linear float
 // RGBA.
 Image readImage(const std::string& path);
+
+// An EXR's R, G, B as linear float (a luminance-only file's Y in all three;
+// a missing one of R, G, B is 0; alpha and other channels ignored), for
+// panoramas; `admit` sees the data window's size before the pixels are
+// allocated. Throws Error("<path>: <problem>"), also for a file without R, G,
+// B or Y.
+RgbImage readExrRgb(const std::string& path, const AdmitImageSize& admit);
+// Writes FLOAT R, G, B (rgb: width x height x 3, row by row from the top),
+// ZIP compressed (lossless: the floats read back bit for bit), through a
+// temporary file as writeExr does.
+void writeExrRgb(const float* rgb, int width, int height, const std::string& path);
 
 // Whether the bytes start with the PNG signature.
 bool isPng(const std::uint8_t* data, std::size_t size);

@@ -55,6 +55,23 @@ glm::vec3 VertexDeformer::normal(std::size_t i, const glm::mat4& skin) const {
   return sign * (cofactor * n);
 }
 
+glm::vec4 VertexDeformer::tangent(std::size_t i, const glm::mat4& skin) const {
+  if (mesh_.tangents.empty()) return glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
+  glm::vec4 t = mesh_.tangents[i];
+  if (morphed_) {
+    for (std::size_t k = 0; k < mesh_.targets.size(); ++k) {
+      const MorphTarget& target = mesh_.targets[k];
+      if (weights_[k] != 0.0f && !target.tangents.empty())
+        t += glm::vec4(weights_[k] * target.tangents[i], 0.0f);
+    }
+  }
+  if (!skinned_) return t;
+  // A mirroring skin turns B = w N x T the other way (as the vertex stage
+  // does for a mirroring world matrix).
+  const glm::mat3 m(skin);
+  return glm::vec4(m * glm::vec3(t), glm::determinant(m) < 0.0f ? -t.w : t.w);
+}
+
 glm::vec2 VertexDeformer::texcoord(std::size_t i, int set) const {
   glm::vec2 uv = mesh_.texcoords[set].empty() ? glm::vec2(0.0f) : mesh_.texcoords[set][i];
   if (!morphed_ || mesh_.texcoords[set].empty()) return uv;

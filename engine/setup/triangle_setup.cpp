@@ -130,6 +130,28 @@ struct PlaneSolver {
   }
 };
 
+// The unit normal of a triangle's plane in view space, from its corners'
+// view-space positions (the vertex stage's position attribute), on the side
+// its front faces: a mesh without NORMAL is shaded flat (glTF 2.0 §3.7.2.1).
+template <class T>
+void faceNormalOf(const DrawGeometry& g, const Corner<T>* const v[3], double out[3]) {
+  const int p = g.attributes.position;
+  double e1[3], e2[3];
+  for (int k = 0; k < 3; ++k) {
+    e1[k] = double(v[1]->attributes[p + k]) - double(v[0]->attributes[p + k]);
+    e2[k] = double(v[2]->attributes[p + k]) - double(v[0]->attributes[p + k]);
+  }
+  double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                 e1[0] * e2[1] - e1[1] * e2[0]};
+  const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  // The corners arrive in window order (emitKept swaps a negative-area
+  // triangle's), which is clockwise on screen, so this normal points away
+  // from the viewer for every triangle: turned, it faces the viewer, as a
+  // front face's does and a double-sided back face's shading normal must.
+  const double scale = length > 0.0 ? -1.0 / length : 0.0;
+  for (int k = 0; k < 3; ++k) out[k] = n[k] * scale;
+}
+
 // Emits a triangle that passed culling (snapped holds its vertices' snapped
 // positions, box, the area's sign and whether it covers a sample what
 // culling found). cornerOf(i) is corner i (a Corner); it is called only once
@@ -163,9 +185,24 @@ void emitKept(const SetupContext& ctx, const SnappedTriangle& snapped, const Pix
   };
   plane(s0.z, s1.z, s2.z);
   plane(s0.invW, s1.invW, s2.invW);
-  for (int k = 0; k < ctx.attributeCount; ++k)
-    plane(double(v0.attributes[k]) * s0.invW, double(v1.attributes[k]) * s1.invW,
-          double(v2.attributes[k]) * s2.invW);
+  // A back face of a double-sided lit draw (its front is counter-clockwise
+  // with y up: negative area here, unless mirrored) shades with its normal
+  // and tangent frame turned to the viewer.
+  const bool backFace = ctx.geometry.mirrored ? negativeArea : !negativeArea;
+  const std::uint32_t negated = backFace ? ctx.geometry.negatedOnBackFaces : 0u;
+  const int faceNormal = ctx.geometry.faceNormal;
+  double face[3] = {0.0, 0.0, 0.0};
+  if (faceNormal >= 0) faceNormalOf(ctx.geometry, v, face);
+  for (int k = 0; k < ctx.attributeCount; ++k) {
+    const double sign = negated >> k & 1u ? -1.0 : 1.0;
+    if (faceNormal >= 0 && k >= faceNormal && k < faceNormal + 3) {
+      const double n = face[k - faceNormal];
+      plane(n * s0.invW, n * s1.invW, n * s2.invW);
+      continue;
+    }
+    plane(sign * v0.attributes[k] * s0.invW, sign * v1.attributes[k] * s1.invW,
+          sign * v2.attributes[k] * s2.invW);
+  }
   ctx.out.triangles.push_back(t);
   if (ctx.out.recordSources) ctx.out.sourceTriangles.push_back(source);
   ++ctx.out.counters.drawn;

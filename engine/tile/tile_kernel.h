@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "setup/triangle_record.h"
+#include "shading/background_view.h"
 #include "simd/double_pairs.h"
 #include "simd/isa.h"
 #include "tile/blended_fragments.h"
@@ -97,7 +98,8 @@ inline double depthPlaneMargin(double c, double dx, double dy, double span) {
 // Shading planes of a tile's triangles, rebased to the tile (the value at
 // tile-local pixel centre (x, y) is c + dx*x + dy*y): per triangle, 1/w and
 // then each attribute/w, kShadePlaneStride floats apart.
-constexpr int kMaxShadedAttributes = 9;  // texcoord 2, colour 4, normal 3
+// Lit shading: position 3, normal 3, tangent 4, two texcoord sets, colour 4.
+constexpr int kMaxShadedAttributes = 18;
 constexpr int kShadePlaneStride = 3 * (1 + kMaxShadedAttributes);
 
 // The visible pixels of one draw in a tile: its whole lane groups (aligned
@@ -193,6 +195,10 @@ struct TileKernels {
   // level and probe count the draw's filter chooses for it, one float each.
   void (*footprintLevels)(const ShadeState& shade, const float* planes, const ShadeJob* jobs,
                           int count, float* lod, float* anisotropy);
+  // A lit frame's environment behind each pixel of `tile` that its surfaces
+  // leave uncovered: colour + (1 - alpha) x the environment seen through the
+  // pixel (shading/background_lanes.h), alpha 1.
+  void (*compositeBackground)(const BackgroundView& view, TileBuffers& tile);
 };
 
 // The table for an ISA; the caller has checked isaSupported(isa).

@@ -22,6 +22,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "shading/background_lanes.h"
+#include "shading/material_lanes.h"
 #include "simd/kernel_isa.h"
 #include "texture/sample_lanes.h"
 #include "tile/tile_kernel.h"
@@ -186,10 +188,65 @@ constexpr bool readsPlanes(bool textured, bool vertexColor, bool lit, ShadeOutpu
   return textured || vertexColor || lit || output != ShadeOutput::Color;
 }
 
+// The footprint of (u, v) from differences across each 2x2 quad (lanes in
+// quad order, helper lanes included): one per quad, from its top-left pixel.
+QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const F& u, const F& v) {
+  const F u0 = simd::quadBroadcast<0>(u), v0 = simd::quadBroadcast<0>(v);
+  UvDerivatives<L> d{simd::quadBroadcast<1>(u) - u0, simd::quadBroadcast<1>(v) - v0,
+                     simd::quadBroadcast<2>(u) - u0, simd::quadBroadcast<2>(v) - v0};
+  // Supersampled frames filter for the sample spacing (1 otherwise: exact).
+  const F scale(shade.footprintScale);
+  return {d.dudx * scale, d.dvdx * scale, d.dudy * scale, d.dvdy * scale};
+}
+
+// Lit shading (Shading::Pbr): every attribute the draw interpolates, each
+// texture coordinate set's footprint as the unlit lookups take theirs, and
+// then the shading stage's material and light (shading/material_lanes.h).
+// Not inlined: one copy per ISA serves every specialization that may meet a
+// lit draw.
+[[gnu::noinline]] Rgba<L> litMaterialColor(const ShadeState& shade, const F& x, const F& y,
+                                           const LanePlane& invW, const LanePlane* attr,
+                                           bool quadDerivatives) {
+  const F w = F(1.0f) / invW.at(x, y);
+  F value[kMaxShadedAttributes];
+  for (int k = 0; k < shade.attributes.count; ++k) value[k] = attr[k].at(x, y) * w;
+  const MaterialShading& material = *shade.material;
+  MaterialLaneInputs<L> in{value, {}};
+  for (int set = 0; set < 2; ++set) {
+    const int t = material.texcoordAttribute[set];
+    if (t < 0) continue;
+    in.footprint[set] = quadDerivatives ? quadFootprint(shade, value[t], value[t + 1])
+                                        : analyticFootprint(shade, value[t], value[t + 1], w, invW,
+                                                            attr[t], attr[t + 1]);
+  }
+  return materialRadiance<L>(material, in);
+}
+
+// A lit draw's alpha alone, for the visibility pass's alpha test: the base
+// colour's (materialAlpha), without the light.
+[[gnu::noinline]] F litMaterialAlpha(const ShadeState& shade, const F& x, const F& y,
+                                     const LanePlane& invW, const LanePlane* attr) {
+  const F w = F(1.0f) / invW.at(x, y);
+  F value[kMaxShadedAttributes];
+  for (int k = 0; k < shade.attributes.count; ++k) value[k] = attr[k].at(x, y) * w;
+  const MaterialShading& material = *shade.material;
+  MaterialLaneInputs<L> in{value, {}};
+  const int t =
+      material.baseColor.present() ? material.texcoordAttribute[material.baseColor.texcoord] : -1;
+  if (t >= 0)
+    in.footprint[material.baseColor.texcoord] =
+        analyticFootprint(shade, value[t], value[t + 1], w, invW, attr[t], attr[t + 1]);
+  return materialAlpha<L>(material, in);
+}
+
 template <bool kTextured, bool kVertexColor, bool kLit, ShadeOutput kOutput>
 QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const F& y,
                                       const LanePlane& invW, const LanePlane* attr,
                                       bool quadDerivatives) {
+  if constexpr (kLit) {
+    if (shade.material != nullptr)
+      return litMaterialColor(shade, x, y, invW, attr, quadDerivatives);
+  }
   // Perspective-correct: a = (a/w) / (1/w), with one exact division. A
   // colour that reads no plane reads no 1/w either (RunShader gathers none).
   F w(1.0f);
@@ -203,19 +260,10 @@ QUADRA_LANE_INLINE Rgba<L> shadeColor(const ShadeState& shade, const F& x, const
     if constexpr (kOutput == ShadeOutput::TexCoord) {
       r = u, g = v, b = F(0.0f), a = F(1.0f);
     } else {
-      UvDerivatives<L> d;
-      if (quadDerivatives) {
-        // Coarse derivatives: one footprint per quad, from its top-left pixel.
-        const F u0 = simd::quadBroadcast<0>(u), v0 = simd::quadBroadcast<0>(v);
-        d = {simd::quadBroadcast<1>(u) - u0, simd::quadBroadcast<1>(v) - v0,
-             simd::quadBroadcast<2>(u) - u0, simd::quadBroadcast<2>(v) - v0};
-        // Supersampled frames filter for the sample spacing (1 otherwise: exact).
-        const F scale(shade.footprintScale);
-        d = {d.dudx * scale, d.dvdx * scale, d.dudy * scale, d.dvdy * scale};
-      } else {
-        d = analyticFootprint(shade, u, v, w, invW, attr[layout.texcoord],
-                              attr[layout.texcoord + 1]);
-      }
+      const UvDerivatives<L> d =
+          quadDerivatives ? quadFootprint(shade, u, v)
+                          : analyticFootprint(shade, u, v, w, invW, attr[layout.texcoord],
+                                              attr[layout.texcoord + 1]);
       if constexpr (kOutput == ShadeOutput::Derivatives) {
         r = d.dudx, g = d.dvdx, b = d.dudy, a = d.dvdy;
       } else {
@@ -261,6 +309,14 @@ struct Features {
   static Rgba<L> color(const ShadeState& s, const F& x, const F& y, const LanePlane& invW,
                        const LanePlane* attr, bool quadDerivatives = false) {
     return shadeColor<kTextured, kVertexColor, kLit, kOutput>(s, x, y, invW, attr, quadDerivatives);
+  }
+  // The alpha a masked draw's visibility pass tests (the two-pass draws take
+  // analytic footprints).
+  static F alpha(const ShadeState& s, const F& x, const F& y, const LanePlane& invW,
+                 const LanePlane* attr) {
+    if constexpr (kLit)
+      if (s.material != nullptr) return litMaterialAlpha(s, x, y, invW, attr);
+    return color(s, x, y, invW, attr).a;
   }
 };
 
@@ -588,8 +644,7 @@ struct VisibilityShader {
     cover = cover & (shade.depthGreater ? zValue > zOld : zValue < zOld);
     if (!simd::any(cover)) return zOld;
     if constexpr (Feat::kAlpha == AlphaMode::Mask) {
-      const Rgba<L> c = Feat::color(shade, x, y, planes.invW, planes.attr);
-      cover = cover & (c.a >= F(shade.alphaCutoff));
+      cover = cover & (Feat::alpha(shade, x, y, planes.invW, planes.attr) >= F(shade.alphaCutoff));
       if (!simd::any(cover)) return zOld;
     }
     won = true;
@@ -1623,6 +1678,23 @@ void compositeBlended(BlendedFragments& fragments, TileBuffers* planes) {
   fragments.clear();
 }
 
+void compositeBackground(const BackgroundView& view, TileBuffers& tile) {
+  static const LaneOffsets lane;  // const after construction; per ISA namespace
+  for (int first = 0; first < TileBuffers::kPixels; first += L::kWidth) {
+    const F a = F::load_aligned(tile.color[3] + first);
+    if (!simd::any(a < F(1.0f))) continue;
+    const F x = lane.x + F(float(tile.originX + TileBuffers::xAt(first)) + 0.5f);
+    const F y = lane.y + F(float(tile.originY + TileBuffers::yAt(first)) + 0.5f);
+    const RgbLanes<L> behind = backgroundThroughPixels<L>(view, x, y);
+    const F keep = F(1.0f) - a;
+    float* const c[3] = {tile.color[0] + first, tile.color[1] + first, tile.color[2] + first};
+    (F::load_aligned(c[0]) + keep * behind.r).store_aligned(c[0]);
+    (F::load_aligned(c[1]) + keep * behind.g).store_aligned(c[1]);
+    (F::load_aligned(c[2]) + keep * behind.b).store_aligned(c[2]);
+    F(1.0f).store_aligned(tile.color[3] + first);
+  }
+}
+
 void shade(const ShadeState& s, const ShadeRun& run, TileBuffers& tile) {
   withFeatures(s, [&]<class Feat>() {
     if constexpr (Feat::kAlpha != AlphaMode::Blend) {
@@ -1658,7 +1730,8 @@ const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
                                    &QUADRA_KERNEL_NAMESPACE::copyAgreeingSamples,
                                    &QUADRA_KERNEL_NAMESPACE::averageSamples,
                                    &QUADRA_KERNEL_NAMESPACE::nearestSampleDepth,
-                                   &QUADRA_KERNEL_NAMESPACE::footprintLevels};
+                                   &QUADRA_KERNEL_NAMESPACE::footprintLevels,
+                                   &QUADRA_KERNEL_NAMESPACE::compositeBackground};
   return kernels;
 }
 

@@ -1131,6 +1131,7 @@ void renderTile(int tileIndex, std::uint32_t binned, const TileFrame& frame, Til
   if (background) {
     const double cleared = stageClockMs();
     if (frame.coverage) boxCoverage(s.planes.get(), 1, frame.clearDepth, out);
+    if (frame.background) frame.kernels.wide->compositeBackground(*frame.background, s.planes[0]);
     resolveTile(s.planes[0], out);
     times.raster = cleared - start;
     times.resolve = stageClockMs() - cleared;
@@ -1155,7 +1156,15 @@ void renderTile(int tileIndex, std::uint32_t binned, const TileFrame& frame, Til
                      s.visibleSources, s.aovTriangles, out);
   if (frame.aov && (frame.aov->aovs & kFootprintAovs) != 0)
     writeFootprintAovs(frame, *frame.kernels.wide, s, out);
+  // The environment behind the surfaces: under each sample a wide pixel
+  // filter weighs, else under the resolved pixels (the same average: the
+  // composite is linear in the colour).
+  if (frame.background && frame.pixelFilter)
+    for (int k = 0; k < samples; ++k)
+      frame.kernels.wide->compositeBackground(*frame.background, s.planes[k]);
   resolveSamples(tileIndex, frame, s, out);
+  if (frame.background && !frame.pixelFilter)
+    frame.kernels.wide->compositeBackground(*frame.background, s.planes[0]);
   resolveTile(s.planes[0], out);
   times.raster = (visible - start) + (rastered - shaded);
   times.shade = shaded - visible;

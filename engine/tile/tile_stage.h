@@ -56,6 +56,9 @@ struct TileFrame {
   // them, every two-pass triangle goes through the visibility pass (no tile
   // sends them forward), so every pixel's nearest sample has its triangle.
   const AovFrame* aov = nullptr;
+  // A lit frame's environment behind the uncovered pixels; null: the clear
+  // colour stays.
+  const BackgroundView* background = nullptr;
 };
 
 // The tile stage's working memory, kept by its owner (a Renderer) from frame

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "scene/scene.h"
+#include "shading/material_shading.h"
 #include "texture/texture_view.h"
 
 namespace quadra {
@@ -18,9 +19,12 @@ namespace quadra {
 // four clip-space position floats) and in a triangle's plane list (after the
 // z and 1/w planes). -1: not interpolated, because nothing reads it.
 struct AttributeLayout {
-  int texcoord = -1;  // u, v
-  int color = -1;     // r, g, b, a
-  int normal = -1;    // view-space x, y, z
+  int texcoord = -1;   // u, v
+  int color = -1;      // r, g, b, a
+  int normal = -1;     // view-space x, y, z
+  int position = -1;   // view-space x, y, z (lit shading)
+  int tangent = -1;    // view-space x, y, z and the bitangent's sign w (normal maps)
+  int texcoord1 = -1;  // TEXCOORD_1's u, v as stored (lit shading)
   int count = 0;
 };
 
@@ -38,6 +42,15 @@ struct DrawGeometry {
   glm::mat3x2 texcoordTransform{1.0f};
   bool cullBackFaces = true;
   bool frontIsClockwise = false;  // the world matrix mirrors (negative determinant)
+  // The world matrix mirrors, whichever faces the draw state culls.
+  bool mirrored = false;
+  // Lit shading of a double-sided material: a back face's normal and tangent
+  // frame face the viewer (LIGHTING.md), by setup negating the planes of
+  // these attributes (bit k: attribute k) on back faces.
+  std::uint32_t negatedOnBackFaces = 0;
+  // Lit shading of a mesh without NORMAL: setup gives attributes
+  // [faceNormal, faceNormal + 3) each triangle's own normal (-1: none).
+  int faceNormal = -1;
   AttributeLayout attributes;
   // The instance's morph weights and joint matrices (scene/deformation.h),
   // owned by the scene; both empty for a draw nothing deforms, which reads
@@ -57,6 +70,10 @@ struct ShadeState {
   TextureView texture;
   bool vertexColor = false;
   bool lit = false;
+  // Lit shading (Shading::Pbr) of this draw's material, owned by the frame's
+  // draw list; null for the other shadings. Such a draw has lit set and
+  // neither textured nor vertexColor: the material reads its own.
+  const MaterialShading* material = nullptr;
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   // A masked draw's cutoff differs per sample (RenderSettings::alphaToCoverage;

@@ -104,6 +104,33 @@ void transformBlock(const DrawGeometry& g, const VertexDeformer& deformer,
       }
       for (int k = 0; k < 3; ++k) attr[a.normal + k] = n[k];
     }
+    if (a.position >= 0) {
+      const glm::vec4 p = g.modelView * glm::vec4(position, 1.0f);
+      for (int k = 0; k < 3; ++k) attr[a.position + k] = p[k];
+    }
+    if (a.tangent >= 0) {
+      glm::vec4 t;
+      if constexpr (kDeformed) {
+        t = deformer.tangent(i, skin);
+      } else {
+        t = mesh.tangents.empty() ? glm::vec4(1.0f, 0.0f, 0.0f, 1.0f) : mesh.tangents[i];
+      }
+      const glm::vec3 view = glm::mat3(g.modelView) * glm::vec3(t);
+      for (int k = 0; k < 3; ++k) attr[a.tangent + k] = view[k];
+      // B = w N x T holds in the mesh's space; a mirroring transform turns
+      // the cross product of the moved N and T the other way.
+      attr[a.tangent + 3] = g.mirrored ? -t.w : t.w;
+    }
+    if (a.texcoord1 >= 0) {
+      glm::vec2 uv;
+      if constexpr (kDeformed) {
+        uv = deformer.texcoord(i, 1);
+      } else {
+        uv = mesh.texcoords[1].empty() ? glm::vec2(0.0f) : mesh.texcoords[1][i];
+      }
+      attr[a.texcoord1] = uv.x;
+      attr[a.texcoord1 + 1] = uv.y;
+    }
     out.outcode[i] = outcodeOf(v, out.stride, guardX, guardY);
   }
 }

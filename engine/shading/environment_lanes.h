@@ -1,0 +1,172 @@
+// Lookups of the prepared environment over lanes: the cube map's projection
+// (cube_layout.h's mapping, here in lanes), the footprint-filtered radiance
+// (trilinear over the mip levels at the level whose texels match a solid
+// angle: the background's lookup and each filtered importance sample's), the
+// irradiance, and the BRDF albedo table.
+//
+// Include only from per-ISA kernel translation units (templates on the lane
+// type; only + - * / sqrt floor and simd::log2, so every path gives the same bits).
+#pragma once
+
+#include <cstdint>
+
+#include "shading/brdf_lanes.h"
+#include "shading/brdf_table.h"
+#include "shading/lighting.h"
+#include "simd/lanes.h"
+
+namespace quadra::shading {
+
+// Face (0..5, cube_layout.h order) and face coordinates (s, t) of directions.
+template <class L>
+struct CubeCoords {
+  typename L::I face;
+  typename L::F s, t;
+};
+
+template <class L>
+QUADRA_LANE_INLINE CubeCoords<L> cubeProject(const Vec3Lanes<L>& d) {
+  using F = typename L::F;
+  const F ax = simd::abs(d.x), ay = simd::abs(d.y), az = simd::abs(d.z);
+  const auto isX = (ax >= ay) & (ax >= az);
+  const auto isY = ~isX & (ay >= az);
+  const auto px = d.x > F(0.0f), py = d.y > F(0.0f), pz = d.z > F(0.0f);
+  const F zero(0.0f);
+  // Major axis magnitude and the numerators of s and t (cube_layout.h's table).
+  const F ma = simd::select(isX, ax, simd::select(isY, ay, az));
+  const F sn = simd::select(isX, simd::select(px, zero - d.z, d.z),
+                            simd::select(isY, d.x, simd::select(pz, d.x, zero - d.x)));
+  const F tn = simd::select(isY, simd::select(py, d.z, zero - d.z), zero - d.y);
+  const F faceF = simd::select(
+      isX, simd::select(px, F(0.0f), F(1.0f)),
+      simd::select(isY, simd::select(py, F(2.0f), F(3.0f)), simd::select(pz, F(4.0f), F(5.0f))));
+  const F inv = F(1.0f) / simd::max(ma, F(1e-30f));
+  return {simd::toInt(faceF), sn * inv, tn * inv};
+}
+
+// Bilinear lookups, one cube level per lane: `level` the lane's level
+// (its faces of size size >> level), from `base` (the levels, offsets in
+// levelOffset) or, with levelOffset null, one level of face size `size`.
+template <class L>
+QUADRA_LANE_INLINE RgbLanes<L> cubeBilinear(const float* base, const std::int64_t* levelOffset,
+                                            int size, const CubeCoords<L>& c,
+                                            const typename L::I& level) {
+  using F = typename L::F;
+  using I = typename L::I;
+  constexpr int W = L::kWidth;
+  // Face size n = size x 2^-level, exactly, from the exponent bits.
+  const F scale = simd::asFloat((I(127) - level) << 23);
+  const F n = F(float(size)) * scale;
+  // Padded texel coordinates: texel i's centre sits at i + 1 (cube_layout.h).
+  const F half(0.5f);
+  const F x = simd::min(simd::max((c.s + F(1.0f)) * half * n + half, F(0.0f)), n + half);
+  const F y = simd::min(simd::max((c.t + F(1.0f)) * half * n + half, F(0.0f)), n + half);
+  const F x0 = simd::floor(x), y0 = simd::floor(y);
+  const F ax = x - x0, ay = y - y0;
+  alignas(64) std::int32_t face[W], lv[W], ix[W], iy[W];
+  c.face.store_aligned(face);
+  level.store_aligned(lv);
+  simd::toInt(x0).store_aligned(ix);
+  simd::toInt(y0).store_aligned(iy);
+  alignas(64) float texel[12][W];
+  for (int k = 0; k < W; ++k) {
+    const std::int64_t m = (size >> lv[k]) + 2;
+    const std::int64_t offset = (levelOffset ? levelOffset[lv[k]] : 0) + face[k] * m * m * 3 +
+                                (std::int64_t(iy[k]) * m + ix[k]) * 3;
+    const float* t0 = base + offset;
+    const float* t1 = t0 + m * 3;
+    for (int ch = 0; ch < 3; ++ch) {
+      texel[ch][k] = t0[ch];
+      texel[3 + ch][k] = t0[3 + ch];
+      texel[6 + ch][k] = t1[ch];
+      texel[9 + ch][k] = t1[3 + ch];
+    }
+  }
+  F out[3];
+  for (int ch = 0; ch < 3; ++ch) {
+    const F t00 = F::load_aligned(texel[ch]), t10 = F::load_aligned(texel[3 + ch]);
+    const F t01 = F::load_aligned(texel[6 + ch]), t11 = F::load_aligned(texel[9 + ch]);
+    const F top = t00 + (t10 - t00) * ax, bottom = t01 + (t11 - t01) * ax;
+    out[ch] = top + (bottom - top) * ay;
+  }
+  return {out[0], out[1], out[2]};
+}
+
+// The radiance arriving from direction d (any length), averaged over a
+// footprint of solid angle `omega` steradians around it: trilinear between
+// the two mip levels whose texels' solid angle there brackets omega (a
+// texel of level 0 at face coordinates (s, t) spans (2 / size)^2 (1 + s^2 +
+// t^2)^(-3/2) sr). omega <= the texel's reads level 0 bilinearly.
+template <class L>
+QUADRA_LANE_INLINE RgbLanes<L> filteredRadiance(const EnvironmentView& env, const Vec3Lanes<L>& d,
+                                                const typename L::F& omega) {
+  using F = typename L::F;
+  using I = typename L::I;
+  const CubeCoords<L> c = cubeProject<L>(d);
+  const F q = F(1.0f) + c.s * c.s + c.t * c.t;
+  const float texel0 = 4.0f / (float(env.size) * float(env.size));
+  const F ratio = omega * q * simd::sqrt(q) * F(1.0f / texel0);
+  const F maxLevel(float(env.levelCount - 1));
+  const F lod = simd::min(simd::max(F(0.5f) * simd::log2<L>(ratio), F(0.0f)), maxLevel);
+  const F l0 = simd::floor(lod);
+  const F frac = lod - l0;
+  const I level0 = simd::toInt(l0);
+  const I level1 = simd::toInt(simd::min(l0 + F(1.0f), maxLevel));
+  const RgbLanes<L> a = cubeBilinear<L>(env.radiance, env.levelOffset, env.size, c, level0);
+  if (!simd::any(frac > F(0.0f))) return a;
+  const RgbLanes<L> b = cubeBilinear<L>(env.radiance, env.levelOffset, env.size, c, level1);
+  return {a.r + (b.r - a.r) * frac, a.g + (b.g - a.g) * frac, a.b + (b.b - a.b) * frac};
+}
+
+// (1/pi) x the cosine-weighted integral of the radiance around unit n.
+template <class L>
+QUADRA_LANE_INLINE RgbLanes<L> irradiance(const EnvironmentView& env, const Vec3Lanes<L>& n) {
+  using I = typename L::I;
+  return cubeBilinear<L>(env.irradiance, nullptr, env.irradianceSize, cubeProject<L>(n), I(0));
+}
+
+// The albedo table (brdf_table.h) at (n.v, roughness), bilinear: A, B, S.
+template <class L>
+struct AlbedoLanes {
+  typename L::F a, b, s;
+};
+
+template <class L>
+QUADRA_LANE_INLINE AlbedoLanes<L> albedoLookup(const float* table, const typename L::F& nv,
+                                               const typename L::F& roughness) {
+  using F = typename L::F;
+  using namespace brdf_table;
+  constexpr int W = L::kWidth;
+  const F x =
+      simd::min(simd::max(nv * F(float(kNvCount)) - F(0.5f), F(0.0f)), F(float(kNvCount - 1)));
+  const F y = simd::min(simd::max(roughness * F(float(kRoughnessCount - 1)), F(0.0f)),
+                        F(float(kRoughnessCount - 1)));
+  // The last column and row interpolate with themselves (weight 0 on a copy).
+  const F x0 = simd::min(simd::floor(x), F(float(kNvCount - 2)));
+  const F y0 = simd::min(simd::floor(y), F(float(kRoughnessCount - 2)));
+  const F ax = x - x0, ay = y - y0;
+  alignas(64) std::int32_t ix[W], iy[W];
+  simd::toInt(x0).store_aligned(ix);
+  simd::toInt(y0).store_aligned(iy);
+  alignas(64) float e[12][W];
+  for (int k = 0; k < W; ++k) {
+    const float* t0 = table + (std::size_t(iy[k]) * kNvCount + ix[k]) * kEntryFloats;
+    const float* t1 = t0 + kNvCount * kEntryFloats;
+    for (int ch = 0; ch < 3; ++ch) {
+      e[ch][k] = t0[ch];
+      e[3 + ch][k] = t0[kEntryFloats + ch];
+      e[6 + ch][k] = t1[ch];
+      e[9 + ch][k] = t1[kEntryFloats + ch];
+    }
+  }
+  F out[3];
+  for (int ch = 0; ch < 3; ++ch) {
+    const F t00 = F::load_aligned(e[ch]), t10 = F::load_aligned(e[3 + ch]);
+    const F t01 = F::load_aligned(e[6 + ch]), t11 = F::load_aligned(e[9 + ch]);
+    const F top = t00 + (t10 - t00) * ax, bottom = t01 + (t11 - t01) * ax;
+    out[ch] = top + (bottom - top) * ay;
+  }
+  return {out[0], out[1], out[2]};
+}
+
+}  // namespace quadra::shading
