@@ -120,22 +120,31 @@ PreparedEnvironment::PreparedEnvironment(const EnvironmentImage& image,
     }
   });
 
-  // The mip chain: 2 x 2 averages of the inner texels, then the borders.
+  // The mip chain: each level from the one above by the separable binomial
+  // filter [1 3 3 1] / 8 (its taps reach one texel past a face's edge, into
+  // the border), so a level's texel is a smooth, nearly Gaussian average
+  // rather than a box; then the borders.
   for (int l = 1; l < levelCount_; ++l) {
     const int n = size_ >> l, m = n * 2;
     const float* above = radiance_.data() + levelOffset_[l - 1];
     float* level = radiance_.data() + levelOffset_[l];
-    executor.parallelFor(std::size_t(cube::kFaces) * n, 16, [&](std::size_t b, std::size_t e) {
+    executor.parallelFor(std::size_t(cube::kFaces) * n, 8, [&](std::size_t b, std::size_t e) {
+      std::vector<float> rows(std::size_t(m + 2) * 3);
       for (std::size_t row = b; row < e; ++row) {
         const int face = int(row / n), j = int(row % n);
         const float* src = above + face * faceFloats(m);
+        // Vertical pass: padded rows 2j .. 2j + 3 of the level above.
+        const float* r0 = src + std::size_t(2 * j) * (m + 2) * 3;
+        const std::size_t stride = std::size_t(m + 2) * 3;
+        for (std::size_t k = 0; k < stride; ++k)
+          rows[k] = ((r0[k] + r0[k + 3 * stride]) + 3.0f * (r0[k + stride] + r0[k + 2 * stride])) *
+                    0.125f;
         float* dst = level + face * faceFloats(n) + (std::size_t(j + 1) * (n + 2) + 1) * 3;
-        const float* r0 = src + (std::size_t(2 * j + 1) * (m + 2) + 1) * 3;
-        const float* r1 = r0 + std::size_t(m + 2) * 3;
         for (int i = 0; i < n; ++i)
-          for (int k = 0; k < 3; ++k)
-            dst[i * 3 + k] =
-                ((r0[6 * i + k] + r0[6 * i + 3 + k]) + (r1[6 * i + k] + r1[6 * i + 3 + k])) * 0.25f;
+          for (int k = 0; k < 3; ++k) {
+            const float* t = rows.data() + std::size_t(2 * i) * 3 + k;
+            dst[i * 3 + k] = ((t[0] + t[9]) + 3.0f * (t[3] + t[6])) * 0.125f;
+          }
       }
     });
     fillBorders(level, n);
@@ -222,7 +231,7 @@ EnvironmentView PreparedEnvironment::view() const {
   v.irradianceSize = kIrradianceSize;
   v.brdfTable = brdfTable_;
   v.fisSamples = fisSamples_.data();
-  v.fisSampleCount = kFisSamples;
+  v.fisSampleCount = int(fisSamples_.size() / 3);
   return v;
 }
 

@@ -119,7 +119,7 @@ QUADRA_LANE_INLINE LobeRadiance<L> specularLobeRadiance(const EnvironmentView& e
                          twoVh * (mx * t.y + my * b.y + mz * n.y) - v.y,
                          twoVh * (mx * t.z + my * b.z + mz * n.z) - v.z};
     const F d = mz * mz * (alpha2c - F(1.0f)) + F(1.0f);
-    const RgbLanes<L> radiance = filteredRadiance<L>(env, l, omegaScale * d * d);
+    const RgbLanes<L> radiance = filteredRadiance<L>(env, l, omegaScale * d * d, -0.5f);
     const F w0 = weight * (F(1.0f) - w), w1 = weight * w;
     sum0 = {sum0.r + radiance.r * w0, sum0.g + radiance.g * w0, sum0.b + radiance.b * w0};
     sum1 = {sum1.r + radiance.r * w1, sum1.g + radiance.g * w1, sum1.b + radiance.b * w1};
