@@ -312,7 +312,9 @@ TEST(EnvironmentMapping, DirectionsMapAsLightingMdSays) {
   // u < 0: any u (at the poles every u is the same direction).
   const auto expectUv = [](glm::dvec3 d, double u, double v) {
     const glm::dvec2 uv = ref::equirectUv(d);
-    if (u >= 0) EXPECT_NEAR(uv.x, u, 1e-15) << d.x << "," << d.y << "," << d.z;
+    if (u >= 0) {
+      EXPECT_NEAR(uv.x, u, 1e-15) << d.x << "," << d.y << "," << d.z;
+    }
     EXPECT_NEAR(uv.y, v, 1e-15) << d.x << "," << d.y << "," << d.z;
   };
   expectUv({0, 0, -1}, 0.5, 0.5);   // where a default glTF camera looks
