@@ -12,7 +12,7 @@
 # regression test (docs/testing.md, "Fuzzing").
 # Extra arguments go to libFuzzer (e.g. -jobs=2, -runs=N).
 set -euo pipefail
-targets=(gltf_json glb image lookups_csv render)
+targets=(gltf_json glb image environment lookups_csv render)
 cd "$(dirname "$0")/.."
 root=$(pwd)
 

@@ -29,6 +29,7 @@ struct FuzzTarget {
 const FuzzTarget kTargets[] = {{"gltf_json", fuzz::runGltfJson},
                                {"glb", fuzz::runGlb},
                                {"image", fuzz::runImage},
+                               {"environment", fuzz::runEnvironment},
                                {"lookups_csv", fuzz::runLookupsCsv},
                                {"render", fuzz::runRender}};
 

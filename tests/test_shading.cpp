@@ -318,8 +318,8 @@ TEST(ShadingBrdf, TermsMatchTheirFormulasInDouble) {
       worst[2] = std::max(worst[2], std::fabs(w[0][k] - wr));
     }
   }
-  std::printf("D error / its bound %.2g, relative error V %.2g, absolute F weight %.2g\n",
-              worst[0], worst[1], worst[2]);
+  std::printf("D error / its bound %.2g, relative error V %.2g, absolute F weight %.2g\n", worst[0],
+              worst[1], worst[2]);
   EXPECT_LT(worst[0], 1.0);
   EXPECT_LT(worst[1], 2e-6);
   EXPECT_LT(worst[2], 1e-6);
@@ -573,6 +573,7 @@ TEST(ShadingEnvironment, CloserToTheIntegralThanSplitSum) {
       "split sum %.4f (max %.4f), ratio %.2f\n",
       cases, rmsOurs, worstOurs, rmsSplit, worstSplit, rmsSplit / rmsOurs);
   EXPECT_LT(rmsOurs, 0.5 * rmsSplit);
+  EXPECT_LT(worstOurs, 0.3);  // measured 0.265 (split sum: 0.538)
 }
 
 // ------------------------------------------------ orientation and rotation

@@ -58,14 +58,14 @@ class HdrBytes {
   const std::string& source_;
 };
 
-struct Resolution {
+struct HdrResolution {
   std::int64_t width = 0, height = 0;
   bool bottomUp = false;     // +Y: the first scanline is the bottom row
   bool rightToLeft = false;  // -X: each scanline runs right to left
 };
 
 // A size in a resolution line: decimal digits only, at most 9 of them.
-bool parseSize(std::string_view text, std::int64_t& out) {
+bool parseHdrSize(std::string_view text, std::int64_t& out) {
   if (text.empty() || text.size() > 9) return false;
   out = 0;
   for (char c : text) {
@@ -75,7 +75,7 @@ bool parseSize(std::string_view text, std::int64_t& out) {
   return true;
 }
 
-std::vector<std::string_view> words(std::string_view text) {
+std::vector<std::string_view> hdrWords(std::string_view text) {
   std::vector<std::string_view> out;
   std::size_t i = 0;
   while (i < text.size()) {
@@ -103,15 +103,15 @@ void readHeader(HdrBytes& in) {
   }
 }
 
-Resolution readResolution(HdrBytes& in) {
+HdrResolution readResolution(HdrBytes& in) {
   const std::string_view text = in.line("resolution line");
-  const std::vector<std::string_view> w = words(text);
+  const std::vector<std::string_view> w = hdrWords(text);
   const auto isAxis = [](std::string_view s, char axis) {
     return s.size() == 2 && (s[0] == '-' || s[0] == '+') && s[1] == axis;
   };
-  Resolution r;
+  HdrResolution r;
   if (w.size() == 4 && isAxis(w[0], 'Y') && isAxis(w[2], 'X')) {
-    if (!parseSize(w[1], r.height) || !parseSize(w[3], r.width))
+    if (!parseHdrSize(w[1], r.height) || !parseHdrSize(w[3], r.width))
       throw in.fail("bad resolution line '" + std::string(text) + "' (sizes of 1 to 9 digits)");
     r.bottomUp = w[0][0] == '+';
     r.rightToLeft = w[2][0] == '-';
@@ -199,7 +199,7 @@ RgbImage decodeRadianceHdr(const std::uint8_t* data, std::size_t size, const std
                            const AdmitImageSize& admit) {
   HdrBytes in(data, size, source);
   readHeader(in);
-  const Resolution r = readResolution(in);
+  const HdrResolution r = readResolution(in);
   admit(r.width, r.height);
   RgbImage image;
   image.width = int(r.width);

@@ -9,11 +9,13 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "shading/brdf_lanes.h"
 #include "shading/brdf_table.h"
 #include "shading/lighting.h"
 #include "simd/lanes.h"
+#include "simd/texel_pairs.h"
 
 namespace quadra::shading {
 
@@ -44,6 +46,28 @@ QUADRA_LANE_INLINE CubeCoords<L> cubeProject(const Vec3Lanes<L>& d) {
   return {simd::toInt(faceF), sn * inv, tn * inv};
 }
 
+// Each lane's pair of adjacent RGBA float texels (pair[k] -> lane k's left
+// and right texel) as channel lanes: the sampler's pair transposes
+// (simd/texel_pairs.h: one load per lane, moves only, so every path has the
+// same bits), or lane by lane on the scalar path.
+template <class L>
+QUADRA_LANE_INLINE void texelPairs(const std::uint8_t* const pair[L::kWidth], typename L::F left[3],
+                                   typename L::F right[3]) {
+  using F = typename L::F;
+  if constexpr (std::is_same_v<L, simd::Lanes<simd::ScalarArch>>) {
+    const float* p[4];
+    for (int k = 0; k < 4; ++k) p[k] = reinterpret_cast<const float*>(pair[k]);
+    for (int c = 0; c < 3; ++c) {
+      left[c] = F(p[0][c], p[1][c], p[2][c], p[3][c]);
+      right[c] = F(p[0][4 + c], p[1][4 + c], p[2][4 + c], p[3][4 + c]);
+    }
+  } else {
+    typename F::register_type l[4], r[4];
+    simd::transposeTexelPairs<simd::PairEncoding::Float32>(pair, l, r);
+    for (int c = 0; c < 3; ++c) left[c] = l[c], right[c] = r[c];
+  }
+}
+
 // Bilinear lookups, one cube level per lane: `level` the lane's level
 // (its faces of size size >> level), from `base` (the levels, offsets in
 // levelOffset) or, with levelOffset null, one level of face size `size`.
@@ -54,6 +78,7 @@ QUADRA_LANE_INLINE RgbLanes<L> cubeBilinear(const float* base, const std::int64_
   using F = typename L::F;
   using I = typename L::I;
   constexpr int W = L::kWidth;
+  constexpr int kTexel = EnvironmentView::kTexelFloats;
   // Face size n = size x 2^-level, exactly, from the exponent bits.
   const F scale = simd::asFloat((I(127) - level) << 23);
   const F n = F(float(size)) * scale;
@@ -68,26 +93,25 @@ QUADRA_LANE_INLINE RgbLanes<L> cubeBilinear(const float* base, const std::int64_
   level.store_aligned(lv);
   simd::toInt(x0).store_aligned(ix);
   simd::toInt(y0).store_aligned(iy);
-  alignas(64) float texel[12][W];
+  // Byte pointers, the type the transposes read (not float pointers cast:
+  // GCC would not see the stores through the other pointer type).
+  const std::uint8_t* top[W];
+  const std::uint8_t* bottom[W];
   for (int k = 0; k < W; ++k) {
     const std::int64_t m = (size >> lv[k]) + 2;
-    const std::int64_t offset = (levelOffset ? levelOffset[lv[k]] : 0) + face[k] * m * m * 3 +
-                                (std::int64_t(iy[k]) * m + ix[k]) * 3;
-    const float* t0 = base + offset;
-    const float* t1 = t0 + m * 3;
-    for (int ch = 0; ch < 3; ++ch) {
-      texel[ch][k] = t0[ch];
-      texel[3 + ch][k] = t0[3 + ch];
-      texel[6 + ch][k] = t1[ch];
-      texel[9 + ch][k] = t1[3 + ch];
-    }
+    const float* t = base + (levelOffset ? levelOffset[lv[k]] : 0) +
+                     (face[k] * m * m + std::int64_t(iy[k]) * m + ix[k]) * kTexel;
+    top[k] = reinterpret_cast<const std::uint8_t*>(t);
+    bottom[k] = reinterpret_cast<const std::uint8_t*>(t + m * kTexel);
   }
+  F t00[3], t10[3], t01[3], t11[3];
+  texelPairs<L>(top, t00, t10);
+  texelPairs<L>(bottom, t01, t11);
   F out[3];
   for (int ch = 0; ch < 3; ++ch) {
-    const F t00 = F::load_aligned(texel[ch]), t10 = F::load_aligned(texel[3 + ch]);
-    const F t01 = F::load_aligned(texel[6 + ch]), t11 = F::load_aligned(texel[9 + ch]);
-    const F top = t00 + (t10 - t00) * ax, bottom = t01 + (t11 - t01) * ax;
-    out[ch] = top + (bottom - top) * ay;
+    const F upper = t00[ch] + (t10[ch] - t00[ch]) * ax;
+    const F lower = t01[ch] + (t11[ch] - t01[ch]) * ax;
+    out[ch] = upper + (lower - upper) * ay;
   }
   return {out[0], out[1], out[2]};
 }
@@ -96,10 +120,15 @@ QUADRA_LANE_INLINE RgbLanes<L> cubeBilinear(const float* base, const std::int64_
 // footprint of solid angle `omega` steradians around it: trilinear between
 // the two mip levels whose texels' solid angle there brackets omega (a
 // texel of level 0 at face coordinates (s, t) spans (2 / size)^2 (1 + s^2 +
-// t^2)^(-3/2) sr). omega <= the texel's reads level 0 bilinearly.
+// t^2)^(-3/2) sr). omega <= the texel's reads level 0 bilinearly. lodBias
+// shifts the level: the filtered importance samples read half a level
+// sharper than their share of the lobe (measured: RMS error 0.041 at 0,
+// 0.033 at -0.5, 0.043 at -1 on the test panoramas), since a level's
+// bilinear tap already spreads over about two of its texels.
 template <class L>
 QUADRA_LANE_INLINE RgbLanes<L> filteredRadiance(const EnvironmentView& env, const Vec3Lanes<L>& d,
-                                                const typename L::F& omega) {
+                                                const typename L::F& omega, float lodBias = 0.0f,
+                                                bool blendLevels = true) {
   using F = typename L::F;
   using I = typename L::I;
   const CubeCoords<L> c = cubeProject<L>(d);
@@ -107,9 +136,10 @@ QUADRA_LANE_INLINE RgbLanes<L> filteredRadiance(const EnvironmentView& env, cons
   const float texel0 = 4.0f / (float(env.size) * float(env.size));
   const F ratio = omega * q * simd::sqrt(q) * F(1.0f / texel0);
   const F maxLevel(float(env.levelCount - 1));
-  const F lod = simd::min(simd::max(F(0.5f) * simd::log2<L>(ratio), F(0.0f)), maxLevel);
-  const F l0 = simd::floor(lod);
-  const F frac = lod - l0;
+  const F lod =
+      simd::min(simd::max(F(0.5f) * simd::log2<L>(ratio) + F(lodBias), F(0.0f)), maxLevel);
+  const F l0 = simd::floor(blendLevels ? lod : lod + F(0.5f));
+  const F frac = blendLevels ? lod - l0 : F(0.0f);
   const I level0 = simd::toInt(l0);
   const I level1 = simd::toInt(simd::min(l0 + F(1.0f), maxLevel));
   const RgbLanes<L> a = cubeBilinear<L>(env.radiance, env.levelOffset, env.size, c, level0);

@@ -97,8 +97,11 @@ EnvironmentImage readEnvironmentFile(const std::string& path, MemoryBudget& budg
   if (kind == PanoramaKind::Exr) {
     pixels = readExrRgb(path, admit);
   } else {
+    std::error_code ec;
+    const std::uintmax_t fileSize = std::filesystem::file_size(path, ec);
+    if (!ec)
+      budget.charge("environment " + path + " (" + std::to_string(fileSize) + " bytes)", fileSize);
     const std::vector<std::uint8_t> bytes = readWholeFile(path);
-    budget.charge("environment " + path + " (encoded)", bytes.size());
     try {
       pixels = decodeRadianceHdr(bytes.data(), bytes.size(), path, admit);
     } catch (const std::bad_alloc&) {

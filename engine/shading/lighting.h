@@ -36,10 +36,12 @@ struct PunctualLight {
 PunctualLight punctualLightOf(const Light& light);
 
 // The prepared environment as the lane code reads it. Cube maps: face f of
-// level l is a square of (n + 2)^2 RGB float texels, n = size >> l, with a
+// level l is a square of (n + 2)^2 RGBA float texels (A unused: a texel pair
+// is one 32-byte load), n = size >> l, with a
 // one-texel border that repeats the neighbouring faces, so a bilinear tap
 // never crosses a face; faces +X, -X, +Y, -Y, +Z, -Z (cube_layout.h).
 struct EnvironmentView {
+  static constexpr int kTexelFloats = 4;
   const float* radiance = nullptr;            // every level, level 0 first
   const std::int64_t* levelOffset = nullptr;  // float index of each level's face 0
   int size = 0;                               // level 0's face size (a power of two)
@@ -47,10 +49,14 @@ struct EnvironmentView {
   const float* irradiance = nullptr;  // (1/pi) x cosine-weighted integral, one level
   int irradianceSize = 0;
   // The directional albedo table (brdf_table.h) and the filtered importance
-  // samples (fisSampleCount x {t1, t2, sqrt(1 - t1^2)}).
+  // samples: sets of kFisSetSize[i] samples {t1, t2, sqrt(1 - t1^2)}, one
+  // after the other. A lane group takes the set for its roughest lane:
+  // narrow lobes need few samples (shade_lanes.h has the measured error).
+  static constexpr int kFisSets = 3;
+  static constexpr int kFisSetSize[kFisSets] = {4, 8, 16};
+  static constexpr float kFisSetRoughness[kFisSets - 1] = {0.2f, 0.45f};  // set i below this
   const float* brdfTable = nullptr;
   const float* fisSamples = nullptr;
-  int fisSampleCount = 0;
 };
 
 struct LightingView {

@@ -16,10 +16,12 @@
 namespace quadra {
 namespace {
 
-constexpr int kIrradianceSourceSize = 64;  // face size of the level the irradiance integrates
+constexpr int kIrradianceSourceSize = 64;
+constexpr int kTexelFloats =
+    EnvironmentView::kTexelFloats;  // face size of the level the irradiance integrates
 
 std::size_t faceFloats(int n) {
-  return std::size_t(n + 2) * std::size_t(n + 2) * 3;
+  return std::size_t(n + 2) * std::size_t(n + 2) * kTexelFloats;
 }
 
 // LIGHTING.md's radiance of direction d (unnormalized) in the panorama:
@@ -55,7 +57,9 @@ void faceBilinear(const float* level, int n, int face, double s, double t, float
   const int x1 = std::min(x0 + 1, n), y1 = std::min(y0 + 1, n);
   const float ax = float(x - x0), ay = float(y - y0);
   const float* f = level + face * faceFloats(n);
-  const auto at = [&](int px, int py) { return f + (std::size_t(py) * (n + 2) + px) * 3; };
+  const auto at = [&](int px, int py) {
+    return f + (std::size_t(py) * (n + 2) + px) * kTexelFloats;
+  };
   for (int c = 0; c < 3; ++c) {
     const float top = at(x0, y0)[c] + (at(x1, y0)[c] - at(x0, y0)[c]) * ax;
     const float bottom = at(x0, y1)[c] + (at(x1, y1)[c] - at(x0, y1)[c]) * ax;
@@ -72,7 +76,7 @@ void fillBorders(float* level, int n) {
         double d[3], s, t;
         cube::faceDirection(face, cube::paddedCentre(p, n), cube::paddedCentre(q, n), d);
         const int other = cube::directionFace(d, s, t);
-        faceBilinear(level, n, other, s, t, f + (std::size_t(q) * (n + 2) + p) * 3);
+        faceBilinear(level, n, other, s, t, f + (std::size_t(q) * (n + 2) + p) * kTexelFloats);
       }
     }
   }
@@ -108,34 +112,45 @@ PreparedEnvironment::PreparedEnvironment(const EnvironmentImage& image,
   executor.parallelFor(std::size_t(cube::kFaces) * (n0 + 2), 8, [&](std::size_t b, std::size_t e) {
     for (std::size_t row = b; row < e; ++row) {
       const int face = int(row / (n0 + 2)), q = int(row % (n0 + 2));
-      float* out = radiance_.data() + face * faceFloats(n0) + std::size_t(q) * (n0 + 2) * 3;
+      float* out =
+          radiance_.data() + face * faceFloats(n0) + std::size_t(q) * (n0 + 2) * kTexelFloats;
       for (int p = 0; p < n0 + 2; ++p) {
         double d[3];
         cube::faceDirection(face, cube::paddedCentre(p, n0), cube::paddedCentre(q, n0), d);
         // R_y(-angle) d: the panorama's direction of world direction d.
         const double r[3] = {c * d[0] - sn * d[2], d[1], sn * d[0] + c * d[2]};
-        panoramaRadiance(image, r, out + p * 3);
-        for (int k = 0; k < 3; ++k) out[p * 3 + k] *= intensity;
+        panoramaRadiance(image, r, out + p * kTexelFloats);
+        for (int k = 0; k < 3; ++k) out[p * kTexelFloats + k] *= intensity;
       }
     }
   });
 
-  // The mip chain: 2 x 2 averages of the inner texels, then the borders.
+  // The mip chain: each level from the one above by the separable binomial
+  // filter [1 3 3 1] / 8 (its taps reach one texel past a face's edge, into
+  // the border), so a level's texel is a smooth, nearly Gaussian average
+  // rather than a box; then the borders.
   for (int l = 1; l < levelCount_; ++l) {
     const int n = size_ >> l, m = n * 2;
     const float* above = radiance_.data() + levelOffset_[l - 1];
     float* level = radiance_.data() + levelOffset_[l];
-    executor.parallelFor(std::size_t(cube::kFaces) * n, 16, [&](std::size_t b, std::size_t e) {
+    executor.parallelFor(std::size_t(cube::kFaces) * n, 8, [&](std::size_t b, std::size_t e) {
+      std::vector<float> rows(std::size_t(m + 2) * kTexelFloats);
       for (std::size_t row = b; row < e; ++row) {
         const int face = int(row / n), j = int(row % n);
         const float* src = above + face * faceFloats(m);
-        float* dst = level + face * faceFloats(n) + (std::size_t(j + 1) * (n + 2) + 1) * 3;
-        const float* r0 = src + (std::size_t(2 * j + 1) * (m + 2) + 1) * 3;
-        const float* r1 = r0 + std::size_t(m + 2) * 3;
+        // Vertical pass: padded rows 2j .. 2j + 3 of the level above.
+        const std::size_t stride = std::size_t(m + 2) * kTexelFloats;
+        const float* r0 = src + std::size_t(2 * j) * stride;
+        for (std::size_t k = 0; k < stride; ++k)
+          rows[k] = ((r0[k] + r0[k + 3 * stride]) + 3.0f * (r0[k + stride] + r0[k + 2 * stride])) *
+                    0.125f;
+        float* dst =
+            level + face * faceFloats(n) + (std::size_t(j + 1) * (n + 2) + 1) * kTexelFloats;
         for (int i = 0; i < n; ++i)
-          for (int k = 0; k < 3; ++k)
-            dst[i * 3 + k] =
-                ((r0[6 * i + k] + r0[6 * i + 3 + k]) + (r1[6 * i + k] + r1[6 * i + 3 + k])) * 0.25f;
+          for (int k = 0; k < 3; ++k) {
+            const float* t = rows.data() + std::size_t(2 * i) * kTexelFloats + k;
+            dst[i * kTexelFloats + k] = ((t[0] + t[12]) + 3.0f * (t[4] + t[8])) * 0.125f;
+          }
       }
     });
     fillBorders(level, n);
@@ -162,8 +177,8 @@ PreparedEnvironment::PreparedEnvironment(const EnvironmentImage& image,
           cube::faceDirection(face, s0 + 1.0 / ns, t0 + 1.0 / ns, d);
           const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
           sx[k] = float(d[0] / len), sy[k] = float(d[1] / len), sz[k] = float(d[2] / len);
-          const float* texel =
-              level + face * faceFloats(ns) + (std::size_t(j + 1) * (ns + 2) + i + 1) * 3;
+          const float* texel = level + face * faceFloats(ns) +
+                               (std::size_t(j + 1) * (ns + 2) + i + 1) * kTexelFloats;
           const double w = omega / M_PI;
           sr[k] = float(texel[0] * w), sg[k] = float(texel[1] * w), sb[k] = float(texel[2] * w);
         }
@@ -172,7 +187,7 @@ PreparedEnvironment::PreparedEnvironment(const EnvironmentImage& image,
   }
   constexpr int ni = kIrradianceSize;
   irradiance_.resize(cube::kFaces * faceFloats(ni));
-  executor.parallelFor(irradiance_.size() / 3, 64, [&](std::size_t b, std::size_t e) {
+  executor.parallelFor(irradiance_.size() / kTexelFloats, 64, [&](std::size_t b, std::size_t e) {
     for (std::size_t t = b; t < e; ++t) {
       const int face = int(t / ((ni + 2) * (ni + 2)));
       const int rest = int(t % ((ni + 2) * (ni + 2)));
@@ -188,26 +203,30 @@ PreparedEnvironment::PreparedEnvironment(const EnvironmentImage& image,
           ar[j] += sr[k + j] * cosine, ag[j] += sg[k + j] * cosine, ab[j] += sb[k + j] * cosine;
         }
       }
-      float* out = irradiance_.data() + t * 3;
+      float* out = irradiance_.data() + t * kTexelFloats;
       out[0] = ((ar[0] + ar[1]) + (ar[2] + ar[3])) + ((ar[4] + ar[5]) + (ar[6] + ar[7]));
       out[1] = ((ag[0] + ag[1]) + (ag[2] + ag[3])) + ((ag[4] + ag[5]) + (ag[6] + ag[7]));
       out[2] = ((ab[0] + ab[1]) + (ab[2] + ab[3])) + ((ab[4] + ab[5]) + (ab[6] + ab[7]));
     }
   });
 
-  // The filtered importance samples: a (u1, u2) Hammersley set, u1 stratified
-  // and u2 the base-2 radical inverse, stored as Heitz's disc point (t1, t2)
-  // and sqrt(1 - t1^2) (the lane code needs no trigonometry).
-  for (int i = 0; i < kFisSamples; ++i) {
-    unsigned bits = unsigned(i), reversed = 0;
-    for (int k = 0; k < 16; ++k) reversed = (reversed << 1) | ((bits >> k) & 1u);
-    const double u1 = (i + 0.5) / kFisSamples;
-    const double u2 = reversed / 65536.0 + 0.5 / kFisSamples;
-    const double r = std::sqrt(u1), phi = 2.0 * M_PI * u2;
-    const double t1 = r * std::cos(phi);
-    fisSamples_.push_back(float(t1));
-    fisSamples_.push_back(float(r * std::sin(phi)));
-    fisSamples_.push_back(float(std::sqrt(1.0 - t1 * t1)));
+  // The filtered importance samples, one set per size (lighting.h): a (u1,
+  // u2) Hammersley set, u1 stratified and u2 the base-2 radical inverse,
+  // stored as Heitz's disc point (t1, t2) and sqrt(1 - t1^2) (the lane code
+  // needs no trigonometry).
+  for (int set = 0; set < EnvironmentView::kFisSets; ++set) {
+    const int count = EnvironmentView::kFisSetSize[set];
+    for (int i = 0; i < count; ++i) {
+      unsigned bits = unsigned(i), reversed = 0;
+      for (int k = 0; k < 16; ++k) reversed = (reversed << 1) | ((bits >> k) & 1u);
+      const double u1 = (i + 0.5) / count;
+      const double u2 = reversed / 65536.0 + 0.5 / count;
+      const double r = std::sqrt(u1), phi = 2.0 * M_PI * u2;
+      const double t1 = r * std::cos(phi);
+      fisSamples_.push_back(float(t1));
+      fisSamples_.push_back(float(r * std::sin(phi)));
+      fisSamples_.push_back(float(std::sqrt(1.0 - t1 * t1)));
+    }
   }
   brdfTable_ = brdfAlbedoTable(executor);
 }
@@ -222,7 +241,6 @@ EnvironmentView PreparedEnvironment::view() const {
   v.irradianceSize = kIrradianceSize;
   v.brdfTable = brdfTable_;
   v.fisSamples = fisSamples_.data();
-  v.fisSampleCount = kFisSamples;
   return v;
 }
 

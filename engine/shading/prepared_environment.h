@@ -2,9 +2,9 @@
 // equirectangular panorama), its rotation about +Y and its intensity, the
 // tables the lane code reads (lighting.h EnvironmentView):
 //  - radiance: a cube map with mip levels down to 1 x 1 (level 0 the bilinear
-//    panorama at the texel centres, each level the 2 x 2 average of the one
-//    above), read by filtered importance sampling of the GGX lobe and by the
-//    background's footprint-filtered lookup;
+//    panorama at the texel centres, each level the [1 3 3 1] binomial
+//    downsample of the one above), read by filtered importance sampling of
+//    the GGX lobe and by the background's footprint-filtered lookup;
 //  - irradiance: (1/pi) x the cosine-weighted integral of the radiance, a
 //    32 x 32 cube computed from the environment itself (no spherical harmonics);
 //  - the BRDF's directional albedo table (brdf_table.h) and the sample pattern.
@@ -46,8 +46,6 @@ class PreparedEnvironment {
   static int cubeSizeFor(int width);
 
   static constexpr int kIrradianceSize = 32;
-  // Filtered importance samples per lookup of the specular lobe.
-  static constexpr int kFisSamples = 8;
 
  private:
   int size_ = 0, levelCount_ = 0;

@@ -18,6 +18,8 @@
 // Include only from per-ISA kernel translation units.
 #pragma once
 
+#include <algorithm>
+
 #include "shading/brdf_lanes.h"
 #include "shading/environment_lanes.h"
 #include "shading/lighting.h"
@@ -70,8 +72,25 @@ template <class L>
 QUADRA_LANE_INLINE LobeRadiance<L> specularLobeRadiance(const EnvironmentView& env,
                                                         const Vec3Lanes<L>& n,
                                                         const Vec3Lanes<L>& v,
-                                                        const typename L::F& alpha) {
+                                                        const typename L::F& roughness) {
   using F = typename L::F;
+  const F alpha = roughness * roughness;
+  // Each lane's sample set by its own roughness (so that a lane's result
+  // does not depend on its neighbours, nor on the ISA's lane count); the
+  // group runs as many samples as its largest set, and a lane's samples past
+  // its set's size weigh exactly 0.
+  static_assert(EnvironmentView::kFisSets == 3, "three sample sets");
+  const auto inSet1 = roughness >= F(EnvironmentView::kFisSetRoughness[0]);
+  const auto inSet2 = roughness >= F(EnvironmentView::kFisSetRoughness[1]);
+  const int count = simd::any(inSet2)   ? EnvironmentView::kFisSetSize[2]
+                    : simd::any(inSet1) ? EnvironmentView::kFisSetSize[1]
+                                        : EnvironmentView::kFisSetSize[0];
+  const float* set0 = env.fisSamples;
+  const float* set1 = set0 + 3 * EnvironmentView::kFisSetSize[0];
+  const float* set2 = set1 + 3 * EnvironmentView::kFisSetSize[1];
+  const F laneCount = simd::select(inSet2, F(float(EnvironmentView::kFisSetSize[2])),
+                                   simd::select(inSet1, F(float(EnvironmentView::kFisSetSize[1])),
+                                                F(float(EnvironmentView::kFisSetSize[0]))));
   Vec3Lanes<L> t, b;
   tangentFrame<L>(n, t, b);
   // The view in the frame, and Heitz's stretched view Vh with its frame (T1, T2).
@@ -91,15 +110,23 @@ QUADRA_LANE_INLINE LobeRadiance<L> specularLobeRadiance(const EnvironmentView& e
   const F t2x = F(0.0f) - hz * t1y, t2y = hz * t1x, t2z = hx * t1y - hy * t1x;
   const F blend = F(0.5f) * (F(1.0f) + hz);
   // Each sample's share of the lobe: 1 / (K pdf(l)), pdf(l) = D(h) / (2 (n.v + gv)).
-  const F k = F(float(env.fisSampleCount));
+  const F k = laneCount;
   const F alpha2c = simd::max(alpha2, F(1e-8f));
   const F omegaScale = F(2.0f * kPi) * (vz + gv) / (k * alpha2c);
   RgbLanes<L> sum0{F(0.0f), F(0.0f), F(0.0f)}, sum1 = sum0;
   F weight0(0.0f), weight1(0.0f);
-  for (int i = 0; i < env.fisSampleCount; ++i) {
-    const float* sample = env.fisSamples + 3 * i;
-    const F p1(sample[0]);
-    const F p2 = (F(1.0f) - blend) * F(sample[2]) + blend * F(sample[1]);
+  for (int i = 0; i < count; ++i) {
+    // Sample i of each lane's set (an index past a set's end reads its
+    // last sample, weighted 0 below).
+    const float* s0 = set0 + 3 * std::min(i, EnvironmentView::kFisSetSize[0] - 1);
+    const float* s1 = set1 + 3 * std::min(i, EnvironmentView::kFisSetSize[1] - 1);
+    const float* s2 = set2 + 3 * i;
+    F sample[3];
+    for (int j = 0; j < 3; ++j)
+      sample[j] = simd::select(inSet2, F(s2[j]), simd::select(inSet1, F(s1[j]), F(s0[j])));
+    const auto active = F(float(i)) < laneCount;
+    const F p1 = sample[0];
+    const F p2 = (F(1.0f) - blend) * sample[2] + blend * sample[1];
     const F p3 = simd::sqrt(simd::max(F(1.0f) - p1 * p1 - p2 * p2, F(0.0f)));
     // The visible normal, unstretched: h (frame coordinates).
     F mx = alpha * (p1 * t1x + p2 * t2x + p3 * hx);
@@ -111,7 +138,8 @@ QUADRA_LANE_INLINE LobeRadiance<L> specularLobeRadiance(const EnvironmentView& e
     const F nl = F(2.0f) * vh * mz - vz;
     const F nlc = simd::max(nl, F(1e-8f));
     const F gl = simd::sqrt(nlc * nlc * (F(1.0f) - alpha2) + alpha2);
-    const F weight = simd::select(nl > F(0.0f), nlc * (vz + gv) / (nlc * gv + vz * gl), F(0.0f));
+    const F weight =
+        simd::select((nl > F(0.0f)) & active, nlc * (vz + gv) / (nlc * gv + vz * gl), F(0.0f));
     const F w = schlickWeight<L>(vh);
     // l = 2 (v.h) h - v in world space.
     const F twoVh = F(2.0f) * vh;
@@ -119,7 +147,7 @@ QUADRA_LANE_INLINE LobeRadiance<L> specularLobeRadiance(const EnvironmentView& e
                          twoVh * (mx * t.y + my * b.y + mz * n.y) - v.y,
                          twoVh * (mx * t.z + my * b.z + mz * n.z) - v.z};
     const F d = mz * mz * (alpha2c - F(1.0f)) + F(1.0f);
-    const RgbLanes<L> radiance = filteredRadiance<L>(env, l, omegaScale * d * d);
+    const RgbLanes<L> radiance = filteredRadiance<L>(env, l, omegaScale * d * d, -0.5f, false);
     const F w0 = weight * (F(1.0f) - w), w1 = weight * w;
     sum0 = {sum0.r + radiance.r * w0, sum0.g + radiance.g * w0, sum0.b + radiance.b * w0};
     sum1 = {sum1.r + radiance.r * w1, sum1.g + radiance.g * w1, sum1.b + radiance.b * w1};
@@ -140,7 +168,7 @@ QUADRA_LANE_INLINE RgbLanes<L> environmentRadiance(const EnvironmentView& env,
   const FresnelSplit<L> f = fresnelSplit<L>(m);
   const F nv = clamp01<L>(dot<L>(s.normal, s.view));
   const AlbedoLanes<L> albedo = albedoLookup<L>(env.brdfTable, nv, s.roughness);
-  const LobeRadiance<L> lobe = specularLobeRadiance<L>(env, s.normal, s.view, m.alpha);
+  const LobeRadiance<L> lobe = specularLobeRadiance<L>(env, s.normal, s.view, s.roughness);
   const RgbLanes<L> e = irradiance<L>(env, s.normal);
   // Diffuse: baseColor x E x (diffuseF0 (1 - S) + diffuseF90 S).
   const F diffuse = f.diffuseF0 * (F(1.0f) - albedo.s) + f.diffuseF90 * albedo.s;

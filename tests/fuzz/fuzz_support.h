@@ -27,6 +27,7 @@ namespace quadra::fuzz {
 void runGltfJson(const std::uint8_t* data, std::size_t size);
 void runGlb(const std::uint8_t* data, std::size_t size);
 void runImage(const std::uint8_t* data, std::size_t size);
+void runEnvironment(const std::uint8_t* data, std::size_t size);
 void runLookupsCsv(const std::uint8_t* data, std::size_t size);
 void runRender(const std::uint8_t* data, std::size_t size);
 

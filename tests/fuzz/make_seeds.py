@@ -3,7 +3,10 @@
 scenes in ../shared/assets: each scene with its buffers and images embedded
 (data: URIs for gltf_json, the BIN chunk and bufferViews for glb), so that
 a seed loads from the fuzz target's scratch folder, which holds nothing
-else. Only seeds under 64 KiB are kept. Usage: make_seeds.py ASSETS CORPUS"""
+else. Only seeds under 64 KiB are kept. Also the environment target's .hdr
+seeds (small panoramas: flat, new-style and old-style run-length, bottom-up);
+its EXR seeds are `quadra env` outputs of those (rle-16x4.exr) and the image
+target's checker EXR. Usage: make_seeds.py ASSETS CORPUS"""
 import base64, json, os, struct, sys
 
 LIMIT = 64 * 1024
@@ -55,7 +58,68 @@ def glb(doc):
     return struct.pack("<III", 0x46546C67, 2, 12 + len(chunks)) + chunks
 
 
+def hdr_header(width, height, orientation=None):
+    resolution = orientation or "-Y %d +X %d" % (height, width)
+    return b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=1.0\n\n" + resolution.encode() + b"\n"
+
+
+def hdr_texels(width, height):
+    # A gradient with stretches of equal texels, so every encoding has runs.
+    return [bytes([(16 * x) % 256, (32 * y) % 256, 128 if x < width // 2 else 7, 128 + (x // 4) % 3])
+            for y in range(height) for x in range(width)]
+
+
+def hdr_rle(width, height, texels):
+    out = b""
+    for y in range(height):
+        out += bytes([2, 2, width >> 8, width & 255])
+        for c in range(4):
+            row = [texels[y * width + x][c] for x in range(width)]
+            x = 0
+            while x < width:
+                run = 1
+                while x + run < width and row[x + run] == row[x] and run < 127:
+                    run += 1
+                if run >= 3:
+                    out += bytes([128 + run, row[x]])
+                else:
+                    out += bytes([run] + row[x:x + run])
+                x += run
+    return out
+
+
+def hdr_old_rle(width, height, texels):
+    out = b""
+    for y in range(height):
+        x = 0
+        while x < width:
+            t = texels[y * width + x]
+            out += t
+            repeats = 0
+            while x + 1 + repeats < width and texels[y * width + x + 1 + repeats] == t:
+                repeats += 1
+            if repeats:
+                out += bytes([1, 1, 1, repeats])
+            x += 1 + repeats
+    return out
+
+
+def environment_seeds(corpus):
+    folder = os.path.join(corpus, "environment")
+    os.makedirs(folder, exist_ok=True)
+    seeds = {
+        "flat-4x2.hdr": hdr_header(4, 2) + b"".join(hdr_texels(4, 2)),
+        "bottom-up-4x2.hdr": hdr_header(4, 2, "+Y 2 -X 4") + b"".join(hdr_texels(4, 2)),
+        "rle-16x4.hdr": hdr_header(16, 4) + hdr_rle(16, 4, hdr_texels(16, 4)),
+        "old-rle-12x2.hdr": hdr_header(12, 2) + hdr_old_rle(12, 2, hdr_texels(12, 2)),
+    }
+    for name, data in seeds.items():
+        with open(os.path.join(folder, name), "wb") as f:
+            f.write(data)
+
+
 def main(assets, corpus):
+    environment_seeds(corpus)
     for name in sorted(os.listdir(assets)):
         path = os.path.join(assets, name, "glTF", name + ".gltf")
         if not os.path.exists(path):

@@ -3,7 +3,8 @@
 # corpus and every kept finding through it (tests/test_fuzz_corpus.cpp).
 set(QUADRA_FUZZ_DIR ${CMAKE_CURRENT_LIST_DIR})
 add_library(quadra_fuzz_targets STATIC ${QUADRA_FUZZ_DIR}/fuzz_gltf.cpp
-            ${QUADRA_FUZZ_DIR}/fuzz_image.cpp ${QUADRA_FUZZ_DIR}/fuzz_lookups_csv.cpp
+            ${QUADRA_FUZZ_DIR}/fuzz_image.cpp ${QUADRA_FUZZ_DIR}/fuzz_environment.cpp
+            ${QUADRA_FUZZ_DIR}/fuzz_lookups_csv.cpp
             ${QUADRA_FUZZ_DIR}/fuzz_render.cpp)
 target_include_directories(quadra_fuzz_targets PUBLIC ${QUADRA_FUZZ_DIR}
                            PRIVATE ${PROJECT_SOURCE_DIR}/tools)
