@@ -718,6 +718,17 @@ class SceneBuilder {
     const bool expands =
         source.mode == TINYGLTF_MODE_TRIANGLE_STRIP || source.mode == TINYGLTF_MODE_TRIANGLE_FAN;
     bytes += indices * (expands ? 4 : 1);
+    // MikkTSpace where a normal-mapped primitive has no TANGENT: its working
+    // arrays (welding table, triangles, edges) and, at worst, a copy of a
+    // vertex per corner, bounded per corner; the tangents themselves.
+    constexpr std::uint64_t kTangentBytesPerCorner = 256;
+    if (job.needs.normalMapSet >= 0 && source.attributes.count("TANGENT") == 0) {
+      const std::uint64_t corners = indices / 4 * (expands ? 3 : 1);
+      const std::uint64_t vertices = position != source.attributes.end()
+                                         ? gltf::decodedAccessorBytes(ref_, position->second) / 12
+                                         : 0;
+      bytes += corners * kTangentBytesPerCorner + vertices * 16;
+    }
     ref_.charge("mesh " + std::to_string(job.mesh) + " primitive " + std::to_string(job.primitive) +
                     " decoded",
                 bytes);
