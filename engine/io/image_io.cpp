@@ -480,6 +480,7 @@ struct PngLayout {
   int channels = 0;
   std::size_t rowBytes = 0;
   bool interlaced = false;
+  ImageColour colour = ImageColour::Srgb;
 };
 
 void pngErrorToMessage(png_structp png, png_const_charp text) {
@@ -528,8 +529,17 @@ bool decodePngHeader(PngDecoder& d, PngLayout& layout) {
 // row: through srgb8ToLinear, a call and a guard check per sample, a 2048²
 // texture's conversion took a fifth of its model's load. Alpha decodes as
 // the 8-bit texel formats decode it (lossless rgba8srgb). PNG and JPEG rows.
+// Linear colour (data textures: normals, metallic-roughness, occlusion)
+// decodes every channel as alpha does.
 void srgb8RowToLinear(const std::uint8_t* samples, std::size_t channels, std::size_t width,
-                      float* out) {
+                      float* out, ImageColour colour) {
+  if (colour == ImageColour::Linear) {
+    for (std::size_t x = 0; x < width; ++x, samples += channels, out += 4) {
+      for (std::size_t c = 0; c < 3; ++c) out[c] = float(samples[c]) * kUnorm8Scale;
+      out[3] = channels == 4 ? float(samples[3]) * kUnorm8Scale : 1.0f;
+    }
+    return;
+  }
   const float* table = srgb8ToLinearTable();
   for (std::size_t x = 0; x < width; ++x, samples += channels, out += 4) {
     out[0] = table[samples[0]];
@@ -542,12 +552,14 @@ void srgb8RowToLinear(const std::uint8_t* samples, std::size_t channels, std::si
 // One decoded PNG row (big-endian when 16-bit) -> linear float RGBA.
 void pngRowToLinear(const png_byte* samples, const PngLayout& layout, float* out) {
   const std::size_t channels = std::size_t(layout.channels);  // 3 or 4 after png_set_expand
-  if (layout.bitDepth == 8) return srgb8RowToLinear(samples, channels, layout.width, out);
+  if (layout.bitDepth == 8)
+    return srgb8RowToLinear(samples, channels, layout.width, out, layout.colour);
   const auto code = [&](std::size_t c) {
     return float((unsigned(samples[2 * c]) << 8) | samples[2 * c + 1]) / 65535.0f;
   };
+  const bool srgb = layout.colour == ImageColour::Srgb;
   for (png_uint_32 x = 0; x < layout.width; ++x, samples += 2 * channels, out += 4) {
-    for (std::size_t c = 0; c < 3; ++c) out[c] = srgbToLinear(code(c));
+    for (std::size_t c = 0; c < 3; ++c) out[c] = srgb ? srgbToLinear(code(c)) : code(c);
     out[3] = channels == 4 ? code(3) : 1.0f;
   }
 }
@@ -588,20 +600,22 @@ class PngReader {
   Image read(std::FILE* file, const std::string& path) {
     png_init_io(decoder_.png, file);
     png_set_sig_bytes(decoder_.png, 8);
-    return decode(path, nullptr, nullptr);
+    return decode(path, nullptr, nullptr, ImageColour::Srgb);
   }
 
   Image read(const std::uint8_t* data, std::size_t size, const std::string& source,
-             int* bitsPerChannel, const Executor* executor) {
+             int* bitsPerChannel, const Executor* executor, ImageColour colour) {
     PngMemory memory{data, size, 0};
     png_set_read_fn(decoder_.png, &memory, readPngMemory);
-    return decode(source, bitsPerChannel, executor);
+    return decode(source, bitsPerChannel, executor, colour);
   }
 
  private:
-  Image decode(const std::string& source, int* bitsPerChannel, const Executor* executor) {
+  Image decode(const std::string& source, int* bitsPerChannel, const Executor* executor,
+               ImageColour colour) {
     PngLayout layout;
     if (!decodePngHeader(decoder_, layout)) throw failure(source);
+    layout.colour = colour;
     if (std::int64_t(layout.width) * layout.height > kMaxImagePixels) {
       throw makeError(source, tooLargeText(layout.width, layout.height));
     }
@@ -672,13 +686,14 @@ bool startJpeg(JpegDecoder& d) {
   return true;
 }
 
-bool decodeJpegRows(JpegDecoder& d, JSAMPROW row, float* image, std::size_t rowFloats) {
+bool decodeJpegRows(JpegDecoder& d, JSAMPROW row, float* image, std::size_t rowFloats,
+                    ImageColour colour) {
   if (setjmp(d.jump)) return false;
   const std::size_t width = d.info.output_width;
   while (d.info.output_scanline < d.info.output_height) {
     const std::size_t y = d.info.output_scanline;
     if (jpeg_read_scanlines(&d.info, &row, 1) != 1) return false;
-    srgb8RowToLinear(row, 3, width, image + y * rowFloats);
+    srgb8RowToLinear(row, 3, width, image + y * rowFloats, colour);
   }
   jpeg_finish_decompress(&d.info);
   return true;
@@ -698,7 +713,7 @@ class JpegReader {
   JpegReader& operator=(const JpegReader&) = delete;
 
   Image read(const std::uint8_t* data, std::size_t size, const std::string& source,
-             const Executor* executor) {
+             const Executor* executor, ImageColour colour = ImageColour::Srgb) {
     if (!decodeJpegHeader(decoder_, data, size)) throw failure(source);
     const J_COLOR_SPACE space = decoder_.info.jpeg_color_space;
     if (space != JCS_GRAYSCALE && space != JCS_YCbCr && space != JCS_RGB)
@@ -708,7 +723,8 @@ class JpegReader {
     if (!startJpeg(decoder_)) throw failure(source);
     Image image(int(decoder_.info.output_width), int(decoder_.info.output_height), executor);
     std::vector<JSAMPLE> row(std::size_t(image.width) * 3);
-    if (!decodeJpegRows(decoder_, row.data(), image.rgba.data(), std::size_t(image.width) * 4))
+    if (!decodeJpegRows(decoder_, row.data(), image.rgba.data(), std::size_t(image.width) * 4,
+                        colour))
       throw failure(source);
     return image;
   }
@@ -820,10 +836,10 @@ bool isPng(const std::uint8_t* data, std::size_t size) {
 }
 
 Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& source,
-                int* bitsPerChannel, const Executor* executor) {
+                int* bitsPerChannel, const Executor* executor, ImageColour colour) {
   if (!isPng(data, size)) throw makeError(source, "not a PNG image");
   try {
-    return PngReader().read(data, size, source, bitsPerChannel, executor);
+    return PngReader().read(data, size, source, bitsPerChannel, executor, colour);
   } catch (const std::bad_alloc&) {
     throw makeError(source, "out of memory while decoding PNG");
   }
@@ -834,10 +850,10 @@ bool isJpeg(const std::uint8_t* data, std::size_t size) {
 }
 
 Image decodeJpeg(const std::uint8_t* data, std::size_t size, const std::string& source,
-                 const Executor* executor) {
+                 const Executor* executor, ImageColour colour) {
   if (!isJpeg(data, size)) throw makeError(source, "not a JPEG image");
   try {
-    return JpegReader().read(data, size, source, executor);
+    return JpegReader().read(data, size, source, executor, colour);
   } catch (const std::bad_alloc&) {
     throw makeError(source, "out of memory while decoding JPEG");
   }

@@ -74,6 +74,12 @@ RgbImage readExrRgb(const std::string& path, const AdmitImageSize& admit);
 // temporary file as writeExr does.
 void writeExrRgb(const float* rgb, int width, int height, const std::string& path);
 
+// How a PNG's or JPEG's colour channels are decoded: from sRGB (colour
+// textures, the default) or as linear codes (glTF's data textures: normal,
+// metallic-roughness, occlusion), each 8-bit code c to c * kUnorm8Scale as
+// alpha always is.
+enum class ImageColour : std::uint8_t { Srgb, Linear };
+
 // Whether the bytes start with the PNG signature.
 bool isPng(const std::uint8_t* data, std::size_t size);
 // Decodes a PNG held in memory as readImage decodes a file (the same samples,
@@ -81,7 +87,8 @@ bool isPng(const std::uint8_t* data, std::size_t size);
 // depth after expansion (8 or 16); the image's memory is mapped on
 // `executor`'s threads when one is given. Throws Error("<source>: <problem>").
 Image decodePng(const std::uint8_t* data, std::size_t size, const std::string& source,
-                int* bitsPerChannel = nullptr, const Executor* executor = nullptr);
+                int* bitsPerChannel = nullptr, const Executor* executor = nullptr,
+                ImageColour colour = ImageColour::Srgb);
 
 // Whether the bytes start with a JPEG start-of-image marker.
 bool isJpeg(const std::uint8_t* data, std::size_t size);
@@ -91,6 +98,6 @@ bool isJpeg(const std::uint8_t* data, std::size_t size);
 // stream is an error, not a partly grey image. Throws
 // Error("<source>: <problem>").
 Image decodeJpeg(const std::uint8_t* data, std::size_t size, const std::string& source,
-                 const Executor* executor = nullptr);
+                 const Executor* executor = nullptr, ImageColour colour = ImageColour::Srgb);
 
 }  // namespace quadra

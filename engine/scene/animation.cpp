@@ -218,6 +218,9 @@ void placeOnNodes(Scene& scene, const NodePose& pose) {
   for (Camera& camera : scene.cameras) {
     if (camera.node >= 0) camera.world = cameraWorldOf(worlds.at(std::size_t(camera.node)));
   }
+  for (Light& light : scene.lights) {
+    if (light.node >= 0) light.world = cameraWorldOf(worlds.at(std::size_t(light.node)));
+  }
 }
 
 double animationDuration(const Animation& animation) {

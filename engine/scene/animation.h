@@ -36,7 +36,7 @@ struct NodePose {
 // weights, so the rest pose has the bits the loader placed the instances with.
 void poseNodes(const Scene& scene, int animation, double seconds, NodePose& pose);
 
-// Moves every instance and camera that hangs from a node to that node's
+// Moves every instance, camera and light that hangs from a node to that node's
 // transform in `pose` (from poseNodes on the same scene); a skinned instance
 // gets its joint matrices instead, and a morphed one its node's weights.
 void placeOnNodes(Scene& scene, const NodePose& pose);

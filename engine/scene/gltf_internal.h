@@ -13,11 +13,14 @@
 #include "core/error.h"
 #include "core/memory_budget.h"
 #include "core/parallel.h"
+#include "io/image_io.h"
 #include "scene/scene.h"
 
 namespace tinygltf {
 class Model;
+class Value;
 struct Image;
+struct Material;
 }  // namespace tinygltf
 
 namespace quadra::gltf {
@@ -82,7 +85,10 @@ ByteRange bufferViewBytes(const ModelRef& ref, int index);
 
 // What of a primitive the scene needs beyond positions, normals and colours.
 struct PrimitiveNeeds {
-  int texcoordSet = -1;  // the TEXCOORD_n its material's texture reads; -1: none
+  bool texcoordSets[2] = {false, false};  // the TEXCOORD_n its material's textures read
+  // The TEXCOORD_n its material's normal map reads: TANGENT (and its morph
+  // deltas) is read, or MikkTSpace tangents generated; -1: no normal map.
+  int normalMapSet = -1;
 };
 
 // Primitive `primitiveIndex` of glTF mesh `meshIndex` as a triangle list.
@@ -122,14 +128,30 @@ class MaterialTable {
 
   // Scene material index for glTF material `gltfMaterial` (-1 stays -1).
   int sceneMaterial(int gltfMaterial);
-  // The TEXCOORD set the scene material reads, -1 when it has no texture.
-  int texcoordSetRead(int sceneMaterialIndex) const;
+  // The TEXCOORD sets and tangents a primitive drawn with the scene material
+  // needs (-1: the default material, which reads nothing).
+  PrimitiveNeeds needsOf(int sceneMaterialIndex) const;
   // Decodes the images the textures use and moves materials and textures into
   // the scene.
   void finish(Scene& scene);
 
  private:
-  int sceneTexture(int gltfTexture, const std::string& what);
+  // How a material reads a texture, which decides its image's decode: colour
+  // from sRGB, data (normals, metallic-roughness, occlusion) as linear codes,
+  // and a texture of which only alpha is read (always linear) shares
+  // whichever decode of its image another use needs.
+  enum class TextureUse : std::uint8_t { Colour, Data, AlphaOnly };
+
+  int sceneTexture(int gltfTexture, const std::string& what, TextureUse use);
+  // One textureInfo (glTF 2.0 §5.25, with KHR_texture_transform): `what`
+  // names it in messages ("material 2 normalTexture").
+  MaterialTexture materialTexture(int index, int texCoord, const tinygltf::Value* transform,
+                                  const std::string& what, TextureUse use);
+  // A textureInfo given as JSON inside a material extension.
+  MaterialTexture extensionTexture(const tinygltf::Value& info, const std::string& what,
+                                   TextureUse use);
+  void readExtensions(const tinygltf::Material& source, const std::string& what,
+                      Material& material);
   // "image N ('uri')" for messages.
   std::string imageName(int imageIndex) const;
   // The image's encoded bytes (a checked bufferView or what tinygltf read).
@@ -138,12 +160,14 @@ class MaterialTable {
   void chargeDecode(int imageIndex) const;
   // Linear float pixels, and the storage format that keeps the source's
   // precision: RGBA16F for 8-bit images, RGBA32F for 16-bit ones.
-  std::shared_ptr<const Image> decodeImage(int imageIndex, TexelFormat& storage,
+  std::shared_ptr<const Image> decodeImage(int imageIndex, ImageColour colour, TexelFormat& storage,
                                            const Executor& executor) const;
 
   struct PendingTexture {
     int image = -1;  // glTF image index
     SamplerState sampler;
+    TextureUse use = TextureUse::Colour;
+    int gltfTexture = -1;
   };
 
   const ModelRef& ref_;
@@ -151,8 +175,8 @@ class MaterialTable {
   std::vector<std::string>& notes_;
   std::vector<Material> materials_;
   std::vector<PendingTexture> textures_;
-  std::map<int, int> materialOf_;  // glTF material → scene material
-  std::map<int, int> textureOf_;   // glTF texture → scene texture
+  std::map<int, int> materialOf_;                        // glTF material → scene material
+  std::map<std::pair<int, TextureUse>, int> textureOf_;  // glTF texture, use → pending texture
 };
 
 }  // namespace quadra::gltf

@@ -10,6 +10,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -440,6 +441,72 @@ Camera makeCamera(const ModelRef& ref, int index, const glm::mat4& world, int sc
   return camera;
 }
 
+// ---- lights (KHR_lights_punctual) -------------------------------------------------
+
+// The file's lights, checked as the extension's specification bounds them:
+// intensity finite and >= 0, range > 0 where given (tinygltf reads an absent
+// range as 0, the extension's "unlimited"), 0 <= inner < outer <= pi/2.
+std::vector<Light> readLights(const ModelRef& ref) {
+  std::vector<Light> lights;
+  for (std::size_t i = 0; i < ref.model.lights.size(); ++i) {
+    const tinygltf::Light& source = ref.model.lights[i];
+    const std::string what =
+        "light " + std::to_string(i) + (source.name.empty() ? "" : " ('" + source.name + "')");
+    Light light;
+    if (source.type == "directional")
+      light.type = Light::Type::Directional;
+    else if (source.type == "point")
+      light.type = Light::Type::Point;
+    else if (source.type == "spot")
+      light.type = Light::Type::Spot;
+    else
+      throw ref.fail(what + " has unknown type '" + source.type + "'");
+    if (!source.color.empty()) {
+      if (source.color.size() != 3) throw ref.fail(what + " color does not have 3 numbers");
+      for (int c = 0; c < 3; ++c) {
+        const double value = source.color[std::size_t(c)];
+        if (!(value >= 0.0 && value <= double(FLT_MAX)))
+          throw ref.fail(what + " color " + std::to_string(value) + " is not finite and >= 0");
+        light.color[c] = float(value);
+      }
+    }
+    if (!(source.intensity >= 0.0 && source.intensity <= double(FLT_MAX)))
+      throw ref.fail(what + " intensity " + std::to_string(source.intensity) +
+                     " is not finite and >= 0");
+    light.intensity = float(source.intensity);
+    if (!(source.range >= 0.0 && source.range <= double(FLT_MAX)))
+      throw ref.fail(what + " range " + std::to_string(source.range) + " is not finite and > 0");
+    light.range = float(source.range);
+    if (light.type == Light::Type::Spot) {
+      const double inner = source.spot.innerConeAngle, outer = source.spot.outerConeAngle;
+      if (!(inner >= 0.0 && inner < outer && outer <= 1.5707963267948966))
+        throw ref.fail(what + " spot cone (inner " + std::to_string(inner) + ", outer " +
+                       std::to_string(outer) + ") does not satisfy 0 <= inner < outer <= pi/2");
+      light.innerConeAngle = float(inner);
+      light.outerConeAngle = float(outer);
+    }
+    lights.push_back(light);
+  }
+  return lights;
+}
+
+// The light node `index` carries (node.extensions.KHR_lights_punctual.light),
+// -1 when none.
+int nodeLight(const ModelRef& ref, int index, std::size_t lightCount) {
+  const tinygltf::Node& node = ref.model.nodes[std::size_t(index)];
+  const auto found = node.extensions.find("KHR_lights_punctual");
+  if (found == node.extensions.end()) return -1;
+  const std::string what = "node " + std::to_string(index) + " KHR_lights_punctual";
+  const tinygltf::Value& extension = found->second;
+  if (!extension.IsObject() || !extension.Has("light") || !extension.Get("light").IsInt())
+    throw ref.fail(what + " has no integer light");
+  const int light = extension.Get("light").GetNumberAsInt();
+  if (light < 0 || std::size_t(light) >= lightCount)
+    throw ref.fail(what + " refers to light " + std::to_string(light) +
+                   ", which does not exist (the file has " + std::to_string(lightCount) + ")");
+  return light;
+}
+
 // ---- meshes ---------------------------------------------------------------------
 
 // One (glTF mesh, primitive) pair, decoded once however many nodes draw it.
@@ -557,7 +624,7 @@ int largestJoint(const Mesh& mesh) {
 class SceneBuilder {
  public:
   SceneBuilder(const ModelRef& ref, gltf::MaterialTable& materials, Scene& scene)
-      : ref_(ref), materials_(materials), scene_(scene) {}
+      : ref_(ref), materials_(materials), scene_(scene), lights_(readLights(ref)) {}
 
   // Nodes come in walk order, parents first, as Scene::nodes keeps them.
   void addNode(const PlacedNode& placed) {
@@ -579,6 +646,12 @@ class SceneBuilder {
     scene_.nodes.push_back(kept);
     if (node.camera != -1)
       scene_.cameras.push_back(makeCamera(ref_, node.camera, placed.world, sceneNode));
+    if (const int light = nodeLight(ref_, placed.node, lights_.size()); light >= 0) {
+      Light placedLight = lights_[std::size_t(light)];
+      placedLight.world = cameraWorldOf(placed.world);  // rigid, as a camera's
+      placedLight.node = sceneNode;
+      scene_.lights.push_back(placedLight);
+    }
     if (node.mesh == -1) return;
     if (node.mesh < 0 || std::size_t(node.mesh) >= ref_.model.meshes.size()) {
       throw ref_.fail("node " + std::to_string(placed.node) + " refers to mesh " +
@@ -645,6 +718,17 @@ class SceneBuilder {
     const bool expands =
         source.mode == TINYGLTF_MODE_TRIANGLE_STRIP || source.mode == TINYGLTF_MODE_TRIANGLE_FAN;
     bytes += indices * (expands ? 4 : 1);
+    // MikkTSpace where a normal-mapped primitive has no TANGENT: its working
+    // arrays (welding table, triangles, edges) and, at worst, a copy of a
+    // vertex per corner, bounded per corner; the tangents themselves.
+    constexpr std::uint64_t kTangentBytesPerCorner = 256;
+    if (job.needs.normalMapSet >= 0 && source.attributes.count("TANGENT") == 0) {
+      const std::uint64_t corners = indices / 4 * (expands ? 3 : 1);
+      const std::uint64_t vertices = position != source.attributes.end()
+                                         ? gltf::decodedAccessorBytes(ref_, position->second) / 12
+                                         : 0;
+      bytes += corners * kTangentBytesPerCorner + vertices * 16;
+    }
     ref_.charge("mesh " + std::to_string(job.mesh) + " primitive " + std::to_string(job.primitive) +
                     " decoded",
                 bytes);
@@ -658,7 +742,7 @@ class SceneBuilder {
     job.primitive = primitive;
     const auto& source = ref_.model.meshes[std::size_t(mesh)].primitives[std::size_t(primitive)];
     job.material = materials_.sceneMaterial(source.material);
-    job.needs.texcoordSet = materials_.texcoordSetRead(job.material);
+    job.needs = materials_.needsOf(job.material);
     jobs_.push_back(std::move(job));
     jobOf_[key] = int(jobs_.size()) - 1;
     return int(jobs_.size()) - 1;
@@ -692,6 +776,7 @@ class SceneBuilder {
   std::vector<PrimitiveJob> jobs_;
   std::map<std::pair<int, int>, int> jobOf_;
   std::vector<Placement> placements_;
+  std::vector<Light> lights_;  // the file's, checked; nodes place copies
 };
 
 // What tinygltf made from the file before quadra saw the model: decoded
@@ -766,11 +851,14 @@ Scene loadGltf(const std::string& path, const LoadOptions& options,
   }
 }
 
-// Integer attribute types are read generically, so quantized meshes load; the
-// base colour texture's transform is applied (the other texture slots are not
-// drawn, so theirs do not matter).
+// Integer attribute types are read generically, so quantized meshes load;
+// every textureInfo's transform is read; the material extensions and lights
+// are loaded into the fields the lit shading reads (../shared/LIGHTING.md).
 bool implementsGltfExtension(const std::string& name) {
-  return name == "KHR_mesh_quantization" || name == "KHR_texture_transform";
+  return name == "KHR_mesh_quantization" || name == "KHR_texture_transform" ||
+         name == "KHR_materials_emissive_strength" || name == "KHR_materials_ior" ||
+         name == "KHR_materials_specular" || name == "KHR_materials_unlit" ||
+         name == "KHR_lights_punctual";
 }
 
 }  // namespace quadra

@@ -1,9 +1,14 @@
-// glTF materials (with KHR_texture_transform on the base colour texture),
-// textures, samplers and images → Scene materials and textures, made only for what a drawn
-// primitive uses: an image is decoded (sRGB → linear float RGBA) only when some used material's
-// baseColorTexture reads it, and textures sharing an image share one decoded Image.
+// glTF materials (the metallic-roughness material's textures and factors,
+// KHR_texture_transform on each textureInfo, and KHR_materials_emissive_strength,
+// _ior, _specular and _unlit), textures, samplers and images → Scene
+// materials and textures, made only for what a drawn primitive uses: an image
+// is decoded only when some used material reads it, once per colour space
+// its uses need (sRGB for base colour, emissive and specular colour; linear
+// for the data textures, glTF 2.0 §3.9), and textures sharing an image and a
+// decode share one decoded Image.
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cfloat>
 #include <climits>
@@ -93,6 +98,29 @@ glm::vec2 finiteVec2(const ModelRef& ref, const tinygltf::Value& value, const st
   return {finiteFloat(ref, value.Get(0), what), finiteFloat(ref, value.Get(1), what)};
 }
 
+// A factor from the file: finite, and clamped into [lo, hi], the range the
+// schema gives it, with a note when it lay outside.
+float factorIn(const ModelRef& ref, double value, float lo, float hi, const std::string& what,
+               std::vector<std::string>& notes) {
+  if (!(std::fabs(value) <= double(FLT_MAX))) throw ref.fail(what + " is not a finite number");
+  const float factor = float(value);
+  if (factor >= lo && factor <= hi) return factor;
+  const float clamped = std::clamp(factor, lo, hi);
+  notes.push_back(ref.note(what + " " + std::to_string(value) + " lies outside [" +
+                           std::to_string(lo) + ", " + std::to_string(hi) + "]; using " +
+                           std::to_string(clamped)));
+  return clamped;
+}
+
+// A number member of an extension object, `fallback` when absent.
+double numberMember(const ModelRef& ref, const tinygltf::Value& object, const char* key,
+                    double fallback, const std::string& what) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& value = object.Get(key);
+  if (!value.IsNumber()) throw ref.fail(what + " " + key + " is not a number");
+  return value.GetNumberAsDouble();
+}
+
 // KHR_texture_transform on a textureInfo: offset, rotation, scale, and a
 // texCoord that replaces the textureInfo's own when present.
 TextureTransform textureTransform(const ModelRef& ref, const tinygltf::Value& extension,
@@ -164,7 +192,8 @@ int MaterialTable::sceneMaterial(int gltfMaterial) {
   const tinygltf::Material& source = ref_.model.materials[std::size_t(gltfMaterial)];
   const std::string what = "material " + std::to_string(gltfMaterial);
   Material material;
-  const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+  const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+  const std::vector<double>& factor = pbr.baseColorFactor;
   if (factor.size() != 4) throw ref_.fail(what + " baseColorFactor does not have 4 numbers");
   material.baseColorFactor =
       glm::vec4(float(factor[0]), float(factor[1]), float(factor[2]), float(factor[3]));
@@ -173,41 +202,163 @@ int MaterialTable::sceneMaterial(int gltfMaterial) {
   material.doubleSided = source.doubleSided;
   material.fileIndex = gltfMaterial;
 
-  const tinygltf::TextureInfo& baseColor = source.pbrMetallicRoughness.baseColorTexture;
-  if (baseColor.index != -1) {
-    material.baseColorTexture = sceneTexture(baseColor.index, what);
-    int texCoord = baseColor.texCoord;
-    if (const auto found = baseColor.extensions.find("KHR_texture_transform");
-        found != baseColor.extensions.end()) {
-      material.baseColorTransform =
-          textureTransform(ref_, found->second, what + " baseColorTexture", texCoord);
-    }
-    if (texCoord == 0 || texCoord == 1) {
-      material.baseColorTexCoord = texCoord;
-    } else {
-      notes_.push_back(ref_.note(what + " baseColorTexture reads TEXCOORD_" +
-                                 std::to_string(texCoord) +
-                                 ", which is not supported; using TEXCOORD_0"));
-    }
+  const auto transformOf = [](const tinygltf::ExtensionMap& extensions) {
+    const auto found = extensions.find("KHR_texture_transform");
+    return found == extensions.end() ? nullptr : &found->second;
+  };
+  if (pbr.baseColorTexture.index != -1) {
+    const MaterialTexture baseColor =
+        materialTexture(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                        transformOf(pbr.baseColorTexture.extensions), what + " baseColorTexture",
+                        TextureUse::Colour);
+    material.baseColorTexture = baseColor.texture;
+    material.baseColorTexCoord = baseColor.texCoord;
+    material.baseColorTransform = baseColor.transform;
   }
+  material.metallicFactor =
+      factorIn(ref_, pbr.metallicFactor, 0.0f, 1.0f, what + " metallicFactor", notes_);
+  material.roughnessFactor =
+      factorIn(ref_, pbr.roughnessFactor, 0.0f, 1.0f, what + " roughnessFactor", notes_);
+  if (pbr.metallicRoughnessTexture.index != -1)
+    material.metallicRoughness =
+        materialTexture(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                        transformOf(pbr.metallicRoughnessTexture.extensions),
+                        what + " metallicRoughnessTexture", TextureUse::Data);
+  if (source.normalTexture.index != -1) {
+    material.normal = materialTexture(source.normalTexture.index, source.normalTexture.texCoord,
+                                      transformOf(source.normalTexture.extensions),
+                                      what + " normalTexture", TextureUse::Data);
+    // Any finite scale: the specification does not bound it.
+    material.normalScale = factorIn(ref_, source.normalTexture.scale, -FLT_MAX, FLT_MAX,
+                                    what + " normalTexture scale", notes_);
+  }
+  if (source.occlusionTexture.index != -1) {
+    material.occlusion =
+        materialTexture(source.occlusionTexture.index, source.occlusionTexture.texCoord,
+                        transformOf(source.occlusionTexture.extensions), what + " occlusionTexture",
+                        TextureUse::Data);
+    material.occlusionStrength = factorIn(ref_, source.occlusionTexture.strength, 0.0f, 1.0f,
+                                          what + " occlusionTexture strength", notes_);
+  }
+  if (source.emissiveTexture.index != -1)
+    material.emissive =
+        materialTexture(source.emissiveTexture.index, source.emissiveTexture.texCoord,
+                        transformOf(source.emissiveTexture.extensions), what + " emissiveTexture",
+                        TextureUse::Colour);
+  if (!source.emissiveFactor.empty()) {
+    if (source.emissiveFactor.size() != 3)
+      throw ref_.fail(what + " emissiveFactor does not have 3 numbers");
+    for (int c = 0; c < 3; ++c)
+      material.emissiveFactor[c] = factorIn(ref_, source.emissiveFactor[std::size_t(c)], 0.0f, 1.0f,
+                                            what + " emissiveFactor", notes_);
+  }
+  readExtensions(source, what, material);
   materials_.push_back(material);
   materialOf_[gltfMaterial] = int(materials_.size()) - 1;
   return int(materials_.size()) - 1;
 }
 
-int MaterialTable::texcoordSetRead(int sceneMaterialIndex) const {
-  if (sceneMaterialIndex < 0) return -1;
-  const Material& material = materials_[std::size_t(sceneMaterialIndex)];
-  return material.baseColorTexture < 0 ? -1 : material.baseColorTexCoord;
+void MaterialTable::readExtensions(const tinygltf::Material& source, const std::string& what,
+                                   Material& material) {
+  const auto extension = [&](const char* name) -> const tinygltf::Value* {
+    const auto found = source.extensions.find(name);
+    if (found == source.extensions.end()) return nullptr;
+    if (!found->second.IsObject()) throw ref_.fail(what + " " + name + " is not an object");
+    return &found->second;
+  };
+  if (const tinygltf::Value* strength = extension("KHR_materials_emissive_strength")) {
+    const std::string where = what + " KHR_materials_emissive_strength emissiveStrength";
+    material.emissiveStrength =
+        factorIn(ref_, numberMember(ref_, *strength, "emissiveStrength", 1.0, where), 0.0f, FLT_MAX,
+                 where, notes_);
+  }
+  if (const tinygltf::Value* ior = extension("KHR_materials_ior")) {
+    // The schema: at least 1 (the ratified one also admits 0); other values
+    // are clamped to 1.
+    const std::string where = what + " KHR_materials_ior ior";
+    const double value = numberMember(ref_, *ior, "ior", 1.5, where);
+    material.ior = value == 0.0 ? 0.0f : factorIn(ref_, value, 1.0f, FLT_MAX, where, notes_);
+  }
+  if (const tinygltf::Value* specular = extension("KHR_materials_specular")) {
+    const std::string where = what + " KHR_materials_specular";
+    material.specularFactor =
+        factorIn(ref_, numberMember(ref_, *specular, "specularFactor", 1.0, where), 0.0f, 1.0f,
+                 where + " specularFactor", notes_);
+    if (specular->Has("specularColorFactor")) {
+      const tinygltf::Value& colour = specular->Get("specularColorFactor");
+      if (!colour.IsArray() || colour.ArrayLen() != 3)
+        throw ref_.fail(where + " specularColorFactor does not have 3 numbers");
+      for (int c = 0; c < 3; ++c) {
+        if (!colour.Get(c).IsNumber())
+          throw ref_.fail(where + " specularColorFactor is not 3 numbers");
+        material.specularColorFactor[c] = factorIn(ref_, colour.Get(c).GetNumberAsDouble(), 0.0f,
+                                                   FLT_MAX, where + " specularColorFactor", notes_);
+      }
+    }
+    if (specular->Has("specularTexture"))
+      material.specular = extensionTexture(specular->Get("specularTexture"),
+                                           where + " specularTexture", TextureUse::AlphaOnly);
+    if (specular->Has("specularColorTexture"))
+      material.specularColor =
+          extensionTexture(specular->Get("specularColorTexture"), where + " specularColorTexture",
+                           TextureUse::Colour);
+  }
+  if (extension("KHR_materials_unlit")) material.unlit = true;
 }
 
-int MaterialTable::sceneTexture(int gltfTexture, const std::string& what) {
+MaterialTexture MaterialTable::materialTexture(int index, int texCoord,
+                                               const tinygltf::Value* transform,
+                                               const std::string& what, TextureUse use) {
+  MaterialTexture out;
+  out.texture = sceneTexture(index, what, use);
+  if (transform) out.transform = textureTransform(ref_, *transform, what, texCoord);
+  if (texCoord == 0 || texCoord == 1) {
+    out.texCoord = texCoord;
+  } else {
+    notes_.push_back(ref_.note(what + " reads TEXCOORD_" + std::to_string(texCoord) +
+                               ", which is not supported; using TEXCOORD_0"));
+  }
+  return out;
+}
+
+MaterialTexture MaterialTable::extensionTexture(const tinygltf::Value& info,
+                                                const std::string& what, TextureUse use) {
+  if (!info.IsObject()) throw ref_.fail(what + " is not an object");
+  if (!info.Has("index") || !info.Get("index").IsInt())
+    throw ref_.fail(what + " has no integer index");
+  int texCoord = 0;
+  if (info.Has("texCoord")) {
+    if (!info.Get("texCoord").IsInt() || info.Get("texCoord").GetNumberAsInt() < 0)
+      throw ref_.fail(what + " texCoord is not a non-negative integer");
+    texCoord = info.Get("texCoord").GetNumberAsInt();
+  }
+  const tinygltf::Value* transform = nullptr;
+  if (info.Has("extensions") && info.Get("extensions").Has("KHR_texture_transform"))
+    transform = &info.Get("extensions").Get("KHR_texture_transform");
+  return materialTexture(info.Get("index").GetNumberAsInt(), texCoord, transform, what, use);
+}
+
+PrimitiveNeeds MaterialTable::needsOf(int sceneMaterialIndex) const {
+  PrimitiveNeeds needs;
+  if (sceneMaterialIndex < 0) return needs;
+  const Material& material = materials_[std::size_t(sceneMaterialIndex)];
+  if (material.baseColorTexture >= 0) needs.texcoordSets[material.baseColorTexCoord] = true;
+  for (const MaterialTexture* texture :
+       {&material.metallicRoughness, &material.normal, &material.occlusion, &material.emissive,
+        &material.specular, &material.specularColor}) {
+    if (texture->present()) needs.texcoordSets[texture->texCoord] = true;
+  }
+  if (material.normal.present()) needs.normalMapSet = material.normal.texCoord;
+  return needs;
+}
+
+int MaterialTable::sceneTexture(int gltfTexture, const std::string& what, TextureUse use) {
   const auto& textures = ref_.model.textures;
   if (gltfTexture < 0 || std::size_t(gltfTexture) >= textures.size()) {
     throw ref_.fail(what + " refers to texture " + std::to_string(gltfTexture) +
                     ", which does not exist");
   }
-  if (const auto known = textureOf_.find(gltfTexture); known != textureOf_.end()) {
+  if (const auto known = textureOf_.find({gltfTexture, use}); known != textureOf_.end()) {
     return known->second;
   }
   const tinygltf::Texture& texture = textures[std::size_t(gltfTexture)];
@@ -215,15 +366,15 @@ int MaterialTable::sceneTexture(int gltfTexture, const std::string& what) {
     // Only an extension (e.g. KHR_texture_basisu) gives this texture an image.
     notes_.push_back(ref_.note("texture " + std::to_string(gltfTexture) +
                                " has no glTF 2.0 image source; " + what + " drawn untextured"));
-    textureOf_[gltfTexture] = -1;
+    textureOf_[{gltfTexture, use}] = -1;
     return -1;
   }
   if (texture.source < 0 || std::size_t(texture.source) >= ref_.model.images.size()) {
     throw ref_.fail("texture " + std::to_string(gltfTexture) + " refers to image " +
                     std::to_string(texture.source) + ", which does not exist");
   }
-  textures_.push_back({texture.source, samplerState(ref_, texture.sampler)});
-  textureOf_[gltfTexture] = int(textures_.size()) - 1;
+  textures_.push_back({texture.source, samplerState(ref_, texture.sampler), use, gltfTexture});
+  textureOf_[{gltfTexture, use}] = int(textures_.size()) - 1;
   return int(textures_.size()) - 1;
 }
 
@@ -303,7 +454,8 @@ void MaterialTable::chargeDecode(int imageIndex) const {
               std::uint64_t(width) * height * sizeof(float) * 4);
 }
 
-std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFormat& storage,
+std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, ImageColour colour,
+                                                        TexelFormat& storage,
                                                         const Executor& executor) const {
   const std::string what = imageName(imageIndex);
   const ByteRange bytes = encodedImage(imageIndex);
@@ -326,8 +478,8 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFor
   int bits = 8;
   Image image;
   try {
-    image = png ? decodePng(bytes.data, std::size_t(bytes.size), what, &bits, &executor)
-                : decodeJpeg(bytes.data, std::size_t(bytes.size), what, &executor);
+    image = png ? decodePng(bytes.data, std::size_t(bytes.size), what, &bits, &executor, colour)
+                : decodeJpeg(bytes.data, std::size_t(bytes.size), what, &executor, colour);
   } catch (const Error& e) {
     throw ref_.fail(e.what());
   }
@@ -336,31 +488,53 @@ std::shared_ptr<const Image> MaterialTable::decodeImage(int imageIndex, TexelFor
 }
 
 void MaterialTable::finish(Scene& scene) {
-  std::vector<int> imageIndices;
-  for (const PendingTexture& texture : textures_) imageIndices.push_back(texture.image);
-  const std::set<int> unique(imageIndices.begin(), imageIndices.end());
-  imageIndices.assign(unique.begin(), unique.end());
+  // Each pending texture's decode: a texture read for its alpha only (alpha
+  // is linear in both decodes) takes its image's sRGB decode when another use
+  // needs that one anyway, else the linear one.
+  std::set<int> srgbImages;
+  for (const PendingTexture& texture : textures_)
+    if (texture.use == TextureUse::Colour) srgbImages.insert(texture.image);
+  const auto colourOf = [&](const PendingTexture& texture) {
+    if (texture.use == TextureUse::Colour) return ImageColour::Srgb;
+    if (texture.use == TextureUse::Data) return ImageColour::Linear;
+    return srgbImages.count(texture.image) ? ImageColour::Srgb : ImageColour::Linear;
+  };
+  // Pending textures that came out the same (glTF texture, decode) become one
+  // scene texture, in order of first use; materials are renumbered to match.
+  std::map<std::pair<int, ImageColour>, int> sceneIndexOf;
+  std::vector<int> renumbered(textures_.size());
+  std::vector<std::size_t> kept;  // pending index of each scene texture
+  std::set<std::pair<int, ImageColour>> imageKeys;
+  for (std::size_t i = 0; i < textures_.size(); ++i) {
+    const ImageColour colour = colourOf(textures_[i]);
+    const auto [known, added] =
+        sceneIndexOf.try_emplace({textures_[i].gltfTexture, colour}, int(kept.size()));
+    if (added) kept.push_back(i);
+    renumbered[i] = known->second;
+    imageKeys.insert({textures_[i].image, colour});
+  }
+  const std::vector<std::pair<int, ImageColour>> images(imageKeys.begin(), imageKeys.end());
 
   // Each image's decoded size, from its header, against the budget before
   // any is decoded (decoding runs in parallel; charging in image order keeps
   // the message the same every run).
-  for (const int image : imageIndices) chargeDecode(image);
+  for (const auto& image : images) chargeDecode(image.first);
   // PNG/JPEG decoding dominates load time for textured models: one task per
-  // image. Errors are kept per image and the first in index order is thrown,
-  // so the message does not depend on scheduling.
-  std::vector<std::shared_ptr<const Image>> images(imageIndices.size());
-  std::vector<TexelFormat> storage(imageIndices.size(), TexelFormat::Rgba32F);
-  std::vector<std::string> errors(imageIndices.size());
+  // image and decode. Errors are kept per image and the first in index order
+  // is thrown, so the message does not depend on scheduling.
+  std::vector<std::shared_ptr<const Image>> decoded(images.size());
+  std::vector<TexelFormat> storage(images.size(), TexelFormat::Rgba32F);
+  std::vector<std::string> errors(images.size());
   const Executor serial(1);
   const Executor& executor = ref_.executor ? *ref_.executor : serial;
-  executor.parallelFor(imageIndices.size(), 1, [&](std::size_t begin, std::size_t end) {
+  executor.parallelFor(images.size(), 1, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       try {
-        images[i] = decodeImage(imageIndices[i], storage[i], executor);
+        decoded[i] = decodeImage(images[i].first, images[i].second, storage[i], executor);
       } catch (const Error& e) {
         errors[i] = e.what();
       } catch (const std::exception& e) {  // e.g. bad_alloc for a huge image
-        errors[i] = ref_.fail("image " + std::to_string(imageIndices[i]) + ": " + e.what()).what();
+        errors[i] = ref_.fail("image " + std::to_string(images[i].first) + ": " + e.what()).what();
       }
     }
   });
@@ -368,13 +542,24 @@ void MaterialTable::finish(Scene& scene) {
     if (!error.empty()) throw Error(error);
   }
 
-  std::map<int, std::size_t> slotOf;
-  for (std::size_t i = 0; i < imageIndices.size(); ++i) slotOf[imageIndices[i]] = i;
+  std::map<std::pair<int, ImageColour>, std::size_t> slotOf;
+  for (std::size_t i = 0; i < images.size(); ++i) slotOf[images[i]] = i;
   scene.textures.clear();
-  for (const PendingTexture& texture : textures_) {
-    const std::size_t slot = slotOf.at(texture.image);
+  for (const std::size_t pending : kept) {
+    const PendingTexture& texture = textures_[pending];
+    const std::size_t slot = slotOf.at({texture.image, colourOf(texture)});
     scene.textures.push_back(
-        std::make_shared<const Texture>(images[slot], texture.sampler, storage[slot]));
+        std::make_shared<const Texture>(decoded[slot], texture.sampler, storage[slot]));
+  }
+  const auto renumber = [&](int& index) {
+    if (index >= 0) index = renumbered[std::size_t(index)];
+  };
+  for (Material& material : materials_) {
+    renumber(material.baseColorTexture);
+    for (MaterialTexture* texture :
+         {&material.metallicRoughness, &material.normal, &material.occlusion, &material.emissive,
+          &material.specular, &material.specularColor})
+      renumber(texture->texture);
   }
   scene.materials = std::move(materials_);
 }

@@ -1,7 +1,9 @@
 // One glTF mesh primitive → one Mesh: attributes decoded through the checked
 // accessor reader, indices validated against the vertex count, and strips and
 // fans expanded to triangle lists with the winding glTF 2.0 §3.7.2.1 defines;
-// skin influences (JOINTS_n, WEIGHTS_n) and morph targets read and checked.
+// skin influences (JOINTS_n, WEIGHTS_n) and morph targets read and checked;
+// TANGENT read, or MikkTSpace tangents generated (scene/tangent_space.h),
+// where the material has a normal map.
 #include <tiny_gltf.h>
 
 #include <cstring>
@@ -9,6 +11,7 @@
 #include <optional>
 
 #include "scene/gltf_internal.h"
+#include "scene/tangent_space.h"
 
 namespace quadra::gltf {
 
@@ -171,17 +174,24 @@ void readVertexAttributes(const PrimitiveReader& reader, const PrimitiveNeeds& n
       out.colors = toVectors<glm::vec4>(flat);
     }
   }
-  const int set = needs.texcoordSet;
-  if (set < 0) return;  // no material reads texture coordinates
-  const std::string name = "TEXCOORD_" + std::to_string(set);
-  if (const auto texcoord = reader.attribute(name.c_str())) {
-    out.texcoords[set] =
-        toVectors<glm::vec2>(reader.read(name.c_str(), *texcoord, 2, 2, vertexCount));
-  } else {
-    // The renderer may rely on a textured material finding its coordinates.
-    notes.push_back(reader.ref.note(reader.where + ": its material reads " + name +
-                                    ", which it does not have; using (0, 0)"));
-    out.texcoords[set].assign(vertexCount, glm::vec2(0.0f));
+  for (int set = 0; set < 2; ++set) {
+    if (!needs.texcoordSets[set]) continue;  // no texture of the material reads it
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    if (const auto texcoord = reader.attribute(name.c_str())) {
+      out.texcoords[set] =
+          toVectors<glm::vec2>(reader.read(name.c_str(), *texcoord, 2, 2, vertexCount));
+    } else {
+      // The renderer may rely on a textured material finding its coordinates.
+      notes.push_back(reader.ref.note(reader.where + ": its material reads " + name +
+                                      ", which it does not have; using (0, 0)"));
+      out.texcoords[set].assign(vertexCount, glm::vec2(0.0f));
+    }
+  }
+  if (needs.normalMapSet < 0) return;  // tangents serve normal maps only
+  if (const auto tangent = reader.attribute("TANGENT")) {
+    // VEC4: xyz the tangent, w the bitangent's sign (float, or normalized
+    // byte or short under KHR_mesh_quantization, which the reader decodes).
+    out.tangents = toVectors<glm::vec4>(reader.read("TANGENT", *tangent, 4, 4, vertexCount));
   }
 }
 
@@ -233,7 +243,8 @@ void readSkinAttributes(const PrimitiveReader& reader, std::uint64_t vertexCount
 // glTF 2.0 §3.7.2.2: each target's deltas for the attributes the mesh keeps
 // (POSITION, NORMAL, the TEXCOORD_n its material reads, COLOR_0), each of
 // the vertex count. A target may not move an attribute the primitive lacks.
-// TANGENT and other sets are not drawn, so their deltas are not read.
+// TANGENT deltas (VEC3) are read where TANGENT is; other sets are not drawn,
+// so their deltas are not read.
 void readMorphTargets(const PrimitiveReader& reader, const PrimitiveNeeds& needs,
                       std::uint64_t vertexCount, Mesh& out) {
   const ModelRef& ref = reader.ref;
@@ -272,9 +283,12 @@ void readMorphTargets(const PrimitiveReader& reader, const PrimitiveNeeds& needs
         } else {
           target.colors = toVectors<glm::vec4>(flat);
         }
-      } else if (needs.texcoordSet >= 0 &&
-                 name == "TEXCOORD_" + std::to_string(needs.texcoordSet)) {
-        target.texcoords[needs.texcoordSet] = toVectors<glm::vec2>(deltas(2));
+      } else if (name == "TEXCOORD_0" && needs.texcoordSets[0]) {
+        target.texcoords[0] = toVectors<glm::vec2>(deltas(2));
+      } else if (name == "TEXCOORD_1" && needs.texcoordSets[1]) {
+        target.texcoords[1] = toVectors<glm::vec2>(deltas(2));
+      } else if (name == "TANGENT" && !out.tangents.empty()) {
+        target.tangents = toVectors<glm::vec3>(deltas(3));
       } else {
         // Checked like any attribute, even where not drawn.
         viewAccessor(ref, accessor, reader.where + " " + what);
@@ -324,6 +338,9 @@ bool buildMesh(const ModelRef& ref, int meshIndex, int primitiveIndex, const Pri
   readVertexAttributes(reader, needs, vertexCount, out, notes);
   readSkinAttributes(reader, vertexCount, out);
   readMorphTargets(reader, needs, vertexCount, out);
+  // glTF 2.0 §3.7.2.1: without TANGENT a client should compute MikkTSpace
+  // tangents from the positions, normals and the normal map's coordinates.
+  if (needs.normalMapSet >= 0 && out.tangents.empty()) generateTangents(out, needs.normalMapSet);
   return true;
 }
 
