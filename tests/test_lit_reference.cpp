@@ -437,6 +437,72 @@ TEST(LitReference, DirectionalLightAndEmissionAndOcclusion) {
                 1e-6);
 }
 
+// A camera at (0, 5, 0) looking down (as topDown), or at (0, -5, 0) looking up.
+Camera orthographicAlongY(bool fromBelow) {
+  Camera camera = topDown();
+  if (fromBelow)
+    camera.world = glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 0, 1, 0), glm::vec4(0, -1, 0, 0),
+                             glm::vec4(0, -5, 0, 1));
+  return camera;
+}
+
+TEST(LitReference, NormalMapTiltsTheFrameAndBackFacesFlipIt) {
+  // A Lambertian double-sided plane (N = +Y, TANGENT +X with w = +-1, so
+  // B = w N x T = -w Z) whose normal map holds one texel: n_t tilted by 30
+  // degrees toward T or toward B. Lit by a directional light alone, its
+  // radiance is baseColor / pi x E x max(0, n.l) for n = T n_t.x + B n_t.y +
+  // N n_t.z, flipped with N, T and B seen from below.
+  const double tilt = 30.0 * kPi / 180;
+  struct Case {
+    glm::dvec3 local;  // n_t
+    float w;
+    bool fromBelow;
+    glm::dvec3 expectedNormal;
+  };
+  const double s = std::sin(tilt), c = std::cos(tilt);
+  const Case cases[] = {
+      {{s, 0, c}, 1.0f, false, {s, c, 0}},   {{0, s, c}, 1.0f, false, {0, c, -s}},
+      {{0, s, c}, -1.0f, false, {0, c, s}},  {{s, 0, c}, 1.0f, true, {-s, -c, 0}},
+      {{0, s, c}, -1.0f, true, {0, -c, -s}},
+  };
+  for (const Case& test : cases) {
+    Material material;
+    material.metallicFactor = 0.0f;
+    material.specularFactor = 0.0f;
+    material.doubleSided = true;
+    material.normal.texture = 0;
+    Scene scene = litPlaneScene(material, 4.0f);
+    scene.meshes[0].tangents.assign(4, glm::vec4(1, 0, 0, test.w));
+    auto texel = std::make_shared<Image>(1, 1);
+    for (int k = 0; k < 3; ++k) texel->rgba[std::size_t(k)] = float((test.local[k] + 1.0) / 2.0);
+    texel->rgba[3] = 1.0f;
+    scene.textures.push_back(std::make_shared<Texture>(texel, SamplerState{}));
+    // Light arriving along -l for l in each of a few directions.
+    for (const glm::dvec3 toLight : {glm::dvec3(0.5, 1, 0.2), glm::dvec3(-0.3, 1, -0.6),
+                                     glm::dvec3(0.4, -1, 0.3), glm::dvec3(0.1, -1, -0.5)}) {
+      const glm::dvec3 l = glm::normalize(toLight);
+      Light sun;
+      sun.type = Light::Type::Directional;
+      sun.intensity = 2.0f;
+      // The node's -Z turned onto -l: its rotation's columns, Z = l.
+      const glm::dvec3 z = l, x = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), z)),
+                       y = glm::cross(z, x);
+      sun.world = glm::mat4(glm::vec4(glm::vec3(x), 0), glm::vec4(glm::vec3(y), 0),
+                            glm::vec4(glm::vec3(z), 0), glm::vec4(0, 0, 0, 1));
+      scene.lights = {sun};
+      const LitReference reference(scene, orthographicAlongY(test.fromBelow), 4, 4, nullptr);
+      LitSettings settings;
+      settings.samplesPerAxis = 1;
+      const Image image = reference.render(settings).image;
+      const glm::dvec3 n = glm::normalize(test.expectedNormal);
+      const double expected = 1.0 / kPi * 2.0 * std::max(0.0, glm::dot(n, l));
+      EXPECT_NEAR(image.texel(1, 2)[0], expected, 1e-5)
+          << "w " << test.w << (test.fromBelow ? " below" : " above") << " l " << l.x << "," << l.y
+          << "," << l.z;
+    }
+  }
+}
+
 LitFrame renderSpheres(const LitSettings& settings, int width, int height) {
   static const EnvironmentImage sky = sunnySkyEnvironment(256, 128);
   static const ReferenceEnvironment environment(sky);

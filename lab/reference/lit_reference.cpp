@@ -13,6 +13,7 @@ namespace quadra::ref {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+constexpr double kMinimumNDotV = 1e-4;  // see hitRadiance
 
 double luminance(const glm::dvec3& c) {
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
@@ -562,6 +563,19 @@ glm::dvec4 LitReference::hitRadiance(const TracerHit& hit, const Ray& ray,
     }
   }
   if (!front) normal = -normal;
+  // An interpolated or mapped normal may face away from the viewer (near
+  // silhouettes of smooth-shaded meshes, under steep normal maps), where the
+  // BRDF is undefined and a mirror would read below its own horizon. The
+  // reference turns it toward v in the plane of n and v until n.v = 1e-4:
+  // grazing, its mirror direction continues the view ray, as a true
+  // silhouette's does.
+  if (const double nDotV = glm::dot(normal, v); nDotV < kMinimumNDotV) {
+    const glm::dvec3 across = normal - nDotV * v;
+    const double length = glm::length(across);
+    normal = length > 0.0 ? across / length * std::sqrt(1.0 - kMinimumNDotV * kMinimumNDotV) +
+                                kMinimumNDotV * v
+                          : v;
+  }
 
   BrdfParameters m;
   m.baseColor = glm::dvec3(surface);
@@ -605,11 +619,14 @@ LitFrame LitReference::render(const LitSettings& settings) const {
   LitFrame frame;
   frame.image = tracer_.integrate(s * s, [&](int x, int y, int k, std::vector<TracerHit>& scratch) {
     // Everything random about a pixel follows from the seed and its position.
+    // Its sub-samples are the first S^2 points of a scrambled (0, 2)-sequence
+    // over its square: stratified along every elementary interval (S^2 rows,
+    // S^2 columns, S x S squares, ...), which edges of any slope, silhouettes
+    // and the horizon seen in a mirror resolve better than jittered strata.
     const std::uint64_t pixel =
         hashCombine(hashCombine(settings.seed, std::uint64_t(x)), std::uint64_t(y));
-    const std::uint64_t jitter = hashCombine(pixel, 0x10000u + std::uint64_t(k));
-    const glm::dvec2 window = ReferenceTracer::stratumPoint(
-        x, y, k, s, {unitOf(std::uint32_t(jitter)), unitOf(std::uint32_t(jitter >> 32))});
+    const glm::dvec2 window =
+        glm::dvec2(x, y) + sobolPoint(std::uint32_t(k), hashCombine(pixel, 3));
     int surface = -1;
     glm::dvec4 colour = tracer_.shadeWith(
         window, scratch,

@@ -122,7 +122,7 @@ glm::dvec3 environmentIntegral(const ReferenceEnvironment& environment, const Br
 enum class LitBackground : std::uint8_t { Environment, Colour };
 
 struct LitSettings {
-  int samplesPerAxis = 4;  // S: S x S sub-pixel rays, each jittered in its stratum
+  int samplesPerAxis = 4;  // S: S x S sub-pixel rays (a scrambled Sobol net over the pixel)
   EnvironmentSampling sampling;
   std::uint32_t seed = 1;
   bool lights = true;  // the scene's KHR_lights_punctual lights
@@ -146,9 +146,12 @@ class LitReference {
   LitFrame render(const LitSettings& settings) const;
 
   // The radiance leaving the hit toward the ray's origin (LIGHTING.md "The
-  // light"; the unlit colour for KHR_materials_unlit), with the environment
-  // term from block `block` of the sequences of `scramble`; alpha is the
-  // surface's.
+  // light"; the unlit colour for KHR_materials_unlit). Where LIGHTING.md is
+  // silent: a shading normal with n.v below 1e-4 is turned toward v, in the
+  // plane of n and v, to n.v = 1e-4; without TANGENT a normal map is not
+  // read; B = w N x T in world space (a mirroring instance matrix does not
+  // flip it, as the Sample Viewer does). The environment term is estimated
+  // from block `block` of the sequences of `scramble`; alpha is the surface's.
   glm::dvec4 hitRadiance(const TracerHit& hit, const Ray& ray, const glm::dvec4& surface,
                          const LitSettings& settings, std::uint64_t scramble,
                          std::uint32_t block) const;
