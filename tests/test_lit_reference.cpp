@@ -503,6 +503,39 @@ TEST(LitReference, NormalMapTiltsTheFrameAndBackFacesFlipIt) {
   }
 }
 
+TEST(LitReference, IorSpecularAndUnlit) {
+  // KHR_materials_ior and _specular: f0 = min(((ior - 1) / (ior + 1))^2 x
+  // specularColor, 1) x specular, f90 = specular.
+  glm::dvec3 f0;
+  double f90 = 0;
+  dielectricFresnel(2.0, glm::dvec3(1.0, 0.5, 20.0), 0.5, f0, f90);
+  EXPECT_NEAR(f0.r, 0.5 / 9, 1e-15);
+  EXPECT_NEAR(f0.g, 0.25 / 9, 1e-15);
+  EXPECT_NEAR(f0.b, 0.5, 1e-15);  // clamped to 1 before the weight
+  EXPECT_EQ(f90, 0.5);
+  // A dielectric mirror seen head-on reflects f0 of the environment; at
+  // grazing angles f90.
+  BrdfParameters m;
+  m.metallic = 0.0;
+  m.alpha = 0.0;
+  m.dielectricF0 = f0;
+  m.dielectricF90 = f90;
+  EXPECT_NEAR(mirrorReflectance(m, {0, 0, 1}, {0, 0, 1}).g, f0.g, 1e-15);
+  EXPECT_NEAR(mirrorReflectance(m, {0, 0, 1}, glm::normalize(glm::dvec3(1, 0, 1e-9))).g, 0.5, 1e-8);
+  // KHR_materials_unlit shows the base colour whatever the light.
+  Material unlit;
+  unlit.unlit = true;
+  unlit.baseColorFactor = {0.2f, 0.4f, 0.6f, 1.0f};
+  unlit.emissiveFactor = {1.0f, 1.0f, 1.0f};
+  const Scene scene = litPlaneScene(unlit, 4.0f);
+  const EnvironmentImage bright = uniformEnvironment(glm::vec3(5.0f));
+  const ReferenceEnvironment environment(bright);
+  LitSettings settings;
+  settings.samplesPerAxis = 1;
+  const Image image = LitReference(scene, topDown(), 4, 4, &environment).render(settings).image;
+  for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(image.texel(2, 2)[c], unlit.baseColorFactor[c]);
+}
+
 LitFrame renderSpheres(const LitSettings& settings, int width, int height) {
   static const EnvironmentImage sky = sunnySkyEnvironment(256, 128);
   static const ReferenceEnvironment environment(sky);
