@@ -168,8 +168,12 @@ ReferenceEnvironment::ReferenceEnvironment(const EnvironmentImage& image, double
   const double hat[3] = {0.125, 0.75, 0.125};
   std::vector<double> weights(std::size_t(w) * std::size_t(h));
   rowProbability_.assign(std::size_t(h), 0.0);
+  for (int j = 0; j <= h; ++j) cosBoundary_.push_back(std::cos(kPi * j / h));
+  for (int j = 0; j < h; ++j)
+    cellSolidAngle_.push_back(2.0 * kPi / w *
+                              (cosBoundary_[std::size_t(j)] - cosBoundary_[std::size_t(j) + 1]));
   for (int j = 0; j < h; ++j) {
-    const double solidAngle = 2.0 * kPi / w * (std::cos(kPi * j / h) - std::cos(kPi * (j + 1) / h));
+    const double solidAngle = cellSolidAngle_[std::size_t(j)];
     for (int i = 0; i < w; ++i) {
       glm::dvec3 mean(0.0);
       for (int b = -1; b <= 1; ++b)
@@ -230,13 +234,23 @@ glm::dvec3 ReferenceEnvironment::radianceAt(const glm::dvec2& uv) const {
   const double x = uv.x * w - 0.5, y = uv.y * h - 0.5;
   const double x0 = std::floor(x), y0 = std::floor(y);
   const double fx = x - x0, fy = y - y0;
-  const auto texel = [&](double i, double j) {
-    const float* t = image_.texel(int(wrapTexel(std::int64_t(i), w, WrapMode::Repeat)),
-                                  int(wrapTexel(std::int64_t(j), h, WrapMode::ClampToEdge)));
+  // u wraps, v clamps. A direction's coordinates lie in [0, 1], where
+  // columns -1 and w are the only ones to wrap; others take the general rule.
+  const auto column = [w](double i) {
+    if (i >= -1.0 && i <= w) {
+      const int c = int(i);
+      return c < 0 ? c + w : (c >= w ? c - w : c);
+    }
+    return int(wrapTexel(std::int64_t(i), w, WrapMode::Repeat));
+  };
+  const auto row = [h](double j) { return int(std::clamp(j, 0.0, double(h - 1))); };
+  const int i0 = column(x0), i1 = column(x0 + 1), j0 = row(y0), j1 = row(y0 + 1);
+  const auto texel = [&](int i, int j) {
+    const float* t = image_.texel(i, j);
     return glm::dvec3(t[0], t[1], t[2]);
   };
-  const glm::dvec3 top = (1 - fx) * texel(x0, y0) + fx * texel(x0 + 1, y0);
-  const glm::dvec3 bottom = (1 - fx) * texel(x0, y0 + 1) + fx * texel(x0 + 1, y0 + 1);
+  const glm::dvec3 top = (1 - fx) * texel(i0, j0) + fx * texel(i1, j0);
+  const glm::dvec3 bottom = (1 - fx) * texel(i0, j1) + fx * texel(i1, j1);
   return intensity_ * ((1 - fy) * top + fy * bottom);
 }
 
@@ -254,10 +268,10 @@ double ReferenceEnvironment::pdfAt(const glm::dvec2& uv) const {
   if (black()) return 0.0;
   int j = 0;
   const int i = cellOf(uv, j);
-  const int w = image_.width, h = image_.height;
-  const double solidAngle = 2.0 * kPi / w * (std::cos(kPi * j / h) - std::cos(kPi * (j + 1) / h));
+  const int w = image_.width;
   return rowProbability_[std::size_t(j)] *
-         cellProbability_[std::size_t(j) * std::size_t(w) + std::size_t(i)] / solidAngle;
+         cellProbability_[std::size_t(j) * std::size_t(w) + std::size_t(i)] /
+         cellSolidAngle_[std::size_t(j)];
 }
 
 glm::dvec3 ReferenceEnvironment::sample(const glm::dvec2& point, double& pdf,
@@ -274,7 +288,8 @@ glm::dvec3 ReferenceEnvironment::sample(const glm::dvec2& point, double& pdf,
   double fy = 0.0, fx = 0.0;
   const int j = pick(rowCdf_.data(), h, point.y, fy);
   const int i = pick(&cellCdf_[std::size_t(j) * (std::size_t(w) + 1)], w, point.x, fx);
-  const double cosTop = std::cos(kPi * j / h), cosBottom = std::cos(kPi * (j + 1) / h);
+  const double cosTop = cosBoundary_[std::size_t(j)];
+  const double cosBottom = cosBoundary_[std::size_t(j) + 1];
   const double cosTheta = cosTop - fy * (cosTop - cosBottom);
   const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
   const double u = (i + fx) / w;
@@ -283,7 +298,7 @@ glm::dvec3 ReferenceEnvironment::sample(const glm::dvec2& point, double& pdf,
   const double x = sinTheta * std::sin(phi), z = -sinTheta * std::cos(phi);
   pdf = rowProbability_[std::size_t(j)] *
         cellProbability_[std::size_t(j) * std::size_t(w) + std::size_t(i)] /
-        (2.0 * kPi / w * (cosTop - cosBottom));
+        cellSolidAngle_[std::size_t(j)];
   return {cosRotation_ * x + sinRotation_ * z, cosTheta, -sinRotation_ * x + cosRotation_ * z};
 }
 

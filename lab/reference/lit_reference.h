@@ -75,6 +75,8 @@ class ReferenceEnvironment {
   std::vector<double> rowCdf_;                            // height + 1 entries, 0 .. 1
   std::vector<double> cellCdf_;                           // per row, width + 1 entries, 0 .. 1
   std::vector<double> rowProbability_, cellProbability_;  // cellProbability_ within its row
+  std::vector<double> cosBoundary_;     // cos(pi j / height), j = 0 .. height: the rows' edges
+  std::vector<double> cellSolidAngle_;  // per row
 };
 
 // The BRDF's inputs at a point (LIGHTING.md "The material").
