@@ -426,7 +426,15 @@ glm::dvec4 ReferenceTracer::surfaceColour(const TracerHit& hit) const {
 }
 
 glm::dvec4 ReferenceTracer::shade(const glm::dvec2& window, std::vector<TracerHit>& scratch) const {
+  return shadeWith(window, scratch,
+                   [](const TracerHit&, const Ray&, const glm::dvec4& surface) { return surface; });
+}
+
+glm::dvec4 ReferenceTracer::shadeWith(const glm::dvec2& window, std::vector<TracerHit>& scratch,
+                                      const HitColour& colourOf, int* surface) const {
   hitsAt(window, scratch);
+  if (surface) *surface = -1;
+  const Ray ray = primaryRay(window);
   // Front to back "under" compositing, which equals back-to-front "over".
   glm::dvec4 result(0.0);
   const TracerHit* lastBlended = nullptr;
@@ -443,33 +451,111 @@ glm::dvec4 ReferenceTracer::shade(const glm::dvec2& window, std::vector<TracerHi
       if (sameSurface) continue;
       lastBlended = &hit;
     }
-    const glm::dvec4 premultiplied(glm::dvec3(colour) * colour.a, colour.a);
+    if (surface && *surface < 0) *surface = hit.instance;
+    const double alpha = colour.a;
+    colour = colourOf(hit, ray, colour);
+    const glm::dvec4 premultiplied(glm::dvec3(colour) * alpha, alpha);
     result += (1.0 - result.a) * premultiplied;
     if (mode != AlphaMode::Blend) break;  // an opaque surface hides what lies behind
   }
   return result;
 }
 
-Image ReferenceTracer::render(int samplesPerAxis) const {
-  QUADRA_CHECK(samplesPerAxis > 0);
+int ReferenceTracer::visibleSurface(const glm::dvec2& window,
+                                    std::vector<TracerHit>& scratch) const {
+  int surface = -1;
+  shadeWith(
+      window, scratch,
+      [](const TracerHit&, const Ray&, const glm::dvec4&) { return glm::dvec4(0.0); }, &surface);
+  return surface;
+}
+
+glm::dvec2 ReferenceTracer::stratumPoint(int x, int y, int k, int samplesPerAxis,
+                                         const glm::dvec2& within) {
+  const int i = k % samplesPerAxis, j = k / samplesPerAxis;
+  return {x + (i + within.x) / samplesPerAxis, y + (j + within.y) / samplesPerAxis};
+}
+
+Image ReferenceTracer::integrate(int samplesPerPixel, const PixelSample& sample) const {
+  QUADRA_CHECK(samplesPerPixel > 0);
   Image image(width_, height_);
-  const double weight = 1.0 / (double(samplesPerAxis) * samplesPerAxis);
+  const double weight = 1.0 / double(samplesPerPixel);
   tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& rows) {
     std::vector<TracerHit> scratch;
     for (int y = rows.begin(); y < rows.end(); ++y) {
       for (int x = 0; x < width_; ++x) {
         glm::dvec4 sum(0.0);
-        for (int j = 0; j < samplesPerAxis; ++j)
-          for (int i = 0; i < samplesPerAxis; ++i) {
-            const glm::dvec2 at(x + (i + 0.5) / samplesPerAxis, y + (j + 0.5) / samplesPerAxis);
-            sum += shade(at, scratch);
-          }
+        for (int k = 0; k < samplesPerPixel; ++k) sum += sample(x, y, k, scratch);
         float* out = image.texel(x, y);
         for (int c = 0; c < 4; ++c) out[c] = float(sum[c] * weight);
       }
     }
   });
   return image;
+}
+
+Image ReferenceTracer::render(int samplesPerAxis) const {
+  QUADRA_CHECK(samplesPerAxis > 0);
+  return integrate(samplesPerAxis * samplesPerAxis,
+                   [&](int x, int y, int k, std::vector<TracerHit>& scratch) {
+                     return shade(stratumPoint(x, y, k, samplesPerAxis, glm::dvec2(0.5)), scratch);
+                   });
+}
+
+std::vector<std::uint8_t> ReferenceTracer::interiorOf(const std::vector<int>& pixelSurfaces,
+                                                      int width, int height) {
+  QUADRA_CHECK(pixelSurfaces.size() == std::size_t(width) * std::size_t(height));
+  std::vector<std::uint8_t> interior(pixelSurfaces.size(), 0);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int own = pixelSurfaces[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+      bool one = own != kMixedSurface;
+      for (int dy = -1; dy <= 1 && one; ++dy)
+        for (int dx = -1; dx <= 1 && one; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
+          one = pixelSurfaces[std::size_t(ny) * std::size_t(width) + std::size_t(nx)] == own;
+        }
+      interior[std::size_t(y) * std::size_t(width) + std::size_t(x)] = one ? 1 : 0;
+    }
+  return interior;
+}
+
+std::vector<std::uint8_t> ReferenceTracer::interiorMask(int samplesPerAxis) const {
+  QUADRA_CHECK(samplesPerAxis > 0);
+  std::vector<int> surfaces(std::size_t(width_) * std::size_t(height_));
+  tbb::parallel_for(tbb::blocked_range<int>(0, height_), [&](const tbb::blocked_range<int>& rows) {
+    std::vector<TracerHit> scratch;
+    for (int y = rows.begin(); y < rows.end(); ++y)
+      for (int x = 0; x < width_; ++x) {
+        int seen = 0;
+        for (int k = 0; k < samplesPerAxis * samplesPerAxis; ++k) {
+          const int s =
+              visibleSurface(stratumPoint(x, y, k, samplesPerAxis, glm::dvec2(0.5)), scratch);
+          if (k == 0) seen = s;
+          if (s != seen) seen = kMixedSurface;
+        }
+        surfaces[std::size_t(y) * std::size_t(width_) + std::size_t(x)] = seen;
+      }
+  });
+  return interiorOf(surfaces, width_, height_);
+}
+
+std::array<glm::dvec3, 3> ReferenceTracer::viewCorners(const TracerHit& hit) const {
+  const PreparedInstance& instance = instances_[std::size_t(hit.instance)];
+  const std::uint32_t* corner = &instance.mesh->indices[std::size_t(hit.triangle) * 3];
+  return {instance.viewPositions[corner[0]], instance.viewPositions[corner[1]],
+          instance.viewPositions[corner[2]]};
+}
+
+bool ReferenceTracer::frontFacing(const TracerHit& hit, const Ray& ray) const {
+  const PreparedInstance& instance = instances_[std::size_t(hit.instance)];
+  const glm::dvec3 w = planeWeights(instance, std::size_t(hit.triangle), ray);
+  return (w.x + w.y + w.z < 0.0) != instance.mirrored;  // as testTriangle decides it
+}
+
+const Material* ReferenceTracer::materialOf(const TracerHit& hit) const {
+  return instances_[std::size_t(hit.instance)].material;
 }
 
 Image ReferenceTracer::renderPoints(const std::vector<glm::dvec2>& offsets) const {

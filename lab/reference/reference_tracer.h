@@ -22,7 +22,9 @@
 // scene's posed weights and joint matrices, applied in double).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -94,9 +96,59 @@ class ReferenceTracer {
   // reused between calls to avoid allocation.
   glm::dvec4 shade(const glm::dvec2& window, std::vector<TracerHit>& scratch) const;
 
+  // shade() with each hit's straight RGBA given by colour(hit, ray, its
+  // surfaceColour()) in place of surfaceColour(), called only for hits that
+  // count (MASK's test and the alpha kept or made 1 are as in shade(), on
+  // surfaceColour's alpha): the lit reference's colours composited alike.
+  // `surface` (when given) receives the instance of the first hit that
+  // counts, -1 where there is none.
+  using HitColour =
+      std::function<glm::dvec4(const TracerHit& hit, const Ray& ray, const glm::dvec4& surface)>;
+  glm::dvec4 shadeWith(const glm::dvec2& window, std::vector<TracerHit>& scratch,
+                       const HitColour& colour, int* surface = nullptr) const;
+  // The instance the ray through a window point sees first (as shadeWith's
+  // `surface`), -1 for none.
+  int visibleSurface(const glm::dvec2& window, std::vector<TracerHit>& scratch) const;
+
   // The whole frame: samplesPerAxis^2 stratified subsamples per pixel, box
   // filtered; premultiplied linear RGBA. Rows run in parallel.
   Image render(int samplesPerAxis) const;
+
+  // The pixel integration every render uses: each pixel (x, y) the mean of
+  // sample(x, y, k, scratch) over k in [0, samplesPerPixel), summed in k
+  // order, so the frame is the same whatever the thread count. Rows run in
+  // parallel (oneTBB); sample must be safe to call from several threads.
+  using PixelSample =
+      std::function<glm::dvec4(int x, int y, int k, std::vector<TracerHit>& scratch)>;
+  Image integrate(int samplesPerPixel, const PixelSample& sample) const;
+  // Sub-sample k (row-major) of pixel (x, y)'s samplesPerAxis^2 strata, at
+  // `within` ([0, 1)^2, 0.5: the stratum's centre) inside its stratum.
+  static glm::dvec2 stratumPoint(int x, int y, int k, int samplesPerAxis, const glm::dvec2& within);
+
+  // Pixels whose 3x3 neighbourhood sees one surface (LIGHTING.md "Scoring"):
+  // 1 where every sub-sample of the pixel and of its neighbours inside the
+  // frame sees the same instance first (visibleSurface), or all see nothing.
+  // A surface is an instance: an instance's silhouette over itself counts as
+  // interior. Row-major, width x height.
+  std::vector<std::uint8_t> interiorMask(int samplesPerAxis) const;
+  // The same from each pixel's surface: an instance when all its sub-samples
+  // saw that one, -1 when all saw none, kMixedSurface otherwise.
+  static constexpr int kMixedSurface = -2;
+  static std::vector<std::uint8_t> interiorOf(const std::vector<int>& pixelSurfaces, int width,
+                                              int height);
+
+  // The hit triangle's corners in view space, as posed, in index order.
+  std::array<glm::dvec3, 3> viewCorners(const TracerHit& hit) const;
+  // Whether the ray sees the hit triangle's front side (counter-clockwise,
+  // as the instance's matrix turns it): what single-sided materials keep and
+  // double-sided ones shade with their normals flipped when false.
+  bool frontFacing(const TracerHit& hit, const Ray& ray) const;
+  // The hit instance's material; nullptr: the glTF default material.
+  const Material* materialOf(const TracerHit& hit) const;
+  const Scene& scene() const { return scene_; }
+  const Camera& camera() const { return camera_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
 
   // Each pixel the mean of its rays through the given points (offsets in
   // pixels from its centre, y down): what a sampler with exact hits and

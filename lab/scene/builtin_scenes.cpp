@@ -91,6 +91,9 @@ Mesh makeGroundPlane(float halfSize, float period, int material) {
   return mesh;
 }
 
+}  // namespace
+
+// Declared in builtin_scenes.h (the lit test scenes use it too).
 // Unit sphere with `stacks` rings from the +Y pole and `slices` segments; u runs
 // around, v from the top pole (0) to the bottom (1). 2 * slices * (stacks - 1)
 // triangles: the pole rows have one triangle per segment.
@@ -132,6 +135,8 @@ Mesh makeSphere(int stacks, int slices, int material) {
   mesh.material = material;
   return mesh;
 }
+
+namespace {
 
 // ---- textures ---------------------------------------------------------------------
 

@@ -15,4 +15,8 @@ std::vector<std::string> builtinSceneNames();
 // measuring how a frame scales with its triangle count.
 Scene makeBuiltinScene(const std::string& name);
 
+// Unit sphere with `stacks` rings from the +Y pole and `slices` segments, with
+// normals and TEXCOORD_0 (u around, v from the top pole, 0, to the bottom, 1).
+Mesh makeSphere(int stacks, int slices, int material);
+
 }  // namespace quadra
