@@ -1,4 +1,4 @@
-// Tone maps (engine/shading/tone_map.h) against double-precision evaluations
+// Tone maps (engine/io/tone_map.h) against double-precision evaluations
 // of their published formulas, and their properties: PBR Neutral only offsets
 // colours below its compression threshold, ACES maps 0 to 0 and is
 // monotone, exposure scales by 2^EV, and the 8-bit row encoder is the sRGB
@@ -10,7 +10,7 @@
 #include <random>
 
 #include "io/srgb8.h"
-#include "shading/tone_map.h"
+#include "io/tone_map.h"
 
 namespace quadra {
 namespace {
