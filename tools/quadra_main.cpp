@@ -335,8 +335,11 @@ ToneMap pngToneMap(const RenderCommand& cmd) {
 Scene loadScene(RenderCommand& cmd) {
   Scene scene = loadSceneArgument(cmd.scenePath, cmd.load, "quadra");
   if (cmd.textureFormat) setTextureStorage(scene, *cmd.textureFormat);
-  if (cmd.settings.shading == Shading::Pbr)
-    cmd.settings.environment = loadEnvironmentArgument(cmd.lighting.environment, cmd.load);
+  if (cmd.settings.shading == Shading::Pbr) {
+    MemoryBudget budget(cmd.load.maxMemory, "--env");
+    cmd.settings.environment = std::make_shared<const EnvironmentImage>(
+        loadEnvironmentArgument(cmd.lighting.environment, budget));
+  }
   return scene;
 }
 

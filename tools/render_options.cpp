@@ -232,22 +232,6 @@ void addLightingOptions(CommandOptions& options, RenderSettings& settings,
                  lighting.toneMap);
 }
 
-std::shared_ptr<const EnvironmentImage> loadEnvironmentArgument(const std::string& environment,
-                                                                const LoadOptions& load) {
-  MemoryBudget budget(load.maxMemory, "--env");
-  if (environment.rfind(kBuiltinScenePrefix, 0) == 0) {
-    const std::string name = environment.substr(std::string(kBuiltinScenePrefix).size());
-    const std::vector<std::string>& names = builtinEnvironmentNames();
-    if (std::find(names.begin(), names.end(), name) == names.end()) {
-      std::string list;
-      for (const std::string& known : names) list += (list.empty() ? "" : ", ") + known;
-      throw UsageError("--env: unknown built-in environment '" + name + "' (built-ins: " + list +
-                       ")" + didYouMean(name, names));
-    }
-  }
-  return std::make_shared<const EnvironmentImage>(loadEnvironment(environment, budget));
-}
-
 void describeRender(const RenderSettings& settings, FrameMetadata& metadata) {
   metadata.strings = {{"quadraVersion", QUADRA_VERSION_STRING},
                       {"quadraRenderSettings", describeRenderSettings(settings)}};

@@ -19,6 +19,7 @@
 #include "io/tone_map.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
+#include "shading/builtin_environments.h"
 #include "shading/environment_source.h"
 
 namespace quadra {
@@ -67,21 +68,15 @@ std::string aovNames();
 
 // Pbr shading's light and output (LIGHTING.md, docs/lighting.md), as
 // `quadra render` and its lit peer read them: --env FILE|builtin:NAME (kept
-// here, loaded by loadEnvironmentArgument), --env-rotation DEG,
+// here, for loadEnvironmentArgument), --env-rotation DEG,
 // --env-intensity S, --background env|color|transparent, --background-color
 // R,G,B, --lights on|off, --exposure EV, --tonemap pbr-neutral|aces|none.
 struct LightingOptions {
-  static constexpr const char* kDefaultEnvironment = "builtin:studio";
-  std::string environment = kDefaultEnvironment;
-  std::optional<ToneMap> toneMap;  // unset: the shading's default
+  std::string environment = kDefaultEnvironment;  // shading/builtin_environments.h
+  std::optional<ToneMap> toneMap;                 // unset: the shading's default
 };
 void addLightingOptions(CommandOptions& options, RenderSettings& settings,
                         LightingOptions& lighting);
-// The environment --env names, decoded (a file within the load's memory
-// budget) or built in; an unknown builtin NAME is a UsageError with the
-// names closest to it.
-std::shared_ptr<const EnvironmentImage> loadEnvironmentArgument(const std::string& environment,
-                                                                const LoadOptions& load);
 
 // The settings that decide a frame's pixels, as "key=value" words for the
 // EXR header (FrameMetadata::strings); nothing that differs between runs
