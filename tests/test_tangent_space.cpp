@@ -199,22 +199,37 @@ TEST(TangentSpace, NormalTangentMirrorTestsStoredTangentsAreReproduced) {
   EXPECT_EQ(flipped.signsAgree, 0u);
 }
 
-// The loader's generated tangents for NormalTangentTest (which stores none)
-// are the corners' own, vertices split only where corners disagree.
+// The loader's generated tangents, on models none of whose normal-mapped
+// primitives store TANGENT, are their corners' own, vertices split only
+// where corners disagree.
 TEST(TangentSpace, TheLoaderGeneratesTangentsWhereAPrimitiveHasNone) {
-  const Scene scene = loadGltf(assetPath("NormalTangentTest"));
-  const tinygltf::Model json = parseReference(assetPath("NormalTangentTest"));
-  ASSERT_EQ(scene.meshes.size(), 1u);
-  const Mesh& mesh = scene.meshes[0];
-  ASSERT_EQ(mesh.tangents.size(), mesh.positions.size());
-  const std::size_t fileVertices = std::size_t(
-      json.accessors.at(std::size_t(json.meshes[0].primitives[0].attributes.at("POSITION"))).count);
-  EXPECT_GE(mesh.positions.size(), fileVertices);
-  const std::vector<glm::vec4> corners = mikkTSpaceCorners(mesh, 0);
-  for (std::size_t c = 0; c < corners.size(); ++c)
-    ASSERT_EQ(corners[c], mesh.tangents[mesh.indices[c]]) << c;
-  std::printf("NormalTangentTest: %zu vertices in the file, %zu after splitting\n", fileVertices,
-              mesh.positions.size());
+  for (const char* model : {"NormalTangentTest", "GlassVaseFlowers", "TextureTransformMultiTest"}) {
+    SCOPED_TRACE(model);
+    const Scene scene = loadGltf(assetPath(model));
+    const tinygltf::Model json = parseReference(assetPath(model));
+    std::size_t fileVertices = 0, loadedVertices = 0, generated = 0;
+    for (const tinygltf::Mesh& mesh : json.meshes)
+      for (const tinygltf::Primitive& p : mesh.primitives)
+        if (p.material >= 0 && json.materials[std::size_t(p.material)].normalTexture.index >= 0)
+          fileVertices += json.accessors.at(std::size_t(p.attributes.at("POSITION"))).count;
+    for (const Mesh& mesh : scene.meshes) {
+      if (mesh.material < 0) continue;
+      const Material& material = scene.materials[std::size_t(mesh.material)];
+      if (!material.normal.present()) continue;
+      ++generated;
+      loadedVertices += mesh.positions.size();
+      ASSERT_EQ(mesh.tangents.size(), mesh.positions.size());
+      // Copies of a vertex weld back into it, so the split mesh gives the
+      // same corners.
+      const std::vector<glm::vec4> corners = mikkTSpaceCorners(mesh, material.normal.texCoord);
+      for (std::size_t c = 0; c < corners.size(); ++c)
+        ASSERT_EQ(corners[c], mesh.tangents[mesh.indices[c]]) << c;
+    }
+    EXPECT_GT(generated, 0u);
+    EXPECT_GE(loadedVertices, fileVertices);
+    std::printf("%s: %zu normal-mapped primitives, %zu vertices in the file, %zu after splitting\n",
+                model, generated, fileVertices, loadedVertices);
+  }
 }
 
 }  // namespace
