@@ -261,7 +261,9 @@ TEST(LitFrames, PreparedEnvironmentIsKeptBetweenFrames) {
   metal.roughnessFactor = 0.2f;
   const Scene scene = sphereScene(metal);
   RenderSettings settings = litSettings(uvEnvironment(256, 128), 32, 32);
-  Renderer renderer({.threads = 2});
+  RendererConfig config;
+  config.threads = 2;
+  Renderer renderer(config);
   Frame frame;
   const FrameStats first = renderer.render(scene, lookingDownMinusZ(3.0f), settings, frame);
   const FrameStats second = renderer.render(scene, lookingDownMinusZ(3.0f), settings, frame);
