@@ -66,10 +66,7 @@ glm::vec4 VertexDeformer::tangent(std::size_t i, const glm::mat4& skin) const {
     }
   }
   if (!skinned_) return t;
-  // A mirroring skin turns B = w N x T the other way (as the vertex stage
-  // does for a mirroring world matrix).
-  const glm::mat3 m(skin);
-  return glm::vec4(m * glm::vec3(t), glm::determinant(m) < 0.0f ? -t.w : t.w);
+  return glm::vec4(glm::mat3(skin) * glm::vec3(t), t.w);
 }
 
 glm::vec2 VertexDeformer::texcoord(std::size_t i, int set) const {

@@ -41,7 +41,7 @@ class VertexDeformer {
   // not normalized. (0, 0, 1) when the mesh has no normals.
   glm::vec3 normal(std::size_t i, const glm::mat4& skin) const;
   // TANGENT morphed then skinned by skin's upper 3x3 (a tangent lies in the
-  // surface, so it moves as positions do), w kept; not normalized.
+  // surface, so it moves as positions do), w as stored; not normalized.
   // (1, 0, 0, 1) when the mesh has no tangents.
   glm::vec4 tangent(std::size_t i, const glm::mat4& skin) const;
   // TEXCOORD_set and COLOR_0 with the targets' deltas (morphs only move them).

@@ -117,9 +117,9 @@ void transformBlock(const DrawGeometry& g, const VertexDeformer& deformer,
       }
       const glm::vec3 view = glm::mat3(g.modelView) * glm::vec3(t);
       for (int k = 0; k < 3; ++k) attr[a.tangent + k] = view[k];
-      // B = w N x T holds in the mesh's space; a mirroring transform turns
-      // the cross product of the moved N and T the other way.
-      attr[a.tangent + 3] = g.mirrored ? -t.w : t.w;
+      // B = w N x T of the moved N and T, as LIGHTING.md reads it (and the
+      // Khronos Sample Viewer computes it): a mirroring matrix does not flip w.
+      attr[a.tangent + 3] = t.w;
     }
     if (a.texcoord1 >= 0) {
       glm::vec2 uv;
