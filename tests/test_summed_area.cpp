@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -292,6 +293,23 @@ TEST(SummedArea, PrecisionReportShowsTheFloatTableFailingAndTheFixedPointHolding
   std::filesystem::remove(out);
   EXPECT_EQ(fixedRows, 6);  // 2 textures x 3 box-size buckets
   EXPECT_GT(floatMax, 1e-5);
+}
+
+// The smallest texture the report takes (16 x 16) holds no box of the
+// largest bucket's sides (17-128): that bucket is left out, not sampled
+// from an empty range (which crashed).
+TEST(SummedArea, PrecisionReportOnTheSmallestTextureLeavesOutBoxesThatDoNotFit) {
+  const std::string out = (std::filesystem::temp_directory_path() /
+                           ("quadra_sat_small_" + std::to_string(getpid()) + ".txt"))
+                              .string();
+  const std::string command = std::string(QUADRA_CLI_PATH) +
+                              " report sat-precision --size 16 --boxes 20 --threads 1 >" + out;
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream in(out);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(out);
+  EXPECT_NE(text.find("| 3-16 |"), std::string::npos) << text;
+  EXPECT_EQ(text.find("| 17-"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -81,6 +81,7 @@ void measureTables(const char* name, const Image& image, int boxes, std::uint64_
   std::mt19937_64 rng(seed);
   const int buckets[][2] = {{1, 2}, {3, 16}, {17, 128}};
   for (const auto& bucket : buckets) {
+    if (bucket[0] > size) continue;  // no box of these sides fits the texture
     const int hi = std::min(bucket[1], size);
     std::uniform_int_distribution<int> side(bucket[0], hi), position(0, size - hi);
     ErrorStats naiveError, offsetError, fixedError;
