@@ -9,7 +9,7 @@
 #   check_include_graph.sh --self-test check that a planted back edge is caught
 set -euo pipefail
 
-order=(core simd window texture io scene vertex clip setup bin tile api)
+order=(core simd window texture io scene shading vertex clip setup bin tile api)
 
 rank_of() {
   local i
