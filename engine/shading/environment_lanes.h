@@ -68,17 +68,15 @@ QUADRA_LANE_INLINE void texelPairs(const std::uint8_t* const pair[L::kWidth], ty
   }
 }
 
-// Bilinear lookups, one cube level per lane: `level` the lane's level
-// (its faces of size size >> level), from `base` (the levels, offsets in
-// levelOffset) or, with levelOffset null, one level of face size `size`.
+// Bilinear lookups, one cube level per lane: `level` the lane's level, whose
+// faces have size size >> level and whose first texel is levelTexels[level].
 template <class L>
-QUADRA_LANE_INLINE RgbLanes<L> cubeBilinear(const float* base, const std::int64_t* levelOffset,
-                                            int size, const CubeCoords<L>& c,
-                                            const typename L::I& level) {
+QUADRA_LANE_INLINE RgbLanes<L> cubeBilinear(const std::uint8_t* const* levelTexels, int size,
+                                            const CubeCoords<L>& c, const typename L::I& level) {
   using F = typename L::F;
   using I = typename L::I;
   constexpr int W = L::kWidth;
-  constexpr int kTexel = EnvironmentView::kTexelFloats;
+  constexpr int kTexelBytes = EnvironmentView::kTexelFloats * int(sizeof(float));
   // Face size n = size x 2^-level, exactly, from the exponent bits.
   const F scale = simd::asFloat((I(127) - level) << 23);
   const F n = F(float(size)) * scale;
@@ -88,22 +86,14 @@ QUADRA_LANE_INLINE RgbLanes<L> cubeBilinear(const float* base, const std::int64_
   const F y = simd::min(simd::max((c.t + F(1.0f)) * half * n + half, F(0.0f)), n + half);
   const F x0 = simd::floor(x), y0 = simd::floor(y);
   const F ax = x - x0, ay = y - y0;
-  alignas(64) std::int32_t face[W], lv[W], ix[W], iy[W];
-  c.face.store_aligned(face);
-  level.store_aligned(lv);
-  simd::toInt(x0).store_aligned(ix);
-  simd::toInt(y0).store_aligned(iy);
-  // Byte pointers, the type the transposes read (not float pointers cast:
-  // GCC would not see the stores through the other pointer type).
+  // The texel index in the level, (face m + y0) m + x0 with m = n + 2: exact
+  // in float (at most 6 x 1026^2 < 2^24).
+  const F m = n + F(2.0f);
+  const I offset = simd::toInt((simd::toFloat(c.face) * m + y0) * m + x0);
   const std::uint8_t* top[W];
   const std::uint8_t* bottom[W];
-  for (int k = 0; k < W; ++k) {
-    const std::int64_t m = (size >> lv[k]) + 2;
-    const float* t = base + (levelOffset ? levelOffset[lv[k]] : 0) +
-                     (face[k] * m * m + std::int64_t(iy[k]) * m + ix[k]) * kTexel;
-    top[k] = reinterpret_cast<const std::uint8_t*>(t);
-    bottom[k] = reinterpret_cast<const std::uint8_t*>(t + m * kTexel);
-  }
+  simd::laneAddresses<L, kTexelBytes>(levelTexels, level, offset, top);
+  simd::laneAddresses<L, kTexelBytes>(levelTexels, level, offset + simd::toInt(m), bottom);
   F t00[3], t10[3], t01[3], t11[3];
   texelPairs<L>(top, t00, t10);
   texelPairs<L>(bottom, t01, t11);
@@ -142,9 +132,9 @@ QUADRA_LANE_INLINE RgbLanes<L> filteredRadiance(const EnvironmentView& env, cons
   const F frac = blendLevels ? lod - l0 : F(0.0f);
   const I level0 = simd::toInt(l0);
   const I level1 = simd::toInt(simd::min(l0 + F(1.0f), maxLevel));
-  const RgbLanes<L> a = cubeBilinear<L>(env.radiance, env.levelOffset, env.size, c, level0);
+  const RgbLanes<L> a = cubeBilinear<L>(env.levelTexels, env.size, c, level0);
   if (!simd::any(frac > F(0.0f))) return a;
-  const RgbLanes<L> b = cubeBilinear<L>(env.radiance, env.levelOffset, env.size, c, level1);
+  const RgbLanes<L> b = cubeBilinear<L>(env.levelTexels, env.size, c, level1);
   return {a.r + (b.r - a.r) * frac, a.g + (b.g - a.g) * frac, a.b + (b.b - a.b) * frac};
 }
 
@@ -152,7 +142,7 @@ QUADRA_LANE_INLINE RgbLanes<L> filteredRadiance(const EnvironmentView& env, cons
 template <class L>
 QUADRA_LANE_INLINE RgbLanes<L> irradiance(const EnvironmentView& env, const Vec3Lanes<L>& n) {
   using I = typename L::I;
-  return cubeBilinear<L>(env.irradiance, nullptr, env.irradianceSize, cubeProject<L>(n), I(0));
+  return cubeBilinear<L>(env.irradianceTexels, env.irradianceSize, cubeProject<L>(n), I(0));
 }
 
 // The albedo table (brdf_table.h) at (n.v, roughness), bilinear: A, B, S.

@@ -44,7 +44,11 @@ struct EnvironmentView {
   static constexpr int kTexelFloats = 4;
   const float* radiance = nullptr;            // every level, level 0 first
   const std::int64_t* levelOffset = nullptr;  // float index of each level's face 0
-  int size = 0;                               // level 0's face size (a power of two)
+  // Each level's first texel, 16 entries 64-byte aligned (simd::laneAddresses),
+  // and the irradiance level's the same way (entry 0).
+  const std::uint8_t* const* levelTexels = nullptr;
+  const std::uint8_t* const* irradianceTexels = nullptr;
+  int size = 0;  // level 0's face size (a power of two)
   int levelCount = 0;
   const float* irradiance = nullptr;  // (1/pi) x cosine-weighted integral, one level
   int irradianceSize = 0;

@@ -229,12 +229,17 @@ PreparedEnvironment::PreparedEnvironment(const EnvironmentImage& image,
     }
   }
   brdfTable_ = brdfAlbedoTable(executor);
+  for (int l = 0; l < levelCount_; ++l)
+    levelTexels_[l] = reinterpret_cast<const std::uint8_t*>(radiance_.data() + levelOffset_[l]);
+  irradianceTexels_[0] = reinterpret_cast<const std::uint8_t*>(irradiance_.data());
 }
 
 EnvironmentView PreparedEnvironment::view() const {
   EnvironmentView v;
   v.radiance = radiance_.data();
   v.levelOffset = levelOffset_.data();
+  v.levelTexels = levelTexels_;
+  v.irradianceTexels = irradianceTexels_;
   v.size = size_;
   v.levelCount = levelCount_;
   v.irradiance = irradiance_.data();

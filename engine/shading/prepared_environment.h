@@ -28,6 +28,9 @@ struct EnvironmentPlacement {
 
 class PreparedEnvironment {
  public:
+  // Holds pointers into itself: neither copied nor moved.
+  PreparedEnvironment(const PreparedEnvironment&) = delete;
+  PreparedEnvironment& operator=(const PreparedEnvironment&) = delete;
   // The image must hold width x height >= 1 finite non-negative texels.
   // Multithreaded over `executor`; the same bits for any thread count.
   PreparedEnvironment(const EnvironmentImage& image, const EnvironmentPlacement& placement,
@@ -51,6 +54,8 @@ class PreparedEnvironment {
   int size_ = 0, levelCount_ = 0;
   std::vector<float> radiance_;
   std::vector<std::int64_t> levelOffset_;
+  alignas(64) const std::uint8_t* levelTexels_[16] = {};
+  alignas(64) const std::uint8_t* irradianceTexels_[16] = {};
   std::vector<float> irradiance_;
   std::vector<float> fisSamples_;
   const float* brdfTable_ = nullptr;
