@@ -20,6 +20,8 @@
 namespace quadra {
 namespace {
 
+// The floors sit just under what was measured (docs/accuracy.md "Lit
+// frames"); 16 supersampled samples must reach issue 46's 40 dB.
 struct LitCase {
   const char* environment;
   int samples;
@@ -62,17 +64,17 @@ TEST_P(LitAccuracy, FrameIsCloseToTheIdeal) {
   EXPECT_GE(score.interior.psnr, c.minInterior);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Spheres, LitAccuracy,
-    ::testing::Values(LitCase{"sunny-sky", 1, ShadingRate::Pixel, 0.0, 0.0},
-                      LitCase{"studio", 1, ShadingRate::Pixel, 0.0, 0.0},
-                      LitCase{"studio", 16, ShadingRate::Sample, 0.0, 0.0}),
-    [](const ::testing::TestParamInfo<LitCase>& info) {
-      return std::string(info.param.environment[0] == 's' && info.param.environment[1] == 'u'
-                             ? "SunnySky"
-                             : "Studio") +
-             (info.param.samples > 1 ? "16Samples" : "1Sample");
-    });
+INSTANTIATE_TEST_SUITE_P(Spheres, LitAccuracy,
+                         ::testing::Values(LitCase{"sunny-sky", 1, ShadingRate::Pixel, 27.0, 33.0},
+                                           LitCase{"studio", 1, ShadingRate::Pixel, 31.5, 39.0},
+                                           LitCase{"studio", 16, ShadingRate::Sample, 40.0, 42.0}),
+                         [](const ::testing::TestParamInfo<LitCase>& info) {
+                           return std::string(info.param.environment[0] == 's' &&
+                                                      info.param.environment[1] == 'u'
+                                                  ? "SunnySky"
+                                                  : "Studio") +
+                                  (info.param.samples > 1 ? "16Samples" : "1Sample");
+                         });
 
 }  // namespace
 }  // namespace quadra
