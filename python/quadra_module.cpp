@@ -165,6 +165,37 @@ struct PyCamera {
   api::CameraData data;
 };
 
+// An environment for shading="pbr": keeping one (instead of passing an array
+// or a name to each render) keeps the renderer's preparation of it.
+struct PyEnvironment {
+  api::Environment environment;
+};
+
+// A C-contiguous float32 (H, W, 3) array of texels as an Environment (the
+// API copies them), or a ValueError naming `name`.
+api::Environment environmentOf(const char* name, const py::array& texels) {
+  if (!texels.dtype().is(py::dtype::of<float>()))
+    argumentError(std::string(name) + ": dtype " + dtypeName(texels) + ", expected float32");
+  if (texels.ndim() != 3 || texels.shape(2) != 3)
+    argumentError(std::string(name) + ": shape " + shapeText(texels) + ", expected (H, W, 3)");
+  const auto packed = py::array_t<float, py::array::c_style>::ensure(texels);
+  return api::Environment::fromTexels({packed.data(), std::size_t(packed.size())},
+                                      int(texels.shape(1)), int(texels.shape(0)));
+}
+
+// render's env: None (the renderer's builtin:studio), an Environment, a
+// source string (as --env) or a texel array.
+std::optional<api::Environment> environmentArgument(const py::object& env) {
+  if (env.is_none()) return std::nullopt;
+  if (py::isinstance<PyEnvironment>(env)) return env.cast<const PyEnvironment&>().environment;
+  if (py::isinstance<py::str>(env)) return api::Environment::load(env.cast<std::string>());
+  if (py::isinstance<py::array>(env)) return environmentOf("env", env.cast<py::array>());
+  argumentError(
+      "env: expected an Environment, a file name or builtin:NAME, or an (H, W, 3) "
+      "float32 array, got " +
+      std::string(py::str(py::type::of(env).attr("__name__"))));
+}
+
 api::TextureData textureData(const py::array& texels, bool srgb, const std::string& wrapU,
                              const std::string& wrapV, const std::string& filter,
                              py::array& packed) {
@@ -293,11 +324,43 @@ api::AovTargets aovArrays(const std::vector<std::string>& names, int width, int 
   return targets;
 }
 
+// render's lighting keywords, named as the CLI's options.
+struct LightingArguments {
+  py::object env;
+  float envRotation, envIntensity;
+  bool lights;
+  std::string background;
+  std::optional<std::array<float, 3>> backgroundColor;
+  float exposure;
+  std::optional<std::string> tonemap;
+};
+
+void applyLighting(const LightingArguments& a, api::RenderOptions& options) {
+  options.environment = environmentArgument(a.env);
+  options.environmentRotation = a.envRotation;
+  options.environmentIntensity = a.envIntensity;
+  options.punctualLights = a.lights;
+  options.background = choiceOf<api::Background>("background", a.background,
+                                                 {{"env", api::Background::Environment},
+                                                  {"color", api::Background::Color},
+                                                  {"transparent", api::Background::Transparent}});
+  if (a.backgroundColor)
+    options.clearColor = {(*a.backgroundColor)[0], (*a.backgroundColor)[1], (*a.backgroundColor)[2],
+                          1.0f};
+  options.exposure = a.exposure;
+  if (a.tonemap)
+    options.toneMap = choiceOf<api::ToneMap>("tonemap", *a.tonemap,
+                                             {{"pbr-neutral", api::ToneMap::PbrNeutral},
+                                              {"aces", api::ToneMap::Aces},
+                                              {"none", api::ToneMap::None}});
+}
+
 RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
                     const std::optional<PyCamera>& camera, int samples, const std::string& shading,
                     const std::array<float, 4>& clearColor, bool depth,
                     const std::vector<std::string>& aovs, std::optional<std::uint64_t> maxMemory,
-                    const std::optional<RenderResult>& out) {
+                    const std::optional<RenderResult>& out, const std::string& format,
+                    const LightingArguments& lighting) {
   // Checked before the arrays are made (the public API's own check, with
   // its limit, comes after a possibly huge allocation).
   if (width < 1 || height < 1 || width > 8192 || height > 8192)
@@ -308,17 +371,28 @@ RenderResult render(PyRenderer& self, PyScene& scene, int width, int height,
   options.clearColor = clearColor;
   if (maxMemory) options.maxMemory = *maxMemory;
   options.shading = choiceOf<api::Shading>(
-      "shading", shading, {{"unlit", api::Shading::Unlit}, {"lit", api::Shading::Lit}});
+      "shading", shading,
+      {{"unlit", api::Shading::Unlit}, {"lit", api::Shading::Lit}, {"pbr", api::Shading::Pbr}});
+  const api::PixelFormat pixelFormat = choiceOf<api::PixelFormat>(
+      "format", format,
+      {{"rgba32f", api::PixelFormat::Rgba32F}, {"rgba8srgb", api::PixelFormat::Rgba8Srgb}});
+  applyLighting(lighting, options);
   RenderResult result;
   const api::AovTargets aovTargets = aovArrays(aovs, width, height, out, result);
   if (camera) scene.forChange().setCamera(camera->data);
-  auto color = outputArray<float>(out, &RenderResult::color, {height, width, 4});
-  const api::Target target{.pixels = bytesOf(color),
-                           .width = width,
-                           .height = height,
-                           .rowStride = std::size_t(width) * 16,
-                           .format = api::PixelFormat::Rgba32F};
-  result.color = color;
+  api::Target target{.width = width,
+                     .height = height,
+                     .rowStride = std::size_t(width) * api::bytesPerPixel(pixelFormat),
+                     .format = pixelFormat};
+  if (pixelFormat == api::PixelFormat::Rgba32F) {
+    auto color = outputArray<float>(out, &RenderResult::color, {height, width, 4});
+    target.pixels = bytesOf(color);
+    result.color = std::move(color);
+  } else {
+    auto color = outputArray<std::uint8_t>(out, &RenderResult::color, {height, width, 4});
+    target.pixels = bytesOf(color);
+    result.color = std::move(color);
+  }
   std::optional<api::DepthTarget> depthTarget;
   if (depth) {
     auto depthArray = outputArray<float>(out, &RenderResult::depth, {height, width});
@@ -369,6 +443,40 @@ PYBIND11_MODULE(quadra, m) {
          const std::array<float, 3>& up) { return arrayOf(api::lookAt(eye, target, up)); },
       py::arg("eye"), py::arg("target"), py::arg("up") = std::array<float, 3>{0, 1, 0},
       "Camera-to-world (4, 4) float32 matrix of a camera at eye looking at target.");
+
+  py::class_<PyEnvironment>(
+      m, "Environment",
+      "The light of shading=\"pbr\": an equirectangular panorama of linear RGB radiance "
+      "(docs/lighting.md \"Environments\"). Environment(texels): an (H, W, 3) float32 array, "
+      "row 0 the top (+Y), the centre column facing -Z; Environment(source): builtin:NAME or a "
+      ".hdr or .exr file, as the CLI's --env. Checked and repaired as --env is (NaN and "
+      "negative values become 0). A renderer keeps its preparation of one Environment across "
+      "renders.")
+      .def(py::init([](const py::array& texels) {
+             return PyEnvironment{environmentOf("texels", texels)};
+           }),
+           py::arg("texels"))
+      .def(py::init([](const std::string& source, std::optional<std::uint64_t> maxMemory) {
+             return PyEnvironment{
+                 api::Environment::load(source, maxMemory.value_or(api::kDefaultMaxMemory))};
+           }),
+           py::arg("source"), py::kw_only(), py::arg("max_memory") = py::none())
+      .def_property_readonly("width", [](const PyEnvironment& e) { return e.environment.width(); })
+      .def_property_readonly("height",
+                             [](const PyEnvironment& e) { return e.environment.height(); })
+      .def_property_readonly("name", [](const PyEnvironment& e) { return e.environment.name(); })
+      .def_property_readonly(
+          "texels",
+          [](const PyEnvironment& e) {
+            const std::span<const float> texels = e.environment.texels();
+            py::array_t<float> array({e.environment.height(), e.environment.width(), 3});
+            std::memcpy(array.mutable_data(), texels.data(), texels.size_bytes());
+            return array;
+          },
+          "(H, W, 3) float32 copy of the texels as quadra lights with them")
+      .def_property_readonly(
+          "repaired_values", [](const PyEnvironment& e) { return e.environment.repairedValues(); },
+          "how many values (channels) the texel rule changed");
 
   py::class_<PyScene>(m, "Scene")
       .def(py::init<>())
@@ -525,14 +633,39 @@ PYBIND11_MODULE(quadra, m) {
            py::kw_only(), py::arg("threads") = 0)
       .def_property_readonly("threads",
                              [](const PyRenderer& r) { return r.renderer.threadCount(); })
-      .def("render", &render, py::arg("scene"), py::kw_only(), py::arg("width"), py::arg("height"),
-           py::arg("camera") = py::none(), py::arg("samples") = 1, py::arg("shading") = "unlit",
-           py::arg("clear_color") = std::array<float, 4>{0, 0, 0, 0}, py::arg("depth") = true,
-           py::arg("aovs") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
-           py::arg("out") = py::none(),
-           "Renders scene into new numpy arrays (no copy after the render). camera: sets the "
-           "scene's camera first (as scene.set_camera), else the scene's own is used. out: an "
-           "earlier RenderResult whose arrays are overwritten when of this size. aovs: names of "
-           "the CLI's --aov (N, P, uv, id, mask) whose arrays the result also holds. max_memory: "
-           "bytes the frame may hold (default 8 GiB), as the CLI's --max-memory.");
+      .def(
+          "render",
+          [](PyRenderer& self, PyScene& scene, int width, int height,
+             const std::optional<PyCamera>& camera, int samples, const std::string& shading,
+             const std::array<float, 4>& clearColor, bool depth,
+             const std::vector<std::string>& aovs, std::optional<std::uint64_t> maxMemory,
+             const std::optional<RenderResult>& out, const std::string& format,
+             const py::object& env, float envRotation, float envIntensity, bool lights,
+             const std::string& background,
+             const std::optional<std::array<float, 3>>& backgroundColor, float exposure,
+             const std::optional<std::string>& tonemap) {
+            return render(self, scene, width, height, camera, samples, shading, clearColor, depth,
+                          aovs, maxMemory, out, format,
+                          {env, envRotation, envIntensity, lights, background, backgroundColor,
+                           exposure, tonemap});
+          },
+          py::arg("scene"), py::kw_only(), py::arg("width"), py::arg("height"),
+          py::arg("camera") = py::none(), py::arg("samples") = 1, py::arg("shading") = "unlit",
+          py::arg("clear_color") = std::array<float, 4>{0, 0, 0, 0}, py::arg("depth") = true,
+          py::arg("aovs") = std::vector<std::string>{}, py::arg("max_memory") = py::none(),
+          py::arg("out") = py::none(), py::arg("format") = "rgba32f", py::arg("env") = py::none(),
+          py::arg("env_rotation") = 0.0f, py::arg("env_intensity") = 1.0f, py::arg("lights") = true,
+          py::arg("background") = "env", py::arg("background_color") = py::none(),
+          py::arg("exposure") = 0.0f, py::arg("tonemap") = py::none(),
+          "Renders scene into new numpy arrays (no copy after the render). camera: sets the "
+          "scene's camera first (as scene.set_camera), else the scene's own is used. out: an "
+          "earlier RenderResult whose arrays are overwritten when of this size. aovs: names of "
+          "the CLI's --aov (N, P, uv, id, mask) whose arrays the result also holds. max_memory: "
+          "bytes the frame may hold (default 8 GiB), as the CLI's --max-memory. shading: unlit, "
+          "lit or pbr. format: color as rgba32f (float32 radiance x 2^exposure) or rgba8srgb "
+          "(uint8, tone mapped, the CLI's PNG bytes). The CLI's render options, for pbr: env "
+          "(an Environment, a file or builtin:NAME, or an (H, W, 3) float32 array; default "
+          "builtin:studio), env_rotation, env_intensity, lights, background (env, color, "
+          "transparent), background_color (r, g, b), exposure (every shading), tonemap "
+          "(pbr-neutral, aces, none; default pbr-neutral for pbr, else none).");
 }

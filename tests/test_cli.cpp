@@ -33,7 +33,7 @@ TEST(Cli, StatsPrintEveryStageAsANumber) {
       "render builtin:showcase --width 96 --height 54 --frames 3 --stats --out " + png.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto stages = lineKeyValues(r.out, "quadra stages_ms ");
-  const char* const keys[] = {"load", "first_frame", "draws", "vertex",  "setup",
+  const char* const keys[] = {"load", "first_frame", "env",   "draws",   "vertex", "setup",
                               "bin",  "raster",      "shade", "resolve", "write"};
   EXPECT_EQ(stages.size(), std::size(keys)) << r.out;
   for (const char* key : keys) {

@@ -33,6 +33,7 @@
 #include "core/parallel.h"
 #include "io/image_io.h"
 #include "io/srgb8.h"
+#include "png_reader.h"
 #include "texture/image.h"
 #include "texture/texel_format.h"
 
@@ -390,32 +391,6 @@ TEST_F(ImageFiles, ReadImageTreatsLuminanceOnlyExrAsGrey) {
 }
 
 // ---- PNG out ----------------------------------------------------------------
-
-struct Rgba8 {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> bytes;
-};
-
-// libpng's own simplified reader; an 8-bit sRGB file comes back code for code.
-Rgba8 readPngDirectly(const std::string& path) {
-  png_image image;
-  std::memset(&image, 0, sizeof(image));
-  image.version = PNG_IMAGE_VERSION;
-  Rgba8 out;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    ADD_FAILURE() << image.message;
-    return out;
-  }
-  EXPECT_EQ(image.format & PNG_FORMAT_FLAG_LINEAR, 0u);
-  image.format = PNG_FORMAT_RGBA;
-  out.width = int(image.width);
-  out.height = int(image.height);
-  out.bytes.resize(PNG_IMAGE_SIZE(image));
-  EXPECT_TRUE(png_image_finish_read(&image, nullptr, out.bytes.data(), 0, nullptr))
-      << image.message;
-  return out;
-}
 
 // Straight colours (some above 1, some negative) with alphas that include 0
 // and 1, stored premultiplied as the renderer does.

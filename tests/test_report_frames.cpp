@@ -48,8 +48,9 @@ RunResult runPeer(const std::string&) {
 ImageDifference renderBoth(const std::string& scene, const std::string& size,
                            const std::string& peerOptions = "") {
   const fs::path mine = tempPath("both_quadra.exr"), peer = tempPath("both_llvmpipe.exr");
-  const RunResult q = run("render " + scene + " " + size +
-                          " --derivatives quad --lod gl --threads 2 --out " + mine.string());
+  const RunResult q =
+      run("render " + scene + " " + size +
+          " --shading unlit --derivatives quad --lod gl --threads 2 --out " + mine.string());
   EXPECT_EQ(q.exitCode, 0) << q.err;
   const RunResult l = runPeer("render " + scene + " " + size + " " + peerOptions +
                               " --threads 2 --out " + peer.string());
@@ -148,8 +149,10 @@ TEST(LlvmpipePeer, TrilinearFramesAreNearerTheIdealThanLlvmpipes) {
     const std::string size = " --width 256 --height 144 --filter trilinear --threads 2 --out ";
     const fs::path mine = tempPath("ideal_quadra.exr"), gl = tempPath("ideal_gl.exr"),
                    peer = tempPath("ideal_llvmpipe.exr");
-    const double quadra = rmseOf(run("render " + scene + size + mine.string()), mine);
-    const double quadraGl = rmseOf(run("render " + scene + " --lod gl" + size + gl.string()), gl);
+    const double quadra =
+        rmseOf(run("render " + scene + " --shading unlit" + size + mine.string()), mine);
+    const double quadraGl =
+        rmseOf(run("render " + scene + " --shading unlit --lod gl" + size + gl.string()), gl);
     const double llvmpipe = rmseOf(runPeer("render " + scene + size + peer.string()), peer);
     std::printf(
         "[ %s 256x144, RMSE against the reference: quadra %.4f (--lod gl %.4f), "
@@ -273,8 +276,10 @@ TEST(ReportFrames, TakesTheSampleCountToBothRenderers) {
   EXPECT_NE(r.out.find("4 samples per pixel (quadra: --samples 4"), std::string::npos) << r.out;
   const Image quadra = readImage((dir / "frames" / "builtin-watertight.quadra.exr").string());
   const fs::path single = tempPath("report_single.exr");
-  ASSERT_EQ(
-      run("render builtin:watertight --width 64 --height 36 --out " + single.string()).exitCode, 0);
+  ASSERT_EQ(run("render builtin:watertight --shading unlit --width 64 --height 36 --out " +
+                single.string())
+                .exitCode,
+            0);
   EXPECT_LT(imageDifference(quadra, readImage(single.string())).psnr, 40.0)
       << "the report's frame is multisampled";
   if (kHavePeer) {

@@ -193,14 +193,14 @@ void addLightingOptions(CommandOptions& options, RenderSettings& settings,
   });
   options.value("--env-rotation", [&settings](const std::string& option, const std::string& value) {
     const double degrees = parseNumber(option, value);
-    if (!(std::fabs(degrees) <= 36000.0))
+    if (!(std::fabs(degrees) <= kMaxEnvironmentRotation))
       throw UsageError(option + ": '" + value + "' is out of range (-36000..36000 degrees)");
     settings.environmentRotation = float(degrees);
   });
   options.value("--env-intensity",
                 [&settings](const std::string& option, const std::string& value) {
                   const double scale = parseNumber(option, value);
-                  if (!(scale >= 0.0 && scale <= 1e9))
+                  if (!(scale >= 0.0 && scale <= kMaxEnvironmentIntensity))
                     throw UsageError(option + ": '" + value + "' must be in 0..1e9");
                   settings.environmentIntensity = float(scale);
                 });
@@ -220,7 +220,7 @@ void addLightingOptions(CommandOptions& options, RenderSettings& settings,
                  settings.punctualLights);
   options.value("--exposure", [&settings](const std::string& option, const std::string& value) {
     const double ev = parseNumber(option, value);
-    if (!(std::fabs(ev) <= 64.0))
+    if (!(std::fabs(ev) <= kMaxExposure))
       throw UsageError(option + ": '" + value + "' is out of range (-64..64 EV)");
     settings.exposure = float(ev);
   });

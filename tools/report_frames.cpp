@@ -275,7 +275,8 @@ int runFramesReport(const std::vector<std::string>& args) {
   const fs::path outDir(options.outDir), imageDir = outDir / "frames";
   std::error_code ec;
   const fs::path bin = executablePath().parent_path();
-  std::vector<Contender> contenders = {{"quadra", bin / "quadra", {}}};
+  // The peer draws quadra's unlit frame: quadra's default is pbr.
+  std::vector<Contender> contenders = {{"quadra", bin / "quadra", {"--shading", "unlit"}}};
   const fs::path peer = bin / "quadra-llvmpipe";
   const bool havePeer = fs::is_regular_file(peer, ec) && ::access(peer.c_str(), X_OK) == 0;
   if (havePeer)

@@ -20,6 +20,9 @@ struct quadra_scene {
 struct quadra_renderer {
   quadra::api::Renderer renderer;
 };
+struct quadra_environment {
+  quadra::api::Environment environment;
+};
 
 namespace {
 
@@ -78,7 +81,8 @@ static_assert(int(QUADRA_TEXTURE_RGBA32F) == int(api::TextureFormat::Rgba32F) &&
               int(QUADRA_FACTOR_ONE_MINUS_DST_ALPHA) == int(api::BlendFactor::OneMinusDstAlpha) &&
               int(QUADRA_ORTHOGRAPHIC) == int(api::CameraData::Projection::Orthographic) &&
               int(QUADRA_PIXEL_RGBA32F) == int(api::PixelFormat::Rgba32F) &&
-              int(QUADRA_SHADING_LIT) == int(api::Shading::Lit));
+              int(QUADRA_SHADING_PBR) == int(api::Shading::Pbr) &&
+              int(QUADRA_BACKGROUND_TRANSPARENT) == int(api::Background::Transparent));
 
 template <typename T>
 std::span<const T> span(const T* data, std::size_t count) {
@@ -132,11 +136,14 @@ class LiveHandles {
   };
   template <typename T>
   static int kindOf() {
-    return std::is_same_v<T, quadra_scene> ? 1 : 2;
+    return std::is_same_v<T, quadra_scene> ? 1 : std::is_same_v<T, quadra_renderer> ? 2 : 3;
   }
   template <typename T>
   static std::string notLive(const char* call) {
-    return std::string(call) + ": the " + (std::is_same_v<T, quadra_scene> ? "scene" : "renderer") +
+    const char* kind = std::is_same_v<T, quadra_scene>      ? "scene"
+                       : std::is_same_v<T, quadra_renderer> ? "renderer"
+                                                            : "environment";
+    return std::string(call) + ": the " + kind +
            " handle is not a live one (destroyed, or not made by quadra)";
   }
   mutable std::mutex mutex_;
@@ -187,10 +194,29 @@ api::AovTarget aovTarget(const CTarget& target) {
           .rowStride = target.row_stride};
 }
 
-// quadra_render and quadra_render_with, named `call` in their messages.
+// A C lighting as the C++ options' members of those names.
+void applyLighting(const quadra_lighting& l, const char* call, api::RenderOptions& o) {
+  if (l.environment) o.environment = liveHandles().get(l.environment, call).environment;
+  o.environmentRotation = l.environment_rotation;
+  o.environmentIntensity = l.environment_intensity;
+  o.punctualLights = l.punctual_lights != 0;
+  o.background = enumField<api::Background>(l.background, QUADRA_BACKGROUND_TRANSPARENT, "lighting",
+                                            "background");
+  o.exposure = l.exposure;
+  // The C enum's 0 is the default, which C++ states by leaving toneMap unset.
+  const auto toneMap =
+      enumField<quadra_tone_map>(l.tone_map, QUADRA_TONE_MAP_NONE, "lighting", "tone_map");
+  if (toneMap != QUADRA_TONE_MAP_DEFAULT) o.toneMap = api::ToneMap(int(toneMap) - 1);
+}
+static_assert(int(QUADRA_TONE_MAP_NONE) - 1 == int(api::ToneMap::None) &&
+              int(QUADRA_TONE_MAP_PBR_NEUTRAL) - 1 == int(api::ToneMap::PbrNeutral));
+
+// quadra_render, quadra_render_with and quadra_render_lit, named `call` in
+// their messages.
 quadra_status render(const char* call, quadra_renderer* renderer, const quadra_scene* scene,
                      const quadra_target* target, const quadra_depth_target* depth,
-                     const quadra_render_options* options, const quadra_aov_targets* aovs) {
+                     const quadra_render_options* options, const quadra_lighting* lighting,
+                     const quadra_aov_targets* aovs) {
   if (!renderer || !scene || !target) return missing(std::string(call) + ": an argument");
   if (!target->pixels) return missing("render target: pixels");
   if (depth && !depth->depth) return missing("depth target: depth");
@@ -217,12 +243,13 @@ quadra_status render(const char* call, quadra_renderer* renderer, const quadra_s
            .materialId = aovTarget(aovs->material_id)};
     api::RenderOptions o;
     if (options) {
-      o.shading = enumField<api::Shading>(options->shading, QUADRA_SHADING_LIT, "render options",
+      o.shading = enumField<api::Shading>(options->shading, QUADRA_SHADING_PBR, "render options",
                                           "shading");
       o.samples = options->samples;
       std::memcpy(o.clearColor.data(), options->clear_color, sizeof(options->clear_color));
       if (options->max_memory != 0) o.maxMemory = options->max_memory;
     }
+    if (lighting) applyLighting(*lighting, call, o);
     liveHandles()
         .get(renderer, call)
         .renderer.render(liveHandles().get(scene, call).scene, t, depth ? &d : nullptr, o,
@@ -442,14 +469,81 @@ void quadra_renderer_destroy(quadra_renderer* renderer) {
 
 quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
                             const quadra_target* target, const quadra_depth_target* depth) {
-  return render("quadra_render", renderer, scene, target, depth, nullptr, nullptr);
+  return render("quadra_render", renderer, scene, target, depth, nullptr, nullptr, nullptr);
 }
 
 quadra_status quadra_render_with(quadra_renderer* renderer, const quadra_scene* scene,
                                  const quadra_target* target, const quadra_depth_target* depth,
                                  const quadra_render_options* options,
                                  const quadra_aov_targets* aovs) {
-  return render("quadra_render_with", renderer, scene, target, depth, options, aovs);
+  return render("quadra_render_with", renderer, scene, target, depth, options, nullptr, aovs);
+}
+
+quadra_lighting quadra_lighting_defaults(void) {
+  const api::RenderOptions o;
+  return {.environment = nullptr,
+          .environment_rotation = o.environmentRotation,
+          .environment_intensity = o.environmentIntensity,
+          .punctual_lights = o.punctualLights ? 1 : 0,
+          .background = QUADRA_BACKGROUND_ENVIRONMENT,
+          .exposure = o.exposure,
+          .tone_map = QUADRA_TONE_MAP_DEFAULT};
+}
+
+quadra_status quadra_render_lit(quadra_renderer* renderer, const quadra_scene* scene,
+                                const quadra_target* target, const quadra_depth_target* depth,
+                                const quadra_render_options* options,
+                                const quadra_lighting* lighting, const quadra_aov_targets* aovs) {
+  return render("quadra_render_lit", renderer, scene, target, depth, options, lighting, aovs);
+}
+
+quadra_status quadra_environment_create(const float* rgb, size_t value_count, int width, int height,
+                                        quadra_environment** out) {
+  if (!rgb || !out) return missing("quadra_environment_create: an argument");
+  return guarded([&] {
+    *out = liveHandles().add(std::make_unique<quadra_environment>(quadra_environment{
+        api::Environment::fromTexels(std::span(rgb, value_count), width, height)}));
+  });
+}
+
+quadra_status quadra_environment_load(const char* source, uint64_t max_memory,
+                                      quadra_environment** out) {
+  if (!source || !out) return missing("quadra_environment_load: an argument");
+  const quadra_status status = guarded([&] {
+    *out = liveHandles().add(std::make_unique<quadra_environment>(quadra_environment{
+        api::Environment::load(source, max_memory != 0 ? max_memory : api::kDefaultMaxMemory)}));
+  });
+  // A source that cannot be read is a failed load, as quadra_scene_load's.
+  return status == QUADRA_INVALID_ARGUMENT ? QUADRA_FAILED : status;
+}
+
+void quadra_environment_destroy(quadra_environment* environment) {
+  if (environment) liveHandles().remove(environment, "quadra_environment_destroy");
+}
+
+quadra_status quadra_environment_size(const quadra_environment* environment, int* out_width,
+                                      int* out_height) {
+  if (!environment || !out_width || !out_height)
+    return missing("quadra_environment_size: an argument");
+  return guarded([&] {
+    const api::Environment& e =
+        liveHandles().get(environment, "quadra_environment_size").environment;
+    *out_width = e.width();
+    *out_height = e.height();
+  });
+}
+
+quadra_status quadra_environment_texels(const quadra_environment* environment, float* out,
+                                        size_t value_count) {
+  if (!environment || !out) return missing("quadra_environment_texels: an argument");
+  return guarded([&] {
+    const std::span<const float> texels =
+        liveHandles().get(environment, "quadra_environment_texels").environment.texels();
+    if (value_count != texels.size())
+      throw api::Error("quadra_environment_texels: value_count " + std::to_string(value_count) +
+                       " is not the environment's " + std::to_string(texels.size()));
+    std::memcpy(out, texels.data(), texels.size() * sizeof(float));
+  });
 }
 
 }  // extern "C"

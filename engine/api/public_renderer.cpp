@@ -4,7 +4,10 @@
 // other is rendered into the Renderer's own float Frame and converted into
 // the target's format row by row, leaving the rows' padding alone. The AOV
 // targets the embedder gives are asked of the engine and copied row by row
-// from its Frame. And quadra::version().
+// from its Frame. Pbr frames light with the embedder's Environment (or the
+// Renderer's own builtin:studio), and a Rgba8Srgb target gets the tone map
+// the CLI's PNG would. And quadra::version().
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -12,13 +15,15 @@
 #include <utility>
 #include <vector>
 
+#include "api/public_environment.h"
 #include "api/public_scene.h"
 #include "api/renderer.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "io/srgb8.h"
+#include "io/tone_map.h"
 #include "quadra/quadra.hpp"
 #include "quadra/tbb.hpp"
+#include "shading/builtin_environments.h"
 #include "texture/texel_format.h"
 
 namespace quadra {
@@ -60,7 +65,8 @@ void checkBuffer(const char* what, std::span<std::byte> bytes, int width, int he
 // 1080p frame's render when done on one thread.
 constexpr std::size_t kRowsPerTask = 16;
 
-void writeColor(const Frame& frame, const Target& target, const Executor& executor) {
+void writeColor(const Frame& frame, const Target& target, quadra::ToneMap toneMap,
+                const Executor& executor) {
   const std::size_t floatsPerRow = std::size_t(frame.width) * 4;
   executor.parallelFor(
       std::size_t(frame.height), kRowsPerTask, [&](std::size_t first, std::size_t end) {
@@ -78,7 +84,7 @@ void writeColor(const Frame& frame, const Target& target, const Executor& execut
               }
               break;
             case PixelFormat::Rgba8Srgb:
-              encodeSrgb8Row(in, frame.width, reinterpret_cast<std::uint8_t*>(out));
+              encodeDisplayRow(toneMap, in, frame.width, reinterpret_cast<std::uint8_t*>(out));
               break;
           }
         }
@@ -143,6 +149,9 @@ struct Renderer::Impl {
   quadra::Renderer renderer;
   Frame frame;        // kept between frames: its buffers are reused
   Executor executor;  // for the conversion into the target, on the same threads or arena
+  // The Pbr frames' environment when the options name none, made on the
+  // first such frame: one object, so its preparation is kept too.
+  std::optional<Environment> defaultEnvironment;
   explicit Impl(const RendererConfig& config)
       : renderer(config),
         executor(config.arena ? Executor(*config.arena) : Executor(config.threads)) {}
@@ -157,11 +166,81 @@ struct RendererAccess {
 }  // namespace detail
 
 namespace {
+
 RendererConfig configOf(const RendererOptions& options) {
   RendererConfig config;
   config.threads = options.threads;
   return config;
 }
+
+// The shading, Pbr's light and the exposure of `options` into `settings`,
+// checked by the CLI's rules (its options' ranges, api/renderer.h); returns
+// the tone map of a Rgba8Srgb target.
+quadra::ToneMap applyLighting(const RenderOptions& options,
+                              std::optional<Environment>& defaultEnvironment,
+                              RenderSettings& settings) {
+  switch (options.shading) {
+    case Shading::Unlit:
+      settings.shading = quadra::Shading::Unlit;
+      break;
+    case Shading::Lit:
+      settings.shading = quadra::Shading::Lit;
+      break;
+    case Shading::Pbr:
+      settings.shading = quadra::Shading::Pbr;
+      break;
+    default:
+      throw Error("render options: unknown shading");
+  }
+  if (!(std::fabs(options.environmentRotation) <= kMaxEnvironmentRotation))
+    throw Error("render options: environmentRotation " +
+                std::to_string(options.environmentRotation) +
+                " is out of range (-36000..36000 degrees)");
+  if (!(options.environmentIntensity >= 0.0f &&
+        options.environmentIntensity <= kMaxEnvironmentIntensity))
+    throw Error("render options: environmentIntensity " +
+                std::to_string(options.environmentIntensity) + " must be in 0..1e9");
+  if (!(std::fabs(options.exposure) <= kMaxExposure))
+    throw Error("render options: exposure " + std::to_string(options.exposure) +
+                " is out of range (-64..64 EV)");
+  switch (options.background) {
+    case Background::Environment:
+      settings.background = quadra::Background::Environment;
+      break;
+    case Background::Color:
+      settings.background = quadra::Background::Color;
+      settings.clearColor.a = 1.0f;  // opaque, as --background color
+      break;
+    case Background::Transparent:
+      settings.background = quadra::Background::Transparent;
+      break;
+    default:
+      throw Error("render options: unknown background");
+  }
+  settings.environmentRotation = options.environmentRotation;
+  settings.environmentIntensity = options.environmentIntensity;
+  settings.punctualLights = options.punctualLights;
+  settings.exposure = options.exposure;
+  if (settings.shading == quadra::Shading::Pbr) {
+    if (!options.environment && !defaultEnvironment)
+      defaultEnvironment = Environment::load(kDefaultEnvironment);
+    settings.environment = detail::EnvironmentAccess::image(
+        options.environment ? *options.environment : *defaultEnvironment);
+  }
+  if (!options.toneMap)
+    return settings.shading == quadra::Shading::Pbr ? quadra::ToneMap::PbrNeutral
+                                                    : quadra::ToneMap::None;
+  switch (*options.toneMap) {
+    case ToneMap::PbrNeutral:
+      return quadra::ToneMap::PbrNeutral;
+    case ToneMap::Aces:
+      return quadra::ToneMap::Aces;
+    case ToneMap::None:
+      return quadra::ToneMap::None;
+  }
+  throw Error("render options: unknown tone map");
+}
+
 }  // namespace
 
 Renderer::Renderer(const RendererOptions& options)
@@ -204,11 +283,10 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
   RenderSettings settings;
   settings.width = target.width;
   settings.height = target.height;
-  settings.shading =
-      options.shading == Shading::Lit ? quadra::Shading::Lit : quadra::Shading::Unlit;
   settings.samples = options.samples;
   settings.clearColor = {options.clearColor[0], options.clearColor[1], options.clearColor[2],
                          options.clearColor[3]};
+  const quadra::ToneMap toneMap = applyLighting(options, impl_->defaultEnvironment, settings);
   settings.frameDepth = depth != nullptr;
   settings.maxMemory = options.maxMemory;
   for (const AovPlane* plane : askedPlanes) {
@@ -241,7 +319,7 @@ void Renderer::render(const Scene& scene, const Target& target, const DepthTarge
     }
   }
 
-  if (!colorInPlace) writeColor(frame, target, impl_->executor);
+  if (!colorInPlace) writeColor(frame, target, toneMap, impl_->executor);
   if (depth && !depthInPlace)
     copyRows(frame.depth.data(), width * sizeof(float), target.height, depth->bytes,
              depth->rowStride, impl_->executor);

@@ -82,6 +82,14 @@ struct PreviousPose {
   std::vector<std::vector<float>> instanceMorphWeights;
 };
 
+// What RenderSettings' light and exposure accept, as the CLI's options
+// (--env-rotation, --env-intensity, --exposure) and the public API check them:
+// 100 turns either way, a scale up to 1e9, 64 EV either way (2^64 x the
+// largest texel kept, 2^32, stays far inside float's range).
+constexpr double kMaxEnvironmentRotation = 36000.0;
+constexpr double kMaxEnvironmentIntensity = 1e9;
+constexpr double kMaxExposure = 64.0;
+
 struct RenderSettings {
   int width = 1920;
   int height = 1080;

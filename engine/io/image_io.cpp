@@ -339,19 +339,13 @@ struct PngBand {
 
 void deflateBand(const Frame& frame, ToneMap toneMap, int firstRow, int rows, bool last,
                  PngBand& band) {
-  const ToneMapping mapping{toneMap, 0.0f};
   const std::size_t rowBytes = 1 + std::size_t(frame.width) * 4;  // filter byte, then RGBA
   std::vector<std::uint8_t> raw(rowBytes * std::size_t(rows));
   for (int y = 0; y < rows; ++y) {
     std::uint8_t* row = &raw[std::size_t(y) * rowBytes];
     row[0] = 0;  // filter type None
     const float* rgba = &frame.rgba[std::size_t(firstRow + y) * std::size_t(frame.width) * 4];
-    // A clamp is what encodeSrgb8Row does: frames written before tone maps
-    // existed keep their bytes.
-    if (toneMap == ToneMap::None)
-      encodeSrgb8Row(rgba, frame.width, row + 1);
-    else
-      toneMapSrgb8Row(mapping, rgba, frame.width, row + 1);
+    encodeDisplayRow(toneMap, rgba, frame.width, row + 1);
   }
   band.rawBytes = raw.size();
   band.adler = adler32(adler32(0, nullptr, 0), raw.data(), uInt(raw.size()));

@@ -103,4 +103,11 @@ void toneMapSrgb8Row(const ToneMapping& mapping, const float* rgba, int width, s
   }
 }
 
+void encodeDisplayRow(ToneMap map, const float* rgba, int width, std::uint8_t* out) {
+  if (map == ToneMap::None)
+    encodeSrgb8Row(rgba, width, out);
+  else
+    toneMapSrgb8Row(ToneMapping{map, 0.0f}, rgba, width, out);
+}
+
 }  // namespace quadra

@@ -37,4 +37,10 @@ struct ToneMapping {
 // io/srgb8.h's encodeSrgb8Row.
 void toneMapSrgb8Row(const ToneMapping& mapping, const float* rgba, int width, std::uint8_t* out);
 
+// A frame's row as an 8-bit output shows it (PNG files, the APIs' Rgba8Srgb
+// targets): None is encodeSrgb8Row's clamp, so frames written before tone
+// maps existed keep their bytes; the others are toneMapSrgb8Row at exposure
+// 0 (the frame already holds radiance x 2^exposure).
+void encodeDisplayRow(ToneMap map, const float* rgba, int width, std::uint8_t* out);
+
 }  // namespace quadra

@@ -35,6 +35,7 @@ typedef enum quadra_status {
 
 typedef struct quadra_scene quadra_scene;
 typedef struct quadra_renderer quadra_renderer;
+typedef struct quadra_environment quadra_environment;
 
 /* The library's version, "MAJOR.MINOR.PATCH". */
 QUADRA_API const char* quadra_version(void);
@@ -263,8 +264,14 @@ QUADRA_API void quadra_renderer_destroy(quadra_renderer* renderer);
 QUADRA_API quadra_status quadra_render(quadra_renderer* renderer, const quadra_scene* scene,
                                        const quadra_target* target,
                                        const quadra_depth_target* depth);
-/* As quadra::api::RenderOptions. */
-typedef enum quadra_shading { QUADRA_SHADING_UNLIT = 0, QUADRA_SHADING_LIT = 1 } quadra_shading;
+/* As quadra::api::RenderOptions. PBR: glTF's metallic-roughness material
+   under an environment, lit by quadra_render_lit's lighting (quadra_render_with
+   lights it with the defaults of quadra_lighting_defaults). */
+typedef enum quadra_shading {
+  QUADRA_SHADING_UNLIT = 0,
+  QUADRA_SHADING_LIT = 1,
+  QUADRA_SHADING_PBR = 2
+} quadra_shading;
 typedef struct quadra_render_options {
   quadra_shading shading;
   int samples;          /* per pixel: 1, 2, 4, 8 or 16 */
@@ -278,6 +285,63 @@ QUADRA_API quadra_status quadra_render_with(quadra_renderer* renderer, const qua
                                             const quadra_depth_target* depth,
                                             const quadra_render_options* options,
                                             const quadra_aov_targets* aovs);
+
+/* Environments, as quadra::api::Environment (quadra/environment.hpp): the
+ * light of QUADRA_SHADING_PBR, an equirectangular panorama of linear RGB
+ * radiance (docs/lighting.md "Environments"). Immutable once made; a
+ * renderer keeps its preparation of one while frames ask for the same
+ * handle, and may keep lighting with it after quadra_environment_destroy
+ * (the texels are shared). */
+/* width x height texels of R, G, B floats, value_count = width x height x 3
+   of them, row 0 the top (+Y), the centre column facing -Z; copied, then
+   checked and repaired as the CLI's --env (at least 2 texels, at most 2^28;
+   NaN and negative values become 0, values above 2^32 become 2^32). */
+QUADRA_API quadra_status quadra_environment_create(const float* rgb, size_t value_count, int width,
+                                                   int height, quadra_environment** out);
+/* "builtin:NAME" or a .hdr or .exr file, as --env; its allocations charged
+   to max_memory (0: the default, 8 GiB). A file that fails is QUADRA_FAILED. */
+QUADRA_API quadra_status quadra_environment_load(const char* source, uint64_t max_memory,
+                                                 quadra_environment** out);
+QUADRA_API void quadra_environment_destroy(quadra_environment* environment);
+QUADRA_API quadra_status quadra_environment_size(const quadra_environment* environment,
+                                                 int* out_width, int* out_height);
+/* The texels as quadra lights with them (the rule applied) into out, which
+   holds value_count = width x height x 3 floats. */
+QUADRA_API quadra_status quadra_environment_texels(const quadra_environment* environment,
+                                                   float* out, size_t value_count);
+
+/* The light and output of a PBR frame, as quadra::api::RenderOptions's
+   members of those names (each the CLI's render option in the comment). */
+typedef enum quadra_background {
+  QUADRA_BACKGROUND_ENVIRONMENT = 0, /* --background env */
+  QUADRA_BACKGROUND_COLOR = 1,       /* the clear colour's r, g, b, made opaque */
+  QUADRA_BACKGROUND_TRANSPARENT = 2
+} quadra_background;
+typedef enum quadra_tone_map {
+  QUADRA_TONE_MAP_DEFAULT = 0, /* PBR_NEUTRAL for PBR shading, NONE for the others */
+  QUADRA_TONE_MAP_PBR_NEUTRAL = 1,
+  QUADRA_TONE_MAP_ACES = 2,
+  QUADRA_TONE_MAP_NONE = 3 /* a clamp */
+} quadra_tone_map;
+typedef struct quadra_lighting {
+  const quadra_environment* environment; /* --env; NULL: builtin:studio */
+  float environment_rotation;            /* --env-rotation, degrees */
+  float environment_intensity;           /* --env-intensity */
+  int punctual_lights;                   /* --lights: nonzero on */
+  quadra_background background;          /* --background */
+  float exposure;                        /* --exposure EV, every shading */
+  quadra_tone_map tone_map;              /* --tonemap, for QUADRA_PIXEL_RGBA8_SRGB targets */
+} quadra_lighting;
+/* The defaults: builtin:studio, rotation 0, intensity 1, lights on, the
+   environment as background, exposure 0, the default tone map. */
+QUADRA_API quadra_lighting quadra_lighting_defaults(void);
+/* quadra_render_with with lighting (NULL: quadra_lighting_defaults()). */
+QUADRA_API quadra_status quadra_render_lit(quadra_renderer* renderer, const quadra_scene* scene,
+                                           const quadra_target* target,
+                                           const quadra_depth_target* depth,
+                                           const quadra_render_options* options,
+                                           const quadra_lighting* lighting,
+                                           const quadra_aov_targets* aovs);
 
 #ifdef __cplusplus
 }

@@ -15,6 +15,7 @@
 // Design notes: docs/api.md.
 #pragma once
 
+#include "quadra/environment.hpp"
 #include "quadra/error.hpp"
 #include "quadra/export.h"
 #include "quadra/renderer.hpp"

@@ -15,8 +15,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 
+#include "quadra/environment.hpp"
 #include "quadra/error.hpp"
 #include "quadra/export.h"
 #include "quadra/scene.hpp"
@@ -30,8 +32,11 @@ struct RendererAccess;
 // The target's pixel layout, 4 channels r, g, b, a per pixel, row 0 the top:
 // Rgba32F: premultiplied linear floats, the renderer's own values bit for bit;
 // Rgba16F: those rounded to IEEE halves (to nearest, ties to even);
-// Rgba8Srgb: straight (alpha divided out) r, g, b as 8-bit sRGB codes and a
-// as UNORM8, exactly the bytes `quadra render --out FILE.png` writes.
+// Rgba8Srgb: straight (alpha divided out) r, g, b through RenderOptions'
+// tone map, as 8-bit sRGB codes, and a as UNORM8, exactly the bytes
+// `quadra render --out FILE.png` writes with the same options.
+// The float formats hold radiance x 2^exposure, never tone mapped (the CLI's
+// EXR).
 enum class PixelFormat : std::uint8_t { Rgba8Srgb, Rgba16F, Rgba32F };
 
 // Bytes per pixel of a format: 4, 8 or 16.
@@ -88,7 +93,23 @@ struct AovTargets {
 enum class Shading : std::uint8_t {
   Unlit,  // base colour x texture x vertex colour
   Lit,    // that times the Lambert term of a light at the camera (needs normals)
+  // glTF's metallic-roughness material under the environment and a loaded
+  // scene's KHR_lights_punctual lights (../shared/LIGHTING.md,
+  // docs/lighting.md); KHR_materials_unlit materials stay unlit. The CLI's
+  // default; here Unlit stays the default so that existing code renders as
+  // before.
+  Pbr,
 };
+
+// What a Pbr frame shows where no surface is (the CLI's --background): the
+// environment seen through the pixel, filtered over its footprint; the
+// clear colour made opaque (its r, g, b, alpha 1: --background color with
+// --background-color r,g,b); or nothing (alpha 0).
+enum class Background : std::uint8_t { Environment, Color, Transparent };
+
+// How a Rgba8Srgb target maps radiance to [0, 1] before sRGB encoding (the
+// CLI's --tonemap): Khronos PBR Neutral, ACES (Hill's fit) or a clamp.
+enum class ToneMap : std::uint8_t { PbrNeutral, Aces, None };
 
 struct RenderOptions {
   Shading shading = Shading::Unlit;
@@ -99,6 +120,19 @@ struct RenderOptions {
   // checked before anything is allocated; over it, render throws an Error
   // naming what and how much (docs/cli.md "Memory budget").
   std::uint64_t maxMemory = kDefaultMaxMemory;
+
+  // Pbr's light, each the CLI's option of that name (docs/cli.md, render):
+  // --env: unset, builtin:studio (the Renderer makes it once and keeps it).
+  std::optional<Environment> environment = {};
+  float environmentRotation = 0.0f;   // --env-rotation: degrees about +Y, |x| <= 36000
+  float environmentIntensity = 1.0f;  // --env-intensity: 0 .. 1e9
+  bool punctualLights = true;         // --lights on|off
+  Background background = Background::Environment;  // --background
+  // --exposure EV (|EV| <= 64): every shading's radiance x 2^EV.
+  float exposure = 0.0f;
+  // --tonemap, for Rgba8Srgb targets; unset: PbrNeutral for Pbr, None for
+  // Unlit and Lit (their bytes as before tone maps existed).
+  std::optional<ToneMap> toneMap = {};
 };
 
 struct RendererOptions {

@@ -1,10 +1,16 @@
 /* The C API from a C program (CTest: CApi): an in-memory quad rendered into
  * padded RGBA32F, depth and AOV buffers, checked pixel by pixel against where
- * the quad must be; a glTF file loaded and rendered; and each misuse
+ * the quad must be; a glTF file loaded and rendered, unlit and lit (an
+ * environment from an array, a name and a file alike); and each misuse
  * returning its status and one-line message while writing nothing.
- *   test_c_api FILE.glb */
+ *   test_c_api FILE.glb
+ * And, for CApiLitEqualsTheCli (lit_equals_cli.sh, which compares OUT.raw
+ * with the CLI's EXR), the pbr frame of FILE.glb lit by the W x H texels of
+ * ENV.raw (R, G, B floats), its colour then its depth written to OUT.raw:
+ *   test_c_api --lit FILE.glb ENV.raw W H OUT.raw */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "quadra/quadra.h"
@@ -294,9 +300,120 @@ static void gltf_file(quadra_renderer* renderer, const char* path) {
   EXPECT(missing == NULL && strstr(quadra_last_error(), "/nonexistent.glb") != NULL);
 }
 
+enum { kLitWidth = 64, kLitHeight = 48 };
+static float lit_color[kLitWidth * kLitHeight * 4];
+static float lit_depth[kLitWidth * kLitHeight];
+static float lit_other[kLitWidth * kLitHeight * 4];
+
+/* A pbr frame of scene lit by environment (NULL: the default) into
+   lit_color and lit_depth, or into `into` alone. */
+static quadra_status render_lit(quadra_renderer* renderer, const quadra_scene* scene,
+                                const quadra_environment* environment, float* into) {
+  quadra_target target = {into ? into : lit_color, sizeof(lit_color),   kLitWidth, kLitHeight,
+                          kLitWidth * 16,          QUADRA_PIXEL_RGBA32F};
+  quadra_depth_target depth_target = {lit_depth, sizeof(lit_depth), kLitWidth * 4};
+  quadra_render_options options = {QUADRA_SHADING_PBR, 1, {0, 0, 0, 0}, 0};
+  quadra_lighting lighting = quadra_lighting_defaults();
+  lighting.environment = environment;
+  return quadra_render_lit(renderer, scene, &target, into ? NULL : &depth_target, &options,
+                           &lighting, NULL);
+}
+
+/* Environments: one from an array lights as the same texels by name; the
+   default is builtin:studio; the texel rule and the misuses. */
+static void environments(quadra_renderer* renderer, const char* path) {
+  quadra_scene* scene = NULL;
+  EXPECT(quadra_scene_load(path, &scene) == QUADRA_OK);
+  if (!scene) return;
+  quadra_environment* sky = NULL;
+  EXPECT(quadra_environment_load("builtin:sky", 0, &sky) == QUADRA_OK);
+  int width = 0, height = 0;
+  EXPECT(quadra_environment_size(sky, &width, &height) == QUADRA_OK && width * height >= 2);
+  const size_t values = (size_t)width * (size_t)height * 3;
+  float* texels = malloc(values * sizeof(float));
+  EXPECT(texels && quadra_environment_texels(sky, texels, values) == QUADRA_OK);
+  quadra_environment* copy = NULL;
+  EXPECT(quadra_environment_create(texels, values, width, height, &copy) == QUADRA_OK);
+  EXPECT(render_lit(renderer, scene, sky, lit_other) == QUADRA_OK);
+  EXPECT(render_lit(renderer, scene, copy, NULL) == QUADRA_OK);
+  EXPECT(memcmp(lit_color, lit_other, sizeof(lit_color)) == 0);
+  /* No environment is builtin:studio's light, which differs from the sky's. */
+  quadra_environment* studio = NULL;
+  EXPECT(quadra_environment_load("builtin:studio", 0, &studio) == QUADRA_OK);
+  EXPECT(render_lit(renderer, scene, NULL, lit_other) == QUADRA_OK);
+  EXPECT(memcmp(lit_color, lit_other, sizeof(lit_color)) != 0);
+  EXPECT(render_lit(renderer, scene, studio, NULL) == QUADRA_OK);
+  EXPECT(memcmp(lit_color, lit_other, sizeof(lit_color)) == 0);
+  /* The texel rule: NaN and negative values become 0. */
+  texels[0] = NAN;
+  texels[4] = -2.0f;
+  quadra_environment* repaired = NULL;
+  EXPECT(quadra_environment_create(texels, values, width, height, &repaired) == QUADRA_OK);
+  EXPECT(quadra_environment_texels(repaired, texels, values) == QUADRA_OK);
+  EXPECT(texels[0] == 0.0f && texels[4] == 0.0f && !signbit(texels[4]));
+  /* Misuses: each a status and one line, no handle made. */
+  quadra_environment* refused = NULL;
+  EXPECT(quadra_environment_create(texels, 0, 0, 0, &refused) == QUADRA_INVALID_ARGUMENT);
+  EXPECT(refused == NULL && strstr(quadra_last_error(), "at least 2 texels") != NULL);
+  EXPECT(quadra_environment_create(texels, values - 3, width, height, &refused) ==
+         QUADRA_INVALID_ARGUMENT);
+  EXPECT(refused == NULL && strstr(quadra_last_error(), "texels need") != NULL);
+  EXPECT(quadra_environment_load("/nonexistent.exr", 0, &refused) == QUADRA_FAILED);
+  EXPECT(refused == NULL && strstr(quadra_last_error(), "/nonexistent.exr") != NULL);
+  EXPECT(quadra_environment_texels(sky, texels, values + 1) == QUADRA_INVALID_ARGUMENT);
+  quadra_render_options options = {QUADRA_SHADING_PBR, 1, {0, 0, 0, 0}, 0};
+  quadra_lighting lighting = quadra_lighting_defaults();
+  lighting.tone_map = (quadra_tone_map)9;
+  quadra_target target = {lit_color,  sizeof(lit_color), kLitWidth,
+                          kLitHeight, kLitWidth * 16,    QUADRA_PIXEL_RGBA32F};
+  expect_error(quadra_render_lit(renderer, scene, &target, NULL, &options, &lighting, NULL),
+               QUADRA_INVALID_ARGUMENT, "lighting: tone_map 9 is not one of its values");
+  free(texels);
+  quadra_environment_destroy(repaired);
+  quadra_environment_destroy(copy);
+  quadra_environment_destroy(studio);
+  quadra_environment_destroy(sky);
+  quadra_environment_destroy(sky);
+  EXPECT(strcmp(quadra_last_error(),
+                "quadra_environment_destroy: the environment handle is not a live one "
+                "(destroyed, or not made by quadra)") == 0);
+  quadra_scene_destroy(scene);
+}
+
+/* --lit: the frame of the environment in env_path, for the CLI comparison. */
+static int lit_frame(const char* path, const char* env_path, int width, int height,
+                     const char* out_path) {
+  const size_t values = (size_t)width * (size_t)height * 3;
+  float* texels = malloc(values * sizeof(float));
+  FILE* in = fopen(env_path, "rb");
+  EXPECT(texels && in && fread(texels, sizeof(float), values, in) == values);
+  if (in) fclose(in);
+  quadra_renderer* renderer = NULL;
+  quadra_scene* scene = NULL;
+  quadra_environment* environment = NULL;
+  EXPECT(quadra_renderer_create(2, &renderer) == QUADRA_OK);
+  EXPECT(quadra_scene_load(path, &scene) == QUADRA_OK);
+  EXPECT(quadra_environment_create(texels, values, width, height, &environment) == QUADRA_OK);
+  EXPECT(render_lit(renderer, scene, environment, NULL) == QUADRA_OK);
+  FILE* out = fopen(out_path, "wb");
+  EXPECT(out && fwrite(lit_color, sizeof(lit_color), 1, out) == 1 &&
+         fwrite(lit_depth, sizeof(lit_depth), 1, out) == 1);
+  if (out) fclose(out);
+  quadra_environment_destroy(environment);
+  quadra_scene_destroy(scene);
+  quadra_renderer_destroy(renderer);
+  free(texels);
+  if (failures != 0) fprintf(stderr, "test_c_api --lit: %d failures\n", failures);
+  return failures == 0 ? 0 : 1;
+}
+
 int main(int argc, char** argv) {
+  if (argc == 7 && strcmp(argv[1], "--lit") == 0)
+    return lit_frame(argv[2], argv[3], atoi(argv[4]), atoi(argv[5]), argv[6]);
   if (argc != 2) {
-    fprintf(stderr, "usage: test_c_api FILE.glb\n");
+    fprintf(stderr,
+            "usage: test_c_api FILE.glb\n"
+            "       test_c_api --lit FILE.glb ENV.raw W H OUT.raw\n");
     return 1;
   }
   EXPECT(strcmp(quadra_version(), QUADRA_VERSION_STRING) == 0);
@@ -304,6 +421,7 @@ int main(int argc, char** argv) {
   EXPECT(quadra_renderer_create(2, &renderer) == QUADRA_OK);
   in_memory_quad(renderer);
   gltf_file(renderer, argv[1]);
+  environments(renderer, argv[1]);
   quadra_renderer_destroy(renderer);
   quadra_scene_destroy(NULL);
   printf("test_c_api: %d failures\n", failures);

@@ -99,7 +99,7 @@ cmake -S "$source_dir" -B "$work/build" "${compilers[@]}" -DCMAKE_PREFIX_PATH="$
 cmake --build "$work/build" >/dev/null
 mkdir "$work/quad"
 "$work/build/consumer" gltf "$work/quad"
-"$work/prefix/bin/quadra" render "$work/quad/quad.gltf" --width 64 --height 48 --threads 2 \
+"$work/prefix/bin/quadra" render "$work/quad/quad.gltf" --shading unlit --width 64 --height 48 --threads 2 \
   --out "$work/reference.exr" >/dev/null
 "$work/build/consumer" render "$work/consumer.raw"
 "$work/build/read_reference" "$work/reference.exr" "$work/consumer.raw"

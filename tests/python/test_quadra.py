@@ -230,8 +230,9 @@ class RenderGltfEqualsTheCli(unittest.TestCase):
             self.skipTest("run by CTest with the CLI and read_reference paths")
         with tempfile.TemporaryDirectory() as work:
             exr = os.path.join(work, "cli.exr")
-            run_program([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
-                         "--out", exr], check=True, stdout=subprocess.DEVNULL)
+            run_program([CLI, "render", GLB, "--shading", "unlit", "--width", "96", "--height",
+                         "72", "--threads", "2", "--out", exr],
+                        check=True, stdout=subprocess.DEVNULL)
             out = quadra.Renderer(threads=2).render(quadra.load(GLB), width=96, height=72)
             raw = os.path.join(work, "python.raw")
             with open(raw, "wb") as f:
@@ -253,8 +254,8 @@ class RenderGltfEqualsTheCli(unittest.TestCase):
             self.skipTest("run by CTest with the CLI and read_reference paths")
         with tempfile.TemporaryDirectory() as work:
             exr = os.path.join(work, "cli.exr")
-            run_program([CLI, "render", GLB, "--width", "96", "--height", "72", "--threads", "2",
-                         "--samples", "4", "--aov", "N,P,uv,id,mask", "--out", exr],
+            run_program([CLI, "render", GLB, "--shading", "unlit", "--width", "96", "--height",
+                         "72", "--threads", "2", "--samples", "4", "--aov", "N,P,uv,id,mask", "--out", exr],
                         check=True, stdout=subprocess.DEVNULL)
             out = quadra.Renderer(threads=2).render(quadra.load(GLB), width=96, height=72,
                                                     samples=4, aovs=("N", "P", "uv", "id", "mask"))
@@ -286,9 +287,10 @@ class Animation(unittest.TestCase):
         self.assertAlmostEqual(scene.animation_duration(0), 3.7083, places=3)
         renderer = quadra.Renderer(threads=2)
         with tempfile.TemporaryDirectory() as work:
-            run_program([CLI, "render", ANIMATED, "--width", "64", "--height", "48", "--threads",
-                         "2", "--sequence", "0:2", "--fps", "2", "--out",
-                         os.path.join(work, "f_#.exr")], check=True, stdout=subprocess.DEVNULL)
+            run_program([CLI, "render", ANIMATED, "--shading", "unlit", "--width", "64",
+                         "--height", "48", "--threads", "2", "--sequence", "0:2", "--fps", "2",
+                         "--out", os.path.join(work, "f_#.exr")],
+                        check=True, stdout=subprocess.DEVNULL)
             colors = []
             for f in range(3):
                 scene.set_animation_time(f / 2)
@@ -311,6 +313,160 @@ class Animation(unittest.TestCase):
         with self.assertRaisesRegex(quadra.Error, r"^setAnimationTime: seconds inf is not finite$"):
             scene.set_animation_time(float("inf"))
         self.assertEqual(quadra.Scene().animations, [])
+
+
+def panorama(width=64, height=32):
+    """A panorama no symmetry maps onto itself: redder toward +Y, green varying
+    around the horizon, bluer below, and a small sun of radiance ~50."""
+    u = (np.arange(width, dtype=np.float32) + 0.5) / width
+    v = (np.arange(height, dtype=np.float32) + 0.5) / height
+    texels = np.empty((height, width, 3), np.float32)
+    texels[..., 0] = (0.2 + 0.8 * (1 - v))[:, None]
+    texels[..., 1] = (0.5 + 0.5 * np.sin(2 * np.pi * u))[None, :]
+    texels[..., 2] = (0.7 * v)[:, None]
+    texels[9:11, 20:23] = (50, 45, 40)
+    return texels
+
+
+class LitFromNumpy(unittest.TestCase):
+    """shading="pbr" lit by an environment given as an (H, W, 3) float32 array:
+    the CLI's frame of an EXR holding the same texels, bit for bit (colour and
+    depth through read_reference; the 8-bit target against the CLI's PNG)."""
+
+    def cli_texels(self, work, source):
+        """`quadra env SOURCE` written to EXR and read back as (H, W, 3) float32."""
+        exr = os.path.join(work, "env.exr")
+        line = run_program([CLI, "env", source, "--out", exr], check=True, capture_output=True,
+                           text=True).stdout
+        fields = dict(word.split("=", 1) for word in line.split() if "=" in word)
+        raw = os.path.join(work, "env.raw")
+        run_program([READ_REFERENCE, "--channels", exr, raw, "R", "G", "B"], check=True)
+        texels = np.fromfile(raw, np.float32)
+        return exr, texels.reshape(int(fields["height"]), int(fields["width"]), 3)
+
+    def test_array_environment_frame_equals_the_cli_exr_bit_for_bit(self):
+        if CLI is None:
+            self.skipTest("run by CTest with the CLI and read_reference paths")
+        with tempfile.TemporaryDirectory() as work:
+            exr, texels = self.cli_texels(work, "builtin:sky")
+            frame = os.path.join(work, "cli.exr")
+            run_program([CLI, "render", GLB, "--shading", "pbr", "--env", exr, "--width", "64",
+                         "--height", "48", "--threads", "2", "--out", frame],
+                        check=True, stdout=subprocess.DEVNULL)
+            renderer = quadra.Renderer(threads=2)
+            out = renderer.render(quadra.load(GLB), width=64, height=48, shading="pbr",
+                                  env=texels)
+            raw = os.path.join(work, "python.raw")
+            with open(raw, "wb") as f:
+                f.write(out.color.tobytes() + out.depth.tobytes())
+            judged = run_program([READ_REFERENCE, frame, raw], capture_output=True, text=True)
+            self.assertEqual(judged.returncode, 0, judged.stdout + judged.stderr)
+            # The same texels by name, by file and held in an Environment light alike.
+            for env in ("builtin:sky", exr, quadra.Environment(texels)):
+                again = renderer.render(quadra.load(GLB), width=64, height=48, shading="pbr",
+                                        env=env)
+                np.testing.assert_array_equal(again.color, out.color)
+            # Another panorama lights another frame: the comparison is not vacuous.
+            other = renderer.render(quadra.load(GLB), width=64, height=48, shading="pbr",
+                                    env=panorama())
+            self.assertFalse(np.array_equal(other.color, out.color))
+
+    def test_options_and_the_8_bit_target_equal_the_clis(self):
+        # The CLI's option names as keywords: a turned, scaled, exposed frame
+        # without the background, and its ACES-mapped bytes as the PNG's.
+        if CLI is None:
+            self.skipTest("run by CTest with the CLI and read_reference paths")
+        with tempfile.TemporaryDirectory() as work:
+            exr, texels = self.cli_texels(work, "builtin:sky")
+            frame, png = os.path.join(work, "cli.exr"), os.path.join(work, "cli.png")
+            options = ["--env-rotation", "40", "--env-intensity", "1.5", "--exposure", "0.5",
+                       "--tonemap", "aces", "--background", "transparent"]
+            run_program([CLI, "render", GLB, "--env", exr, "--width", "64", "--height", "48",
+                         "--threads", "2", "--out", frame, "--out", png] + options,
+                        check=True, stdout=subprocess.DEVNULL)
+            scene = quadra.load(GLB)
+            renderer = quadra.Renderer(threads=2)
+            keywords = dict(width=64, height=48, shading="pbr", env=quadra.Environment(texels),
+                            env_rotation=40, env_intensity=1.5, exposure=0.5, tonemap="aces",
+                            background="transparent")
+            out = renderer.render(scene, **keywords)
+            raw = os.path.join(work, "python.raw")
+            with open(raw, "wb") as f:
+                f.write(out.color.tobytes() + out.depth.tobytes())
+            judged = run_program([READ_REFERENCE, frame, raw], capture_output=True, text=True)
+            self.assertEqual(judged.returncode, 0, judged.stdout + judged.stderr)
+            srgb = renderer.render(scene, format="rgba8srgb", **keywords)
+            self.assertEqual(srgb.color.dtype, np.uint8)
+            self.assertEqual(srgb.color.shape, (48, 64, 4))
+            np.testing.assert_array_equal(srgb.color, read_png_rgba8(png))
+
+    def test_environment_holds_the_repaired_texels(self):
+        texels = panorama()
+        texels[0, 0, 0] = np.nan
+        texels[1, 2, 1] = -4
+        texels[2, 3, 2] = np.inf
+        env = quadra.Environment(texels)
+        self.assertEqual((env.width, env.height, env.name), (64, 32, "texels"))
+        self.assertEqual(env.repaired_values, 3)
+        expected = texels.copy()
+        expected[0, 0, 0] = 0
+        expected[1, 2, 1] = 0
+        expected[2, 3, 2] = 2.0 ** 32
+        np.testing.assert_array_equal(env.texels, expected)
+        a = quadra.Renderer(threads=1).render(quad_scene(), width=16, height=16, shading="pbr",
+                                              env=env)
+        b = quadra.Renderer(threads=1).render(quad_scene(), width=16, height=16, shading="pbr",
+                                              env=expected)
+        np.testing.assert_array_equal(a.color, b.color)
+        self.assertTrue(np.all(np.isfinite(a.color)))
+
+    def test_bad_environments_fail_cleanly(self):
+        renderer = quadra.Renderer(threads=1)
+        with self.assertRaisesRegex(ValueError, r"^env: shape \(32, 64\), expected \(H, W, 3\)$"):
+            renderer.render(quad_scene(), width=8, height=8, shading="pbr",
+                            env=np.zeros((32, 64), np.float32))
+        with self.assertRaisesRegex(ValueError, r"^env: dtype float64, expected float32$"):
+            renderer.render(quad_scene(), width=8, height=8, shading="pbr",
+                            env=np.zeros((4, 8, 3)))
+        with self.assertRaisesRegex(ValueError, r"^texels: shape \(4, 8, 4\), expected"):
+            quadra.Environment(np.zeros((4, 8, 4), np.float32))
+        with self.assertRaisesRegex(ValueError, r"^env: expected an Environment"):
+            renderer.render(quad_scene(), width=8, height=8, shading="pbr", env=3)
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*at least 2 texels[^\n]*$"):
+            quadra.Environment(np.zeros((0, 0, 3), np.float32))
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*no-such-panorama\.hdr[^\n]*$"):
+            quadra.Environment("no-such-panorama.hdr")
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*builtin:nowhere[^\n]*$"):
+            renderer.render(quad_scene(), width=8, height=8, shading="pbr", env="builtin:nowhere")
+        with self.assertRaisesRegex(ValueError, r"^tonemap: 'filmic' is not one of"):
+            renderer.render(quad_scene(), width=8, height=8, shading="pbr", tonemap="filmic")
+        with self.assertRaisesRegex(ValueError, r"^background: 'sky' is not one of"):
+            renderer.render(quad_scene(), width=8, height=8, shading="pbr", background="sky")
+        with self.assertRaisesRegex(quadra.Error, r"^[^\n]*exposure[^\n]*$"):
+            renderer.render(quad_scene(), width=8, height=8, shading="pbr", exposure=100)
+
+
+def read_png_rgba8(path):
+    """An 8-bit RGBA PNG as quadra writes it (one IHDR, IDAT chunks, every row
+    of filter type None: engine/io/image_io.cpp) as an (H, W, 4) uint8 array."""
+    import struct
+    import zlib
+    with open(path, "rb") as f:
+        data = f.read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", path
+    pos, idat, width, height = 8, b"", 0, 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert (depth, colour) == (8, 6), "not 8-bit RGBA"
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    rows = np.frombuffer(zlib.decompress(idat), np.uint8).reshape(height, 1 + width * 4)
+    assert not rows[:, 0].any(), "a row with a filter other than None"
+    return rows[:, 1:].reshape(height, width, 4)
 
 
 class Misuse(unittest.TestCase):
