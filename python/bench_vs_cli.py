@@ -20,9 +20,11 @@ import quadra
 
 
 def cli_median(args, width, height):
-    out = subprocess.run([args.cli, "render", args.scene, "--width", str(width), "--height",
-                          str(height), "--threads", str(args.threads), "--frames",
-                          str(args.frames)], check=True, capture_output=True, text=True).stdout
+    # Unlit, as the Python renders below (the CLI's default is pbr).
+    out = subprocess.run([args.cli, "render", args.scene, "--shading", "unlit", "--width",
+                          str(width), "--height", str(height), "--threads", str(args.threads),
+                          "--frames", str(args.frames)],
+                         check=True, capture_output=True, text=True).stdout
     line = next(l for l in out.splitlines() if l.startswith("quadra frame_ms"))
     return float(line.split("median=")[1].split()[0])
 

@@ -145,9 +145,9 @@ TEST(PublicAnimation, PosedFramesAreTheCliSequencesFrames) {
     const fs::path dir = emptyFolder(std::string("public_animation_") + name);
     constexpr int kFrames = 4;
     constexpr double kFps = 3.0;
-    const RunResult r =
-        run("render " + model + " --width 64 --height 48 --threads 2 --sequence 0:" +
-            std::to_string(kFrames - 1) + " --fps 3 --out " + (dir / "f_#.exr").string());
+    const RunResult r = run(
+        "render " + model + " --shading unlit --width 64 --height 48 --threads 2 --sequence 0:" +
+        std::to_string(kFrames - 1) + " --fps 3 --out " + (dir / "f_#.exr").string());
     ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
 
     api::Scene scene = api::load(model);
