@@ -45,6 +45,15 @@ TEST(Cli, StatsPrintEveryStageAsANumber) {
   }
   EXPECT_GT(std::stod(stages.at("raster")), 0.0);
   EXPECT_GT(std::stod(stages.at("write")), 0.0);  // a PNG was written
+  // pbr by default: the warm-up frame prepared the environment.
+  EXPECT_GT(std::stod(stages.at("env")), 0.0);
+  EXPECT_LE(std::stod(stages.at("env")), std::stod(stages.at("first_frame")));
+  // An unlit frame has no environment to prepare.
+  const RunResult unlit =
+      run("render builtin:showcase --shading unlit --width 16 --height 16 --stats");
+  const auto unlitStages = lineKeyValues(unlit.out, "quadra stages_ms ");
+  ASSERT_TRUE(unlitStages.count("env")) << unlit.out;
+  EXPECT_EQ(unlitStages.at("env"), "0.000");
   // Without --stats the line is not printed.
   EXPECT_TRUE(
       lineKeyValues(run("render builtin:showcase --width 16 --height 16").out, "quadra stages_ms ")
