@@ -194,7 +194,7 @@ void drawFaces(GLuint program, GLuint cube, int level, int size) {
 
 }  // namespace
 
-GlEnvironment::GlEnvironment(const EnvironmentImage& image) {
+GlEnvironment::GlEnvironment(const EnvironmentImage& image, int cubeSize, int lutSize) {
   GLint maxSize = 0;
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   if (image.width > maxSize || image.height > maxSize)
@@ -233,52 +233,52 @@ GlEnvironment::GlEnvironment(const EnvironmentImage& image) {
 
   // The source cube: the panorama at each texel's centre, and its mip chain.
   int sourceLevels = 1;
-  while ((kCubeSize >> sourceLevels) > 0) ++sourceLevels;
-  const GLuint source = makeCube(sourceLevels, kCubeSize);
+  while ((cubeSize >> sourceLevels) > 0) ++sourceLevels;
+  const GLuint source = makeCube(sourceLevels, cubeSize);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, panorama);
   glUseProgram(toCube);
   glUniform1i(glGetUniformLocation(toCube, "panorama"), 0);
-  drawFaces(toCube, source, 0, kCubeSize);
+  drawFaces(toCube, source, 0, cubeSize);
   glBindTexture(GL_TEXTURE_CUBE_MAP, source);
   glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
   throwOnGlError("rendering the panorama into a cube map");
 
   // The specular levels and the irradiance, each read from the source cube.
-  specular_ = makeCube(kSpecularLevels, kCubeSize);
-  irradiance_ = makeCube(1, kCubeSize);
+  specular_ = makeCube(kSpecularLevels, cubeSize);
+  irradiance_ = makeCube(1, cubeSize);
   glBindTexture(GL_TEXTURE_CUBE_MAP, source);
   glUseProgram(filter);
   glUniform1i(glGetUniformLocation(filter, "source"), 0);
-  glUniform1f(glGetUniformLocation(filter, "sourceSize"), float(kCubeSize));
+  glUniform1f(glGetUniformLocation(filter, "sourceSize"), float(cubeSize));
   glUniform1i(glGetUniformLocation(filter, "lambertian"), 0);
   glUniform1i(glGetUniformLocation(filter, "sampleCount"), kSpecularSamples);
   for (int level = 0; level < kSpecularLevels; ++level) {
     glUseProgram(filter);
     glUniform1f(glGetUniformLocation(filter, "roughness"),
                 float(level) / float(kSpecularLevels - 1));
-    drawFaces(filter, specular_, level, kCubeSize);
+    drawFaces(filter, specular_, level, cubeSize);
   }
   glUseProgram(filter);
   glUniform1i(glGetUniformLocation(filter, "lambertian"), 1);
   glUniform1f(glGetUniformLocation(filter, "roughness"), 0.0f);
   glUniform1i(glGetUniformLocation(filter, "sampleCount"), kLambertianSamples);
-  drawFaces(filter, irradiance_, 0, kCubeSize);
+  drawFaces(filter, irradiance_, 0, cubeSize);
   throwOnGlError("prefiltering the environment");
 
   // The GGX table.
   glGenTextures(1, &lut_);
   glBindTexture(GL_TEXTURE_2D, lut_);
-  glTexStorage2D(GL_TEXTURE_2D, 1, GL_RG32F, kLutSize, kLutSize);
+  glTexStorage2D(GL_TEXTURE_2D, 1, GL_RG32F, lutSize, lutSize);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, lut_, 0);
   glUseProgram(table);
-  glUniform1f(glGetUniformLocation(table, "lutSize"), float(kLutSize));
+  glUniform1f(glGetUniformLocation(table, "lutSize"), float(lutSize));
   glUniform1i(glGetUniformLocation(table, "sampleCount"), kLutSamples);
-  glViewport(0, 0, kLutSize, kLutSize);
+  glViewport(0, 0, lutSize, lutSize);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glFinish();
   throwOnGlError("computing the GGX table");

@@ -26,10 +26,15 @@ class GlEnvironment {
   static constexpr int kLutSize = 1024;            // the table's side
   static constexpr int kLutSamples = 512;          // GGX samples per table entry
 
-  // Runs every pass (and waits for them: glFinish), leaving GL's state as
-  // it found it apart from the bound framebuffer, program and textures.
-  // Throws Error on any OpenGL failure or a panorama larger than GL allows.
-  explicit GlEnvironment(const EnvironmentImage& panorama);
+  // Runs every pass (and waits for them: glFinish), leaving depth test,
+  // culling and blending off and the default framebuffer bound. cubeSize (a
+  // power of two, 16 to 1024) and lutSize (16 to 4096) may be smaller than
+  // the Sample Viewer's for quick tests: the cubes keep kSpecularLevels
+  // levels, so the LOD per roughness stays the Sample Viewer's, and the
+  // sample counts stay. Throws Error on any OpenGL failure or a panorama
+  // larger than GL allows.
+  explicit GlEnvironment(const EnvironmentImage& panorama, int cubeSize = kCubeSize,
+                         int lutSize = kLutSize);
   ~GlEnvironment();
   GlEnvironment(const GlEnvironment&) = delete;
   GlEnvironment& operator=(const GlEnvironment&) = delete;

@@ -489,7 +489,8 @@ GlSceneRenderer::GlSceneRenderer(const OsMesaContext& context, const Scene& scen
     // Prepared once, before the first frame, as a real-time viewer does on
     // loading an environment; the frames' times do not include it.
     const auto started = std::chrono::steady_clock::now();
-    environment_ = std::make_unique<GlEnvironment>(*settings.environment);
+    environment_ =
+        std::make_unique<GlEnvironment>(*settings.environment, settings.iblSize, settings.lutSize);
     prepareMs_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
             .count();

@@ -27,6 +27,7 @@
 #include <glm/glm.hpp>
 
 #include "api/renderer.h"
+#include "gl_environment.h"
 #include "io/frame.h"
 #include "io/tone_map.h"
 #include "scene/scene.h"
@@ -37,7 +38,6 @@
 
 namespace quadra {
 
-class GlEnvironment;
 class OsMesaContext;
 
 // The colour buffer llvmpipe draws into. Rgba32F holds what quadra's Frame
@@ -78,6 +78,9 @@ struct PeerSettings {
   bool punctualLights = true;
   float exposure = 0.0f;
   ToneMap toneMap = ToneMap::PbrNeutral;
+  // The prepared environment's cube face and GGX table sizes (GlEnvironment).
+  int iblSize = GlEnvironment::kCubeSize;
+  int lutSize = GlEnvironment::kLutSize;
 };
 
 // The filters llvmpipe has: nearest, bilinear, nearest-mip, trilinear, aniso.

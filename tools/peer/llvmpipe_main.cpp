@@ -73,6 +73,10 @@ Viewer lights it (split-sum image-based lighting, docs/lighting.md).
   --tonemap pbr-neutral|aces|none
                          how pbr's PNG outputs (and its srgba8 framebuffer) map radiance to
                          [0, 1] before sRGB encoding (default pbr-neutral); EXR stays linear
+  --ibl-size N           pbr: the prefiltered cubes' face size, a power of two from 16 to 1024
+                         (default 256, the Sample Viewer's; 5 roughness levels at any size)
+  --lut-size N           pbr: the GGX table's side, 16 to 4096 (default 1024, the Sample
+                         Viewer's)
   --samples N            multisampling (MSAA): 1 (default), 2, 4, 8 or 16 samples per pixel,
                          as far as llvmpipe has them (GL_MAX_SAMPLES), resolved by
                          glBlitFramebuffer (the samples' mean) within the frame's time
@@ -113,11 +117,16 @@ std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
   options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"pbr", Shading::Pbr}},
                  cmd.settings.shading);
   addLightingOptions(options, cmd.lit, cmd.lighting);
+  options.integer("--ibl-size", cmd.settings.iblSize, 16, 1024);
+  options.integer("--lut-size", cmd.settings.lutSize, 16, 4096);
   addThreadsOption(options, cmd.threads);
   options.integer("--frames", cmd.frames, 1, 100000);
   addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  if ((cmd.settings.iblSize & (cmd.settings.iblSize - 1)) != 0)
+    throw UsageError("--ibl-size: '" + std::to_string(cmd.settings.iblSize) +
+                     "' must be a power of two (16, 32, ... 1024)");
   cmd.settings.environmentRotation = cmd.lit.environmentRotation;
   cmd.settings.environmentIntensity = cmd.lit.environmentIntensity;
   cmd.settings.background = cmd.lit.background;
