@@ -211,6 +211,20 @@ TEST(LlvmpipePeer, BadOptionsAreOneLineErrors) {
                      "--samples 16: llvmpipe has at most");
   expectOneLineError(runPeer("render builtin:checker-plane --samples 2 --out " + out.string()),
                      "--samples 2: llvmpipe gives 4 samples per pixel");
+  // pbr's options: the peer has no lit shading, its cube is a power of two,
+  // and the lighting options are quadra render's (their checks too).
+  expectOneLineError(runPeer("render builtin:checker-plane --shading lit --out " + out.string()),
+                     "--shading");
+  expectOneLineError(
+      runPeer("render builtin:checker-plane --shading pbr --ibl-size 100 --out " + out.string()),
+      "--ibl-size: '100' must be a power of two");
+  expectOneLineError(
+      runPeer("render builtin:checker-plane --shading pbr --tonemap filmic --out " + out.string()),
+      "--tonemap");
+  expectOneLineError(
+      runPeer("render builtin:checker-plane --shading pbr --env builtin:nope --out " +
+              out.string()),
+      "builtin:nope");
   EXPECT_FALSE(fs::exists(out));
   const RunResult help = runPeer("render --help");
   EXPECT_EQ(help.exitCode, 0);

@@ -1,11 +1,13 @@
 // quadra-llvmpipe: the peer renderer quadra is measured against (`quadra
-// report frames`). `quadra-llvmpipe render SCENE …` mirrors `quadra render`
-// for what it supports: it loads the scene with quadra's loader, takes the
-// same camera, draws the same unlit frame with Mesa's llvmpipe
-// (gl_scene_renderer.h), times it the way quadra times its own (one warm-up
-// frame, then K timed frames, each until its colour is in memory), writes the
-// last frame with quadra's writers and prints `llvmpipe frame_ms …`. A
-// separate program, so that quadra never links Mesa.
+// report frames`, `quadra report lighting`). `quadra-llvmpipe render SCENE …`
+// mirrors `quadra render` for what it supports: it loads the scene (and for
+// pbr the environment) with quadra's loaders, takes the same camera, draws
+// the same frame with Mesa's llvmpipe (gl_scene_renderer.h: unlit as quadra
+// shades it, pbr as the Khronos glTF Sample Viewer lights it), times it the
+// way quadra times its own (one warm-up frame, then K timed frames, each
+// until its colour is in memory), writes the last frame with quadra's
+// writers and prints `llvmpipe frame_ms …`. A separate program, so that
+// quadra never links Mesa.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -17,6 +19,7 @@
 #include "api/renderer.h"
 #include "cli_options.h"
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "core/parallel.h"
 #include "gl_scene_renderer.h"
 #include "io/image_io.h"
@@ -30,9 +33,10 @@ namespace {
 constexpr const char* kProgram = "quadra-llvmpipe";
 
 constexpr const char* kUsage = R"(usage: quadra-llvmpipe render [SCENE] [options]
-Draws quadra's unlit frame of SCENE with Mesa's llvmpipe (OpenGL 4.5 through
-OSMesa) for comparison with `quadra render`: the same loader, camera, draw
-order and shading.
+Draws quadra's frame of SCENE with Mesa's llvmpipe (OpenGL 4.5 through OSMesa)
+for comparison with `quadra render`: the same loader, camera and draw order;
+unlit, the same shading; pbr, glTF's material lit as the Khronos glTF Sample
+Viewer lights it (split-sum image-based lighting, docs/lighting.md).
   SCENE                  file.gltf | file.glb | builtin:NAME (default builtin:showcase)
   --scene N              which glTF scene to render (default: the file's default scene)
   --allow-path DIR       a folder the glTF file's URIs may read besides its own (repeatable,
@@ -49,7 +53,30 @@ order and shading.
                          texel format of the GL textures (default auto: as quadra stores them)
   --framebuffer rgba32f|srgba8
                          colour buffer: rgba32f (default) holds what quadra's frame holds;
-                         srgba8 is llvmpipe's cheapest target (8-bit sRGB, blended in linear)
+                         srgba8 is llvmpipe's cheapest target (8-bit sRGB, blended in linear;
+                         pbr frames tone mapped by the shader)
+  --shading unlit|pbr    unlit (default) = baseColorFactor x baseColorTexture x vertex colour;
+                         pbr = glTF's metallic-roughness material under the environment
+                         (prefiltered once, timed as prepare_ms) and the scene's
+                         KHR_lights_punctual lights; KHR_materials_unlit materials stay unlit
+  --env FILE.hdr|FILE.exr|builtin:NAME
+                         pbr's environment, as for quadra render (default builtin:studio)
+  --env-rotation DEG     turn the environment about +Y, counter-clockwise seen from above
+  --env-intensity S      scale the environment's radiance (default 1)
+  --background env|color|transparent
+                         what pbr shows where no surface is: the environment seen through
+                         the pixel (default), --background-color, or alpha 0
+  --background-color R,G,B
+                         linear radiance of --background color (default 0,0,0)
+  --lights on|off        the scene's KHR_lights_punctual lights (default on)
+  --exposure EV          outputs hold radiance x 2^EV (default 0)
+  --tonemap pbr-neutral|aces|none
+                         how pbr's PNG outputs (and its srgba8 framebuffer) map radiance to
+                         [0, 1] before sRGB encoding (default pbr-neutral); EXR stays linear
+  --ibl-size N           pbr: the prefiltered cubes' face size, a power of two from 16 to 1024
+                         (default 256, the Sample Viewer's; 5 roughness levels at any size)
+  --lut-size N           pbr: the GGX table's side, 16 to 4096 (default 1024, the Sample
+                         Viewer's)
   --samples N            multisampling (MSAA): 1 (default), 2, 4, 8 or 16 samples per pixel,
                          as far as llvmpipe has them (GL_MAX_SAMPLES), resolved by
                          glBlitFramebuffer (the samples' mean) within the frame's time
@@ -58,8 +85,9 @@ order and shading.
   --out FILE.exr|FILE.png
                          write the last frame (may be given more than once)
 Prints "llvmpipe frame_ms median=... min=... max=... triangles=... width=... height=...
-threads=... frames=... mesa=... vector_bits=... samples=..." after rendering; a frame's
-time ends when its colour has been read back.
+threads=... frames=... mesa=... vector_bits=... samples=... prepare_ms=..." after
+rendering; a frame's time ends when its colour has been read back; prepare_ms is the
+pbr environment's preparation (0 for unlit), done once before the first frame.
 )";
 
 struct PeerCommand {
@@ -70,6 +98,8 @@ struct PeerCommand {
   int frames = 1;
   std::vector<std::string> outputs;
   CameraOverrides camera;
+  RenderSettings lit;  // the lighting options, as quadra render reads them
+  LightingOptions lighting;
 };
 
 std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
@@ -84,11 +114,28 @@ std::optional<PeerCommand> parseRender(const std::vector<std::string>& args) {
                  {{"rgba32f", PeerFramebuffer::Rgba32F}, {"srgba8", PeerFramebuffer::Srgba8}},
                  cmd.settings.framebuffer);
   addSamplesOption(options, cmd.settings.samples);
+  options.choice("--shading", "shading", {{"unlit", Shading::Unlit}, {"pbr", Shading::Pbr}},
+                 cmd.settings.shading);
+  addLightingOptions(options, cmd.lit, cmd.lighting);
+  options.integer("--ibl-size", cmd.settings.iblSize, 16, 1024);
+  options.integer("--lut-size", cmd.settings.lutSize, 16, 4096);
   addThreadsOption(options, cmd.threads);
   options.integer("--frames", cmd.frames, 1, 100000);
   addOutputOption(options, cmd.outputs);
   if (options.parse(args) == Parsed::HelpShown) return std::nullopt;
   cmd.settings.frameDepth = outputsNeedDepth(cmd.outputs);
+  if ((cmd.settings.iblSize & (cmd.settings.iblSize - 1)) != 0)
+    throw UsageError("--ibl-size: '" + std::to_string(cmd.settings.iblSize) +
+                     "' must be a power of two (16, 32, ... 1024)");
+  cmd.settings.environmentRotation = cmd.lit.environmentRotation;
+  cmd.settings.environmentIntensity = cmd.lit.environmentIntensity;
+  cmd.settings.background = cmd.lit.background;
+  cmd.settings.clearColor = cmd.lit.clearColor;
+  cmd.settings.punctualLights = cmd.lit.punctualLights;
+  cmd.settings.exposure = cmd.lit.exposure;
+  // As quadra render: pbr frames tone map with PBR Neutral unless told.
+  const bool pbr = cmd.settings.shading == Shading::Pbr;
+  cmd.settings.toneMap = cmd.lighting.toneMap.value_or(pbr ? ToneMap::PbrNeutral : ToneMap::None);
   if (cmd.settings.filter && !peerSupportsFilter(*cmd.settings.filter))
     throw UsageError(
         std::string("--filter ") + filterName(*cmd.settings.filter) +
@@ -120,9 +167,16 @@ int renderCommand(const std::vector<std::string>& args) {
   const int threads =
       cmd.threads > 0 ? cmd.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   const Scene scene = loadSceneArgument(cmd.scenePath, cmd.load, kProgram);
+  PeerSettings settings = cmd.settings;
+  std::optional<EnvironmentImage> environment;
+  if (settings.shading == Shading::Pbr) {
+    MemoryBudget budget(cmd.load.maxMemory, "--env");
+    environment = loadEnvironmentArgument(cmd.lighting.environment, budget);
+    settings.environment = &*environment;
+  }
   const Camera camera = chooseCamera(scene, cmd.camera);
   const OsMesaContext context(threads);
-  GlSceneRenderer renderer(context, scene, cmd.settings);
+  GlSceneRenderer renderer(context, scene, settings);
 
   renderer.render(camera);  // warm-up: llvmpipe compiles its shaders here
   std::vector<double> times;
@@ -137,17 +191,22 @@ int renderCommand(const std::vector<std::string>& args) {
   renderer.lastFrame(frame);
   // quadra's writer, on as many threads as llvmpipe had, as quadra's CLI does.
   const Executor writer(threads);
+  // An 8-bit pbr frame was tone mapped by its shader already.
+  const ToneMap pngToneMap =
+      settings.framebuffer == PeerFramebuffer::Srgba8 && settings.shading == Shading::Pbr
+          ? ToneMap::None
+          : settings.toneMap;
   for (const std::string& path : cmd.outputs) {
-    writeFrame(frame, path, &writer);
+    writeFrame(frame, path, &writer, {}, pngToneMap);
     std::cout << "llvmpipe wrote " << path << "\n";
   }
   const FrameTimeSummary summary = summarizeFrameTimes(times);
   std::printf(
       "llvmpipe frame_ms median=%.3f min=%.3f max=%.3f triangles=%zu width=%d height=%d "
-      "threads=%d frames=%d mesa=%s vector_bits=%s samples=%d\n",
+      "threads=%d frames=%d mesa=%s vector_bits=%s samples=%d prepare_ms=%.3f\n",
       summary.median, summary.min, summary.max, scene.triangleCount(), cmd.settings.width,
       cmd.settings.height, threads, cmd.frames, wordAfter(context.version(), "Mesa ").c_str(),
-      wordBefore(context.renderer(), " bits").c_str(), cmd.settings.samples);
+      wordBefore(context.renderer(), " bits").c_str(), cmd.settings.samples, renderer.prepareMs());
   return 0;
 }
 
