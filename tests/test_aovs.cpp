@@ -31,6 +31,7 @@
 #include "api/renderer.h"
 #include "cli_helpers.h"
 #include "core/error.h"
+#include "exr_channels.h"
 #include "io/image_io.h"
 #include "lab/reference/reference_tracer.h"
 #include "lab/scene/builtin_scenes.h"
@@ -595,23 +596,6 @@ TEST(AovsCli, WritesTheChannelsOtherToolsRead) {
   if (toolsRun == 0) GTEST_SKIP() << "neither iinfo nor exrheader installed";
 }
 
-// One uint or float channel of an EXR, row-major.
-template <class T>
-std::vector<T> readChannel(const fs::path& path, const char* name, int& width, int& height) {
-  Imf::InputFile file(path.string().c_str());
-  const Imath::Box2i window = file.header().dataWindow();
-  width = window.max.x - window.min.x + 1;
-  height = window.max.y - window.min.y + 1;
-  std::vector<T> values(std::size_t(width) * std::size_t(height));
-  Imf::FrameBuffer buffer;
-  buffer.insert(name, Imf::Slice(std::is_same_v<T, float> ? Imf::FLOAT : Imf::UINT,
-                                 reinterpret_cast<char*>(values.data()), sizeof(T),
-                                 sizeof(T) * std::size_t(width)));
-  file.setFrameBuffer(buffer);
-  file.readPixels(window.min.y, window.max.y);
-  return values;
-}
-
 // A sequence's motion against an independent evaluation: each pixel's
 // world position (P, checked against the tracer above) taken back to its
 // node's object space with this frame's pose, then to the window with the
@@ -687,7 +671,8 @@ TEST(AovsCli, BadInputIsOneLineAndWritesNothing) {
   const std::string out = " --width 32 --height 32 --out " + exr.string();
   expectOneLineError(run("render builtin:showcase --aov N,normals" + out),
                      "--aov: 'normals' is not an AOV quadra writes (valid: Z, N, P, uv, motion, "
-                     "id, mask, lod, anisotropy)");
+                     "id, mask, lod, anisotropy, albedo, roughness, metallic, emission, "
+                     "diffuse, specular)");
   expectOneLineError(run("render builtin:showcase --aov ''" + out), "--aov");
   expectOneLineError(run("render builtin:showcase --aov N --derivatives quad" + out),
                      "AOVs need analytic derivatives");

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -21,6 +22,7 @@
 #include "core/error.h"
 #include "io/image_io.h"
 #include "lab/scene/builtin_scenes.h"
+#include "lab/scene/lit_scenes.h"
 #include "param_names.h"
 #include "render_helpers.h"
 #include "scene/gltf_loader.h"
@@ -71,6 +73,12 @@ void expectSameFrame(const Frame& got, const Frame& expected) {
   EXPECT_TRUE(sameBits(got.materialId, expected.materialId)) << "id.material";
   EXPECT_TRUE(sameBits(got.lod, expected.lod)) << "lod";
   EXPECT_TRUE(sameBits(got.anisotropy, expected.anisotropy)) << "anisotropy";
+  EXPECT_TRUE(sameBits(got.albedo, expected.albedo)) << "albedo";
+  EXPECT_TRUE(sameBits(got.roughness, expected.roughness)) << "roughness";
+  EXPECT_TRUE(sameBits(got.metallic, expected.metallic)) << "metallic";
+  EXPECT_TRUE(sameBits(got.emission, expected.emission)) << "emission";
+  EXPECT_TRUE(sameBits(got.diffuse, expected.diffuse)) << "diffuse";
+  EXPECT_TRUE(sameBits(got.specular, expected.specular)) << "specular";
 }
 
 std::string fileBytes(const std::filesystem::path& path) {
@@ -298,7 +306,8 @@ void expectSameAcrossThreadsAndIsas(const Scene& scene, const RenderSettings& se
 // pass, whose winners are the same bits on every path), at one sample and
 // several, with a moved previous pose so that motion is not all zero; lod
 // and anisotropy come from the per-ISA kernels, under the scenes' own
-// filters and the anisotropic one.
+// filters and the anisotropic one, and so do the shading AOVs (unlit here:
+// the base colour; lit below).
 TEST(Determinism, AovsAreIdenticalAcrossThreadsAndIsas) {
   for (const std::string name : {"showcase", "alpha-quads"}) {
     SCOPED_TRACE(name);
@@ -315,7 +324,7 @@ TEST(Determinism, AovsAreIdenticalAcrossThreadsAndIsas) {
       settings.height = kHeight / 2;
       settings.samples = samples;
       settings.aovs = AovSet(Aov::Normal) | AovSet(Aov::Position) | AovSet(Aov::Uv) |
-                      AovSet(Aov::Motion) | AovSet(Aov::Ids) | kFootprintAovs;
+                      AovSet(Aov::Motion) | AovSet(Aov::Ids) | kFootprintAovs | kShadingAovs;
       settings.previousPose = &previous;
       expectSameAcrossThreadsAndIsas(scene, settings);
       if (samples > 1) continue;
@@ -323,6 +332,28 @@ TEST(Determinism, AovsAreIdenticalAcrossThreadsAndIsas) {
       settings.filter = Filter::Anisotropic;
       expectSameAcrossThreadsAndIsas(scene, settings);
     }
+  }
+}
+
+// The lit shading's AOVs (material terms and each lobe's light) keep the
+// contract: the per-ISA material and light code, each lane's sample count
+// its own, at one sample and several.
+TEST(Determinism, ShadingAovsAreIdenticalAcrossThreadsAndIsas) {
+  Scene scene = metalRoughSpheresScene(3, 3, glm::vec3(0.8f, 0.5f, 0.3f));
+  Light light;
+  light.intensity = 30.0f;
+  light.world[3] = glm::vec4(-3.0f, 4.0f, 5.0f, 1.0f);
+  scene.lights.push_back(light);
+  for (const int samples : {1, 4}) {
+    SCOPED_TRACE(std::to_string(samples) + " samples");
+    RenderSettings settings;
+    settings.width = kWidth / 4;
+    settings.height = kHeight / 4;
+    settings.samples = samples;
+    settings.shading = Shading::Pbr;
+    settings.environment = std::make_shared<EnvironmentImage>(sunnySkyEnvironment(64, 32));
+    settings.aovs = kShadingAovs;
+    expectSameAcrossThreadsAndIsas(scene, settings);
   }
 }
 

@@ -296,7 +296,7 @@ std::vector<Draw> oneDraw(bool blended) {
 
 std::uint64_t tileBytes(const RenderSettings& settings, int threads, bool blended) {
   return tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height), settings.samples,
-                         threads, 0, false, oneDraw(blended));
+                         threads, 0, 0, oneDraw(blended));
 }
 
 // Room for the front end's arrays of the scenes below that have a few

@@ -102,8 +102,12 @@ Renders a glTF file or a built-in scene, times the frames and writes the last to
                          pixels since the previous frame of a --sequence), id (id.primitive,
                          id.node, id.material, uint), mask (coverage, filtered as the colour),
                          lod and anisotropy (the base colour texture's mip level and probe
-                         count as its filter chooses them), Z (always written); PNG outputs
-                         hold none (docs/cli.md "AOVs")
+                         count as its filter chooses them), albedo, roughness, metallic and
+                         emission (albedo.R/G/B, roughness, metallic, emission.R/G/B: the pbr
+                         material's terms), diffuse and specular (diffuse.R/G/B,
+                         specular.R/G/B: the light of each lobe; emission + diffuse +
+                         specular = the colour), Z (always written); PNG outputs hold none
+                         (docs/cli.md "AOVs")
   --shading-rate pixel|sample
                          with --samples: shade once per pixel and visible triangle
                          (default, multisampling) or every sample (supersampling)

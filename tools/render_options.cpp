@@ -132,7 +132,13 @@ constexpr AovName kAovNames[] = {{"Z", 0},
                                  {"id", AovSet(Aov::Ids)},
                                  {kCoverageChannel, 0},
                                  {"lod", AovSet(Aov::Lod)},
-                                 {"anisotropy", AovSet(Aov::Anisotropy)}};
+                                 {"anisotropy", AovSet(Aov::Anisotropy)},
+                                 {"albedo", AovSet(Aov::Albedo)},
+                                 {"roughness", AovSet(Aov::Roughness)},
+                                 {"metallic", AovSet(Aov::Metallic)},
+                                 {"emission", AovSet(Aov::Emission)},
+                                 {"diffuse", AovSet(Aov::Diffuse)},
+                                 {"specular", AovSet(Aov::Specular)}};
 
 }  // namespace
 

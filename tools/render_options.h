@@ -59,11 +59,13 @@ void addOutputOption(CommandOptions& options, std::vector<std::string>& outputs)
 bool outputsNeedDepth(const std::vector<std::string>& outputs);
 
 // --aov LIST, repeatable: comma-separated AOV names (docs/cli.md "AOVs"): Z, N,
-// P, uv, motion, id, mask, lod, anisotropy. mask sets frameCoverage, Z is always in an EXR,
+// P, uv, motion, id, mask, lod, anisotropy, albedo, roughness, metallic, emission, diffuse,
+// specular. mask sets frameCoverage, Z is always in an EXR,
 // the others are RenderSettings::aovs bits; any other name is an Error
 // listing the valid ones.
 void addAovOption(CommandOptions& options, RenderSettings& settings);
-// The AOV names --aov accepts, for messages: "Z, N, P, uv, motion, id, mask, lod, anisotropy".
+// The AOV names --aov accepts, for messages: "Z, N, P, uv, motion, id, mask, lod, anisotropy,
+// albedo, roughness, metallic, emission, diffuse, specular".
 std::string aovNames();
 
 // Pbr shading's light and output (LIGHTING.md, docs/lighting.md), as

@@ -318,6 +318,7 @@ AovFrame makeAovFrame(const Scene& scene, const Camera& camera, const RenderSett
   const glm::dmat4 projection(projectionMatrix(camera, aspect, settings.depth));
   const PreviousPose* previous = settings.previousPose;
   aov.hasPreviousPose = previous != nullptr;
+  aov.albedoScale = std::exp2(-settings.exposure);
   glm::dmat4 previousViewToClip(1.0);
   if (previous) {
     if (previous->instanceWorlds.size() != scene.instances.size())
@@ -404,11 +405,10 @@ void chargeFrame(const RenderSettings& settings, int threads, const std::vector<
   budget.charge("the " + size + " frame", pixels * channels * sizeof(float));
   const int ringChannels =
       settings.pixelFilter == PixelFilter::Box ? 0 : (settings.frameCoverage ? 5 : 4);
-  budget.charge(
-      "tile memory (" + std::to_string(settings.samples) + " samples, " + std::to_string(threads) +
-          " threads)",
-      tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height), settings.samples,
-                      threads, ringChannels, settings.aovs != 0, draws));
+  budget.charge("tile memory (" + std::to_string(settings.samples) + " samples, " +
+                    std::to_string(threads) + " threads)",
+                tileMemoryBytes(TileGrid::forViewport(settings.width, settings.height),
+                                settings.samples, threads, ringChannels, settings.aovs, draws));
   // The front end's arrays grow with the scene's vertices and triangles,
   // which a file controls through its index count alone (a small vertex
   // buffer indexed millions of times). Charged at what every triangle takes
@@ -627,6 +627,12 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   resizeLarge(out.motion, aovPixels(Aov::Motion), 0.0f, &executor);
   resizeLarge(out.lod, aovPixels(Aov::Lod), 0.0f, &executor);
   resizeLarge(out.anisotropy, aovPixels(Aov::Anisotropy), 0.0f, &executor);
+  resizeLarge(out.albedo, aovPixels(Aov::Albedo), 0.0f, &executor);
+  resizeLarge(out.roughness, aovPixels(Aov::Roughness), 0.0f, &executor);
+  resizeLarge(out.metallic, aovPixels(Aov::Metallic), 0.0f, &executor);
+  resizeLarge(out.emission, aovPixels(Aov::Emission), 0.0f, &executor);
+  resizeLarge(out.diffuse, aovPixels(Aov::Diffuse), 0.0f, &executor);
+  resizeLarge(out.specular, aovPixels(Aov::Specular), 0.0f, &executor);
   for (std::vector<std::uint32_t>* ids : {&out.primitiveId, &out.nodeId, &out.materialId})
     resizeLarge(*ids, hasAov(settings.aovs, Aov::Ids) ? pixels : 0, kNoId, &executor);
   const double aspect = double(settings.width) / settings.height;

@@ -16,7 +16,8 @@ namespace quadra {
 // The surface AOVs a render can fill besides colour, depth and coverage, as
 // bits of a set (RenderSettings::aovs). Each is taken from the nearest
 // depth-writing surface of the pixel, evaluated at the pixel centre (docs/cli.md
-// "AOVs"); blended draws write none.
+// "AOVs"); blended draws write none. The shading AOVs (albedo to specular)
+// are the lit shading's terms (Shading::Pbr), which the beauty sums.
 enum class Aov : std::uint32_t {
   Normal = 1u << 0,      // N.X, N.Y, N.Z: world-space shading normal, unit length
   Position = 1u << 1,    // P.X, P.Y, P.Z: world-space position
@@ -25,22 +26,34 @@ enum class Aov : std::uint32_t {
   Ids = 1u << 4,         // id.primitive, id.node, id.material (uint32)
   Lod = 1u << 5,         // lod: the mip level the base colour texture's filter reads
   Anisotropy = 1u << 6,  // anisotropy: its probe count (1 but for the anisotropic filter)
+  Albedo = 1u << 7,      // albedo.R/G/B: base colour after textures and COLOR_0, linear
+  Roughness = 1u << 8,   // roughness: perceptual, after the texture and Toksvig
+  Metallic = 1u << 9,    // metallic: after the texture
+  Emission = 1u << 10,   // emission.R/G/B: emitted radiance (x emissive strength)
+  Diffuse = 1u << 11,    // diffuse.R/G/B: the diffuse lobe's radiance, environment + lights
+  Specular = 1u << 12,   // specular.R/G/B: the specular lobe's radiance, environment + lights
 };
 // The AOVs the sampler's level choice fills (tile stage, after the shading pass).
 constexpr std::uint32_t kFootprintAovs = std::uint32_t(Aov::Lod) | std::uint32_t(Aov::Anisotropy);
+// The AOVs the lit shading's terms fill (tile stage, after the shading pass).
+constexpr std::uint32_t kShadingAovs = std::uint32_t(Aov::Albedo) | std::uint32_t(Aov::Roughness) |
+                                       std::uint32_t(Aov::Metallic) | std::uint32_t(Aov::Emission) |
+                                       std::uint32_t(Aov::Diffuse) | std::uint32_t(Aov::Specular);
 using AovSet = std::uint32_t;
 constexpr bool hasAov(AovSet set, Aov aov) {
   return (set & std::uint32_t(aov)) != 0;
 }
 // 4-byte channels per pixel: each AOV's, and a set's in all (3 ids for Ids).
 constexpr int aovChannels(Aov aov) {
-  if (aov == Aov::Lod || aov == Aov::Anisotropy) return 1;
+  if (aov == Aov::Lod || aov == Aov::Anisotropy || aov == Aov::Roughness || aov == Aov::Metallic)
+    return 1;
   return aov == Aov::Uv || aov == Aov::Motion ? 2 : 3;
 }
 constexpr int aovChannels(AovSet set) {
   int channels = 0;
   for (const Aov aov :
-       {Aov::Normal, Aov::Position, Aov::Uv, Aov::Motion, Aov::Ids, Aov::Lod, Aov::Anisotropy})
+       {Aov::Normal, Aov::Position, Aov::Uv, Aov::Motion, Aov::Ids, Aov::Lod, Aov::Anisotropy,
+        Aov::Albedo, Aov::Roughness, Aov::Metallic, Aov::Emission, Aov::Diffuse, Aov::Specular})
     if (hasAov(set, aov)) channels += aovChannels(aov);
   return channels;
 }
@@ -89,6 +102,10 @@ struct Frame {
   std::vector<std::uint32_t> primitiveId, nodeId, materialId;  // 1 per pixel each
   // 1 per pixel each; 0 where no textured depth-writing surface is.
   std::vector<float> lod, anisotropy;
+  // The lit shading's terms (docs/cli.md "AOVs"): 3 per pixel (albedo,
+  // emission, diffuse, specular) or 1 (roughness, metallic); 0 where no
+  // depth-writing surface is, and albedo alone where an unlit one is.
+  std::vector<float> albedo, roughness, metallic, emission, diffuse, specular;
   FrameMetadata metadata;
 };
 

@@ -129,6 +129,12 @@ std::vector<ExrPlane> exrAovPlanes(const Frame& frame) {
   floats(frame.motion, {"motion.X", "motion.Y"});
   floats(frame.lod, {"lod"});
   floats(frame.anisotropy, {"anisotropy"});
+  floats(frame.albedo, {"albedo.R", "albedo.G", "albedo.B"});
+  floats(frame.roughness, {"roughness"});
+  floats(frame.metallic, {"metallic"});
+  floats(frame.emission, {"emission.R", "emission.G", "emission.B"});
+  floats(frame.diffuse, {"diffuse.R", "diffuse.G", "diffuse.B"});
+  floats(frame.specular, {"specular.R", "specular.G", "specular.B"});
   const auto ids = [&](const std::vector<std::uint32_t>& plane, const char* name) {
     if (!plane.empty())
       planes.push_back(

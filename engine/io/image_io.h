@@ -40,7 +40,8 @@ std::string exrCompressionNames();
 // EXR with FLOAT (or, with halfColour, HALF) channels R, G, B, A
 // (premultiplied linear) and FLOAT Z, the coverage as kCoverageChannel and
 // the surface AOVs the frame has (FLOAT N.X/Y/Z, P.X/Y/Z, uv.U/V,
-// motion.X/Y, lod, anisotropy; UINT id.primitive, id.node, id.material; a
+// motion.X/Y, lod, anisotropy, albedo.R/G/B, roughness, metallic,
+// emission.R/G/B, diffuse.R/G/B, specular.R/G/B; UINT id.primitive, id.node, id.material; a
 // PNG has no place for them), and in the header the metadata's camera
 // (OpenEXR's worldToCamera and worldToNDC) and strings. Half colour is
 // converted on `executor`'s threads when one is given (OpenEXR compresses on

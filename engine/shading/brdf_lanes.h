@@ -140,15 +140,25 @@ QUADRA_LANE_INLINE FresnelSplit<L> fresnelSplit(const BrdfMaterial<L>& m) {
           dielectric * (F(1.0f) - m.dielectricF90)};
 }
 
-// f(v, l) (n.l) for unit n, v, l: mix(f_dielectric, f_metal, metallic) with
+// The parts of f(v, l) (n.l) for unit n, v, l: mix(f_dielectric, f_metal, metallic) with
 // f_metal = F_Schlick(baseColor, 1) D V and
 // f_dielectric = (1 - max(F_d)) baseColor / pi + F_d D V, F_d = F_Schlick(dielectric_f0,
 // dielectric_f90). Zero where n.l <= 0 or n.v <= 0. alpha is clamped to 2^-10 (alpha^2 ~ 1e-6) so
 // that a punctual light on a mirror is the narrow lobe's finite value, not 0/0; the environment
-// term handles alpha = 0 itself.
+// term handles alpha = 0 itself. brdfCosine sums the lobes, brdfCosineLobes keeps them apart.
 template <class L>
-QUADRA_LANE_INLINE RgbLanes<L> brdfCosine(const BrdfMaterial<L>& m, const Vec3Lanes<L>& n,
-                                          const Vec3Lanes<L>& v, const Vec3Lanes<L>& l) {
+struct BrdfCosineTerms {
+  typename L::M lit;      // n.l > 0 and n.v > 0
+  typename L::F nl, dv;   // n.l, D V
+  typename L::F diffuse;  // the diffuse lobe's weight / pi, x baseColor gives its BRDF
+  typename L::F oneMinusW, specF90w;
+  FresnelSplit<L> split;
+};
+
+template <class L>
+QUADRA_LANE_INLINE BrdfCosineTerms<L> brdfCosineTerms(const BrdfMaterial<L>& m,
+                                                      const Vec3Lanes<L>& n, const Vec3Lanes<L>& v,
+                                                      const Vec3Lanes<L>& l) {
   using F = typename L::F;
   const F nl = dot<L>(n, l), nv = dot<L>(n, v);
   const auto lit = (nl > F(0.0f)) & (nv > F(0.0f));
@@ -165,15 +175,48 @@ QUADRA_LANE_INLINE RgbLanes<L> brdfCosine(const BrdfMaterial<L>& m, const Vec3La
   const FresnelSplit<L> s = fresnelSplit<L>(m);
   const F oneMinusW = F(1.0f) - w;
   const F diffuse = (s.diffuseF0 * oneMinusW + s.diffuseF90 * w) * F(kInvPi);
-  const F specF90w = s.specF90 * w;
+  return {lit, nl, dv, diffuse, oneMinusW, s.specF90 * w, s};
+}
+
+template <class L>
+QUADRA_LANE_INLINE RgbLanes<L> brdfCosine(const BrdfMaterial<L>& m, const Vec3Lanes<L>& n,
+                                          const Vec3Lanes<L>& v, const Vec3Lanes<L>& l) {
+  using F = typename L::F;
+  const BrdfCosineTerms<L> t = brdfCosineTerms<L>(m, n, v, l);
+  const RgbLanes<L>& f0 = t.split.specF0;
   const F zero(0.0f);
-  return {
-      simd::select(lit, ((s.specF0.r * oneMinusW + specF90w) * dv + diffuse * m.baseColor.r) * nl,
-                   zero),
-      simd::select(lit, ((s.specF0.g * oneMinusW + specF90w) * dv + diffuse * m.baseColor.g) * nl,
-                   zero),
-      simd::select(lit, ((s.specF0.b * oneMinusW + specF90w) * dv + diffuse * m.baseColor.b) * nl,
-                   zero)};
+  return {simd::select(
+              t.lit, ((f0.r * t.oneMinusW + t.specF90w) * t.dv + t.diffuse * m.baseColor.r) * t.nl,
+              zero),
+          simd::select(
+              t.lit, ((f0.g * t.oneMinusW + t.specF90w) * t.dv + t.diffuse * m.baseColor.g) * t.nl,
+              zero),
+          simd::select(
+              t.lit, ((f0.b * t.oneMinusW + t.specF90w) * t.dv + t.diffuse * m.baseColor.b) * t.nl,
+              zero)};
+}
+
+// The two lobes of brdfCosine apart (the diffuse and specular AOVs); their
+// sum is brdfCosine's up to rounding.
+template <class L>
+struct LobePair {
+  RgbLanes<L> diffuse, specular;
+};
+
+template <class L>
+QUADRA_LANE_INLINE LobePair<L> brdfCosineLobes(const BrdfMaterial<L>& m, const Vec3Lanes<L>& n,
+                                               const Vec3Lanes<L>& v, const Vec3Lanes<L>& l) {
+  using F = typename L::F;
+  const BrdfCosineTerms<L> t = brdfCosineTerms<L>(m, n, v, l);
+  const RgbLanes<L>& f0 = t.split.specF0;
+  const F zero(0.0f);
+  const F diffuse = t.diffuse * t.nl, specular = t.dv * t.nl;
+  return {{simd::select(t.lit, diffuse * m.baseColor.r, zero),
+           simd::select(t.lit, diffuse * m.baseColor.g, zero),
+           simd::select(t.lit, diffuse * m.baseColor.b, zero)},
+          {simd::select(t.lit, (f0.r * t.oneMinusW + t.specF90w) * specular, zero),
+           simd::select(t.lit, (f0.g * t.oneMinusW + t.specF90w) * specular, zero),
+           simd::select(t.lit, (f0.b * t.oneMinusW + t.specF90w) * specular, zero)}};
 }
 
 }  // namespace shading

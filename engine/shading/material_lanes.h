@@ -87,14 +87,14 @@ QUADRA_LANE_INLINE typename L::F materialAlpha(const MaterialShading& m,
   return a;
 }
 
-// The material at the lanes and the radiance it sends toward the eye
-// (LIGHTING.md "The light"), alpha as the unlit shading makes it.
+// The material at the lanes as the light sees it (LIGHTING.md "The
+// material"), into s; returns the alpha, as the unlit shading makes it.
 template <class L>
-QUADRA_LANE_INLINE Rgba<L> materialRadiance(const MaterialShading& m,
-                                            const MaterialLaneInputs<L>& in) {
+QUADRA_LANE_INLINE typename L::F materialSurface(const MaterialShading& m,
+                                                 const MaterialLaneInputs<L>& in,
+                                                 SurfaceLanes<L>& s) {
   using F = typename L::F;
   using namespace material_reads;
-  SurfaceLanes<L> s;
   // Base colour: factor x texture (sRGB-decoded when loaded) x COLOR_0.
   F r(m.baseColorFactor.r), g(m.baseColorFactor.g), b(m.baseColorFactor.b), a(m.baseColorFactor.a);
   if (m.baseColor.present()) {
@@ -164,8 +164,38 @@ QUADRA_LANE_INLINE Rgba<L> materialRadiance(const MaterialShading& m,
   s.normal = toWorld<L>(m.worldFromView, n);
   s.view =
       toWorld<L>(m.worldFromView, normalized<L>({F(0.0f) - p.x, F(0.0f) - p.y, F(0.0f) - p.z}));
+  return a;
+}
+
+// The material at the lanes and the radiance it sends toward the eye
+// (LIGHTING.md "The light"), alpha as the unlit shading makes it.
+template <class L>
+QUADRA_LANE_INLINE Rgba<L> materialRadiance(const MaterialShading& m,
+                                            const MaterialLaneInputs<L>& in) {
+  SurfaceLanes<L> s;
+  const typename L::F a = materialSurface<L>(m, in, s);
   const RgbLanes<L> radiance = surfaceRadiance<L>(*m.lighting, s);
   return {radiance.r, radiance.g, radiance.b, a};
+}
+
+// The shading AOVs of the lanes (docs/cli.md "AOVs"): the material's terms
+// as materialRadiance lights them (roughness after Toksvig, the lobe's), and
+// the light of each lobe; emission + diffuse + specular is materialRadiance's
+// colour up to rounding.
+template <class L>
+struct MaterialAovLanes {
+  RgbLanes<L> albedo;
+  typename L::F roughness, metallic;
+  RgbLanes<L> emission, diffuse, specular;
+};
+
+template <class L>
+QUADRA_LANE_INLINE MaterialAovLanes<L> materialAovs(const MaterialShading& m,
+                                                    const MaterialLaneInputs<L>& in) {
+  SurfaceLanes<L> s;
+  materialSurface<L>(m, in, s);
+  const shading::LobePair<L> light = surfaceLobes<L>(*m.lighting, s);
+  return {s.baseColor, s.roughness, s.metallic, s.emission, light.diffuse, light.specular};
 }
 
 }  // namespace quadra

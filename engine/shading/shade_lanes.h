@@ -159,10 +159,11 @@ QUADRA_LANE_INLINE LobeRadiance<L> specularLobeRadiance(const EnvironmentView& e
           {sum1.r * inv1, sum1.g * inv1, sum1.b * inv1}};
 }
 
-// The environment term: integral of Lenv(l) f(v, l) max(0, n.l) dl.
+// The environment term's two lobes: the integral of Lenv(l) f(v, l) max(0, n.l) dl
+// for f's diffuse and its specular part.
 template <class L>
-QUADRA_LANE_INLINE RgbLanes<L> environmentRadiance(const EnvironmentView& env,
-                                                   const SurfaceLanes<L>& s) {
+QUADRA_LANE_INLINE LobePair<L> environmentLobes(const EnvironmentView& env,
+                                                const SurfaceLanes<L>& s) {
   using F = typename L::F;
   const BrdfMaterial<L> m = brdfMaterialOf<L>(s);
   const FresnelSplit<L> f = fresnelSplit<L>(m);
@@ -173,24 +174,32 @@ QUADRA_LANE_INLINE RgbLanes<L> environmentRadiance(const EnvironmentView& env,
   // Diffuse: baseColor x E x (diffuseF0 (1 - S) + diffuseF90 S).
   const F diffuse = f.diffuseF0 * (F(1.0f) - albedo.s) + f.diffuseF90 * albedo.s;
   const F grazing = f.specF90 * albedo.b;
-  return {f.specF0.r * albedo.a * lobe.outer.r + grazing * lobe.grazing.r +
-              diffuse * s.baseColor.r * e.r,
-          f.specF0.g * albedo.a * lobe.outer.g + grazing * lobe.grazing.g +
-              diffuse * s.baseColor.g * e.g,
-          f.specF0.b * albedo.a * lobe.outer.b + grazing * lobe.grazing.b +
-              diffuse * s.baseColor.b * e.b};
+  return {
+      {diffuse * s.baseColor.r * e.r, diffuse * s.baseColor.g * e.g, diffuse * s.baseColor.b * e.b},
+      {f.specF0.r * albedo.a * lobe.outer.r + grazing * lobe.grazing.r,
+       f.specF0.g * albedo.a * lobe.outer.g + grazing * lobe.grazing.g,
+       f.specF0.b * albedo.a * lobe.outer.b + grazing * lobe.grazing.b}};
+}
+
+// The environment term: integral of Lenv(l) f(v, l) max(0, n.l) dl, the
+// lobes summed (specular + diffuse: the order the sum always had).
+template <class L>
+QUADRA_LANE_INLINE RgbLanes<L> environmentRadiance(const EnvironmentView& env,
+                                                   const SurfaceLanes<L>& s) {
+  const LobePair<L> lobes = environmentLobes<L>(env, s);
+  return {lobes.specular.r + lobes.diffuse.r, lobes.specular.g + lobes.diffuse.g,
+          lobes.specular.b + lobes.diffuse.b};
 }
 
 // KHR_lights_punctual: E_l f(v, l) (n.l) summed over the lights. Point and
 // spot: intensity / d^2 x the range window clamp(1 - (d / range)^4, 0, 1)
 // (the specification's recommended implementation); spot: x clamp(cd scale +
 // offset, 0, 1)^2 (its implementation note). No shadows (LIGHTING.md).
-template <class L>
-QUADRA_LANE_INLINE RgbLanes<L> punctualRadiance(const LightingView& view,
-                                                const SurfaceLanes<L>& s) {
+// arrive(light, l, attenuation) is called per light.
+template <class L, class Arrive>
+QUADRA_LANE_INLINE void forEachPunctualLight(const LightingView& view, const SurfaceLanes<L>& s,
+                                             Arrive&& arrive) {
   using F = typename L::F;
-  const BrdfMaterial<L> m = brdfMaterialOf<L>(s);
-  RgbLanes<L> sum{F(0.0f), F(0.0f), F(0.0f)};
   for (int i = 0; i < view.lightCount; ++i) {
     const PunctualLight& light = view.lights[i];
     Vec3Lanes<L> l;
@@ -213,11 +222,42 @@ QUADRA_LANE_INLINE RgbLanes<L> punctualRadiance(const LightingView& view,
         attenuation = attenuation * cone * cone;
       }
     }
-    const RgbLanes<L> f = brdfCosine<L>(m, s.normal, s.view, l);
-    sum = {sum.r + f.r * attenuation * F(light.radiance[0]),
-           sum.g + f.g * attenuation * F(light.radiance[1]),
-           sum.b + f.b * attenuation * F(light.radiance[2])};
+    arrive(light, l, attenuation);
   }
+}
+
+template <class L>
+QUADRA_LANE_INLINE RgbLanes<L> punctualRadiance(const LightingView& view,
+                                                const SurfaceLanes<L>& s) {
+  using F = typename L::F;
+  const BrdfMaterial<L> m = brdfMaterialOf<L>(s);
+  RgbLanes<L> sum{F(0.0f), F(0.0f), F(0.0f)};
+  forEachPunctualLight<L>(
+      view, s, [&](const PunctualLight& light, const Vec3Lanes<L>& l, const F& attenuation) {
+        const RgbLanes<L> f = brdfCosine<L>(m, s.normal, s.view, l);
+        sum = {sum.r + f.r * attenuation * F(light.radiance[0]),
+               sum.g + f.g * attenuation * F(light.radiance[1]),
+               sum.b + f.b * attenuation * F(light.radiance[2])};
+      });
+  return sum;
+}
+
+// punctualRadiance's two lobes apart.
+template <class L>
+QUADRA_LANE_INLINE LobePair<L> punctualLobes(const LightingView& view, const SurfaceLanes<L>& s) {
+  using F = typename L::F;
+  const BrdfMaterial<L> m = brdfMaterialOf<L>(s);
+  LobePair<L> sum{{F(0.0f), F(0.0f), F(0.0f)}, {F(0.0f), F(0.0f), F(0.0f)}};
+  forEachPunctualLight<L>(
+      view, s, [&](const PunctualLight& light, const Vec3Lanes<L>& l, const F& attenuation) {
+        const LobePair<L> f = brdfCosineLobes<L>(m, s.normal, s.view, l);
+        const F r = attenuation * F(light.radiance[0]), g = attenuation * F(light.radiance[1]),
+                b = attenuation * F(light.radiance[2]);
+        sum.diffuse = {sum.diffuse.r + f.diffuse.r * r, sum.diffuse.g + f.diffuse.g * g,
+                       sum.diffuse.b + f.diffuse.b * b};
+        sum.specular = {sum.specular.r + f.specular.r * r, sum.specular.g + f.specular.g * g,
+                        sum.specular.b + f.specular.b * b};
+      });
   return sum;
 }
 
@@ -235,6 +275,30 @@ QUADRA_LANE_INLINE RgbLanes<L> surfaceRadiance(const LightingView& view, const S
   if (view.lightCount > 0) {
     const RgbLanes<L> p = shading::punctualRadiance<L>(view, s);
     out = {out.r + p.r, out.g + p.g, out.b + p.b};
+  }
+  return out;
+}
+
+// The light each lobe sends toward the viewer (the diffuse and specular
+// AOVs): occlusion x the environment's lobe + the punctual lights' lobe.
+// emission + diffuse + specular is surfaceRadiance up to rounding.
+template <class L>
+QUADRA_LANE_INLINE shading::LobePair<L> surfaceLobes(const LightingView& view,
+                                                     const SurfaceLanes<L>& s) {
+  using F = typename L::F;
+  shading::LobePair<L> out{{F(0.0f), F(0.0f), F(0.0f)}, {F(0.0f), F(0.0f), F(0.0f)}};
+  if (view.environment) {
+    const shading::LobePair<L> e = shading::environmentLobes<L>(view.env, s);
+    out.diffuse = {s.occlusion * e.diffuse.r, s.occlusion * e.diffuse.g, s.occlusion * e.diffuse.b};
+    out.specular = {s.occlusion * e.specular.r, s.occlusion * e.specular.g,
+                    s.occlusion * e.specular.b};
+  }
+  if (view.lightCount > 0) {
+    const shading::LobePair<L> p = shading::punctualLobes<L>(view, s);
+    out.diffuse = {out.diffuse.r + p.diffuse.r, out.diffuse.g + p.diffuse.g,
+                   out.diffuse.b + p.diffuse.b};
+    out.specular = {out.specular.r + p.specular.r, out.specular.g + p.specular.g,
+                    out.specular.b + p.specular.b};
   }
   return out;
 }

@@ -48,7 +48,10 @@ struct AovFrame {
   AovSet aovs = 0;
   int width = 0, height = 0;
   bool hasPreviousPose = false;  // else motion is 0
-  std::vector<AovDraw> draws;    // indexed like the frame's draws
+  // 2^-exposure: an unlit draw's base colour carries the exposure
+  // (api/renderer.cpp), which its albedo AOV takes back out exactly.
+  float albedoScale = 1.0f;
+  std::vector<AovDraw> draws;  // indexed like the frame's draws
 };
 
 // One visible triangle's vertices, as the AOVs read them.

@@ -134,6 +134,17 @@ struct ShadeRun {
   float* jobColor = nullptr;
 };
 
+// Where each shading AOV's floats start in TileKernels::shadingAovs' output.
+enum ShadingAovChannel : int {
+  kAlbedoChannel = 0,     // R, G, B
+  kRoughnessChannel = 3,  // 1
+  kMetallicChannel = 4,   // 1
+  kEmissionChannel = 5,   // R, G, B
+  kDiffuseChannel = 8,    // R, G, B
+  kSpecularChannel = 11,  // R, G, B
+  kShadingAovFloats = 14,
+};
+
 struct TileKernels {
   Isa isa;
   int lanes;  // SIMD width in pixels (4 per quad)
@@ -195,6 +206,13 @@ struct TileKernels {
   // level and probe count the draw's filter chooses for it, one float each.
   void (*footprintLevels)(const ShadeState& shade, const float* planes, const ShadeJob* jobs,
                           int count, float* lod, float* anisotropy);
+  // The shading AOVs (io/frame.h kShadingAovs) of a draw's jobs, each at its
+  // position with its triangle's planes as footprintLevels takes them: a lit
+  // draw's material terms and lobes (shading/material_lanes.h materialAovs),
+  // another draw's base colour and zeros. kShadingAovFloats floats a job, in
+  // ShadingAovChannel order: channel c of job j at out[c * count + j].
+  void (*shadingAovs)(const ShadeState& shade, const float* planes, const ShadeJob* jobs, int count,
+                      float* out);
   // A lit frame's environment behind each pixel of `tile` that its surfaces
   // leave uncovered: colour + (1 - alpha) x the environment seen through the
   // pixel (shading/background_lanes.h), alpha 1.

@@ -202,13 +202,12 @@ QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const
 // Lit shading (Shading::Pbr): every attribute the draw interpolates, each
 // texture coordinate set's footprint as the unlit lookups take theirs, and
 // then the shading stage's material and light (shading/material_lanes.h).
-// Not inlined: one copy per ISA serves every specialization that may meet a
-// lit draw.
-[[gnu::noinline]] Rgba<L> litMaterialColor(const ShadeState& shade, const F& x, const F& y,
-                                           const LanePlane& invW, const LanePlane* attr,
-                                           bool quadDerivatives) {
+// value: the attributes' values, which the result points to.
+QUADRA_LANE_INLINE MaterialLaneInputs<L> litMaterialInputs(const ShadeState& shade, const F& x,
+                                                           const F& y, const LanePlane& invW,
+                                                           const LanePlane* attr,
+                                                           bool quadDerivatives, F* value) {
   const F w = F(1.0f) / invW.at(x, y);
-  F value[kMaxShadedAttributes];
   for (int k = 0; k < shade.attributes.count; ++k) value[k] = attr[k].at(x, y) * w;
   const MaterialShading& material = *shade.material;
   MaterialLaneInputs<L> in{value, {}};
@@ -219,7 +218,28 @@ QUADRA_LANE_INLINE UvDerivatives<L> quadFootprint(const ShadeState& shade, const
                                         : analyticFootprint(shade, value[t], value[t + 1], w, invW,
                                                             attr[t], attr[t + 1]);
   }
-  return materialRadiance<L>(material, in);
+  return in;
+}
+
+// Not inlined: one copy per ISA serves every specialization that may meet a
+// lit draw.
+[[gnu::noinline]] Rgba<L> litMaterialColor(const ShadeState& shade, const F& x, const F& y,
+                                           const LanePlane& invW, const LanePlane* attr,
+                                           bool quadDerivatives) {
+  F value[kMaxShadedAttributes];
+  const MaterialLaneInputs<L> in =
+      litMaterialInputs(shade, x, y, invW, attr, quadDerivatives, value);
+  return materialRadiance<L>(*shade.material, in);
+}
+
+// The shading AOVs' terms of a lit draw (materialAovs), at the same inputs
+// as litMaterialColor; only the AOV pass calls it.
+[[gnu::noinline]] MaterialAovLanes<L> litMaterialAovs(const ShadeState& shade, const F& x,
+                                                      const F& y, const LanePlane& invW,
+                                                      const LanePlane* attr) {
+  F value[kMaxShadedAttributes];
+  const MaterialLaneInputs<L> in = litMaterialInputs(shade, x, y, invW, attr, false, value);
+  return materialAovs<L>(*shade.material, in);
 }
 
 // A lit draw's alpha alone, for the visibility pass's alpha test: the base
@@ -1552,6 +1572,57 @@ void footprintLevels(const ShadeState& s, const float* planes, const ShadeJob* j
   }
 }
 
+// The base colour an unlit draw shows (the albedo AOV of Shading::Unlit,
+// Shading::Lit and KHR_materials_unlit draws): shadeColor without the light.
+Rgba<L> unlitBaseColor(const ShadeState& s, const F& x, const F& y, const LanePlane& invW,
+                       const LanePlane* attr) {
+  constexpr ShadeOutput kColor = ShadeOutput::Color;
+  if (s.textured)
+    return s.vertexColor ? shadeColor<true, true, false, kColor>(s, x, y, invW, attr, false)
+                         : shadeColor<true, false, false, kColor>(s, x, y, invW, attr, false);
+  return s.vertexColor ? shadeColor<false, true, false, kColor>(s, x, y, invW, attr, false)
+                       : shadeColor<false, false, false, kColor>(s, x, y, invW, attr, false);
+}
+
+// The shading AOVs of a draw's jobs (TileKernels::shadingAovs).
+void shadingAovs(const ShadeState& s, const float* planes, const ShadeJob* jobs, int count,
+                 float* out) {
+  const int planeCount = 1 + s.attributes.count;
+  // A draw of one colour reads no plane, and the tile stage rebased none.
+  const bool readsPlanes = !s.shadesOneColour();
+  for (int first = 0; first < count; first += L::kWidth) {
+    alignas(64) float xs[L::kWidth], ys[L::kWidth];
+    alignas(64) std::uint32_t ids[L::kWidth];
+    for (int k = 0; k < L::kWidth; ++k) {
+      const ShadeJob& job = jobs[first + std::min(k, count - first - 1)];
+      xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
+    }
+    LanePlane p[1 + kMaxShadedAttributes];
+    if (readsPlanes) lanePlanes(planes, ids, planeCount, p);
+    const F x = F::load_aligned(xs), y = F::load_aligned(ys);
+    const F zero(0.0f);
+    MaterialAovLanes<L> a{{zero, zero, zero}, zero, zero, {zero, zero, zero}, {zero, zero, zero},
+                          {zero, zero, zero}};
+    if (s.material != nullptr) {
+      a = litMaterialAovs(s, x, y, p[0], p + 1);
+    } else {
+      const Rgba<L> c = unlitBaseColor(s, x, y, p[0], p + 1);
+      a.albedo = {c.r, c.g, c.b};
+    }
+    const F* channels[kShadingAovFloats] = {
+        &a.albedo.r,   &a.albedo.g,   &a.albedo.b,   &a.roughness, &a.metallic,
+        &a.emission.r, &a.emission.g, &a.emission.b, &a.diffuse.r, &a.diffuse.g,
+        &a.diffuse.b,  &a.specular.r, &a.specular.g, &a.specular.b};
+    const int lanes = std::min(L::kWidth, count - first);
+    for (int c = 0; c < kShadingAovFloats; ++c) {
+      alignas(64) float values[L::kWidth];
+      channels[c]->store_aligned(values);
+      for (int k = 0; k < lanes; ++k)
+        out[std::size_t(c) * std::size_t(count) + std::size_t(first + k)] = values[k];
+    }
+  }
+}
+
 void copyAgreeingSamples(TileBuffers* planes, int samples, const std::uint32_t* differs) {
   for (int k = 1; k < samples; ++k)
     for (int c = 0; c < 4; ++c) {
@@ -1731,6 +1802,7 @@ const TileKernels& QUADRA_KERNEL_ENTRY(tileKernels)() {
                                    &QUADRA_KERNEL_NAMESPACE::averageSamples,
                                    &QUADRA_KERNEL_NAMESPACE::nearestSampleDepth,
                                    &QUADRA_KERNEL_NAMESPACE::footprintLevels,
+                                   &QUADRA_KERNEL_NAMESPACE::shadingAovs,
                                    &QUADRA_KERNEL_NAMESPACE::compositeBackground};
   return kernels;
 }

@@ -1057,13 +1057,14 @@ void resolveSamples(int tileIndex, const TileFrame& frame, TileScratch& s, Frame
     frame.kernels.wide->nearestSampleDepth(s.planes.get(), samples, frame.depthGreater);
 }
 
-// The lod and anisotropy AOVs (docs/cli.md "AOVs"): per pixel, the nearest
-// sample's triangle looked up by the kernel at the pixel centre as the
-// shading pass would (TileKernels::footprintLevels), one kernel call per run
-// of a textured draw's pixels; 0 and 0 where no textured surface is.
-void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, TileScratch& s,
-                        Frame& out) {
-  const AovSet set = frame.aov->aovs;
+// The jobs of the AOVs the kernels compute (lod and anisotropy, the shading
+// AOVs): per pixel, the nearest sample's triangle at the pixel centre, as the
+// shading pass would shade it, where wants(its draw's ShadeState) holds;
+// clear(frame pixel) for every pixel first. Sorted by run into
+// s.sortedJobs; returns the number of runs (0: no job).
+template <class Wants, class Clear>
+std::uint32_t collectAovJobs(const TileFrame& frame, TileScratch& s, const Frame& out,
+                             const Wants& wants, const Clear& clear) {
   const TileBuffers& tile = s.planes[0];
   if (!s.visibleTriangles.empty())
     rebaseShadePlanes(frame.draws, tile, SampleOffset{},
@@ -1074,34 +1075,113 @@ void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, Tile
       const int p = TileBuffers::index(x, y);
       const std::uint32_t id =
           nearestSampleTriangle(s.planes.get(), frame.samples.count, frame.depthGreater, p);
-      const std::size_t pixel =
-          std::size_t(tile.originY + y) * std::size_t(out.width) + std::size_t(tile.originX + x);
-      if (hasAov(set, Aov::Lod)) out.lod[pixel] = 0.0f;
-      if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = 0.0f;
-      if (id != kNoTriangle && frame.draws[s.visibleTriangles[id].draw].shade.textured)
+      clear(std::size_t(tile.originY + y) * std::size_t(out.width) + std::size_t(tile.originX + x));
+      if (id != kNoTriangle && wants(frame.draws[s.visibleTriangles[id].draw].shade))
         s.jobs.push_back({float(x), float(y), id, std::uint16_t(p)});
     }
-  if (s.jobs.empty()) return;
-  const std::uint32_t runs = sortJobsByRun(s);
-  const std::size_t count = s.sortedJobs.size();
-  s.jobColor.resize(2 * count);
-  float* const lod = s.jobColor.data();
-  float* const anisotropy = lod + count;
+  if (s.jobs.empty()) return 0;
+  return sortJobsByRun(s);
+}
+
+// The frame pixel of a sorted job.
+std::size_t jobPixel(const TileScratch& s, std::size_t job, const Frame& out) {
+  const TileBuffers& tile = s.planes[0];
+  const int p = s.sortedJobs[job].pixel;
+  return std::size_t(tile.originY + TileBuffers::yAt(p)) * std::size_t(out.width) +
+         std::size_t(tile.originX + TileBuffers::xAt(p));
+}
+
+// Calls kernel(its draw's ShadeState, first job, job count) for each run of s.sortedJobs.
+template <class Kernel>
+void forEachAovRun(const TileFrame& frame, const TileScratch& s, std::uint32_t runs,
+                   const Kernel& kernel) {
   for (std::uint32_t r = 0; r < runs; ++r) {
     const std::uint32_t first = s.runJobs[r], jobs = s.runJobs[r + 1] - first;
     if (jobs == 0) continue;
     const std::uint32_t draw = s.visibleTriangles[s.sortedJobs[first].triangle].draw;
-    kernels.footprintLevels(frame.draws[draw].shade, s.shadePlanes.data(), &s.sortedJobs[first],
-                            int(jobs), lod + first, anisotropy + first);
+    kernel(frame.draws[draw].shade, first, jobs);
   }
+}
+
+// The lod and anisotropy AOVs (docs/cli.md "AOVs"): the nearest sample's
+// triangle looked up by the kernel at the pixel centre as the shading pass
+// would (TileKernels::footprintLevels), one kernel call per run of a
+// textured draw's pixels; 0 and 0 where no textured surface is.
+void writeFootprintAovs(const TileFrame& frame, const TileKernels& kernels, TileScratch& s,
+                        Frame& out) {
+  const AovSet set = frame.aov->aovs;
+  const std::uint32_t runs = collectAovJobs(
+      frame, s, out, [](const ShadeState& shade) { return shade.textured; },
+      [&](std::size_t pixel) {
+        if (hasAov(set, Aov::Lod)) out.lod[pixel] = 0.0f;
+        if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = 0.0f;
+      });
+  if (runs == 0) return;
+  const std::size_t count = s.sortedJobs.size();
+  s.jobColor.resize(2 * count);
+  float* const lod = s.jobColor.data();
+  float* const anisotropy = lod + count;
+  forEachAovRun(frame, s, runs,
+                [&](const ShadeState& shade, std::uint32_t first, std::uint32_t jobs) {
+                  kernels.footprintLevels(shade, s.shadePlanes.data(), &s.sortedJobs[first],
+                                          int(jobs), lod + first, anisotropy + first);
+                });
   for (std::size_t j = 0; j < count; ++j) {
-    const int p = s.sortedJobs[j].pixel;
-    const std::size_t pixel =
-        std::size_t(tile.originY + TileBuffers::yAt(p)) * std::size_t(out.width) +
-        std::size_t(tile.originX + TileBuffers::xAt(p));
+    const std::size_t pixel = jobPixel(s, j, out);
     if (hasAov(set, Aov::Lod)) out.lod[pixel] = lod[j];
     if (hasAov(set, Aov::Anisotropy)) out.anisotropy[pixel] = anisotropy[j];
   }
+}
+
+// The shading AOVs (docs/cli.md "AOVs"): the nearest sample's triangle
+// shaded again by the kernel at the pixel centre, as the shading pass shaded
+// it, its terms kept apart (TileKernels::shadingAovs); 0 where no surface is.
+void writeShadingAovs(const TileFrame& frame, const TileKernels& kernels, TileScratch& s,
+                      Frame& out) {
+  const AovSet set = frame.aov->aovs;
+  struct Target {
+    Aov aov;
+    std::vector<float>* frame;
+    int channel, channels;
+  };
+  const Target targets[] = {{Aov::Albedo, &out.albedo, kAlbedoChannel, 3},
+                            {Aov::Roughness, &out.roughness, kRoughnessChannel, 1},
+                            {Aov::Metallic, &out.metallic, kMetallicChannel, 1},
+                            {Aov::Emission, &out.emission, kEmissionChannel, 3},
+                            {Aov::Diffuse, &out.diffuse, kDiffuseChannel, 3},
+                            {Aov::Specular, &out.specular, kSpecularChannel, 3}};
+  const std::uint32_t runs = collectAovJobs(
+      frame, s, out, [](const ShadeState&) { return true; },
+      [&](std::size_t pixel) {
+        for (const Target& t : targets)
+          if (hasAov(set, t.aov))
+            for (int c = 0; c < t.channels; ++c)
+              (*t.frame)[std::size_t(t.channels) * pixel + std::size_t(c)] = 0.0f;
+      });
+  if (runs == 0) return;
+  const std::size_t count = s.sortedJobs.size();
+  s.jobColor.resize(kShadingAovFloats * count);
+  float* const terms = s.jobColor.data();
+  forEachAovRun(
+      frame, s, runs, [&](const ShadeState& shade, std::uint32_t first, std::uint32_t jobs) {
+        // The run's own block of kShadingAovFloats x jobs floats.
+        float* const run = terms + kShadingAovFloats * first;
+        kernels.shadingAovs(shade, s.shadePlanes.data(), &s.sortedJobs[first], int(jobs), run);
+        if (shade.material == nullptr && frame.aov->albedoScale != 1.0f)
+          for (std::size_t i = 0; i < 3 * std::size_t(jobs); ++i)
+            run[kAlbedoChannel * std::size_t(jobs) + i] *= frame.aov->albedoScale;
+      });
+  forEachAovRun(frame, s, runs, [&](const ShadeState&, std::uint32_t first, std::uint32_t jobs) {
+    const float* run = terms + kShadingAovFloats * first;
+    for (std::uint32_t j = 0; j < jobs; ++j) {
+      const std::size_t pixel = jobPixel(s, first + j, out);
+      for (const Target& t : targets)
+        if (hasAov(set, t.aov))
+          for (int c = 0; c < t.channels; ++c)
+            (*t.frame)[std::size_t(t.channels) * pixel + std::size_t(c)] =
+                run[std::size_t(t.channel + c) * jobs + j];
+    }
+  });
 }
 
 // binned: the triangles the front end binned to the tile, over every chunk.
@@ -1151,11 +1231,13 @@ void renderTile(int tileIndex, std::uint32_t binned, const TileFrame& frame, Til
   forwardDraws(frame, s);
   const double rastered = stageClockMs();
   // Before resolveSamples, which folds the samples' depths into plane 0.
-  if (frame.aov && (frame.aov->aovs & ~kFootprintAovs) != 0)
+  if (frame.aov && (frame.aov->aovs & ~(kFootprintAovs | kShadingAovs)) != 0)
     writeSurfaceAovs(*frame.aov, s.planes.get(), samples, frame.depthGreater, s.visibleTriangles,
                      s.visibleSources, s.aovTriangles, out);
   if (frame.aov && (frame.aov->aovs & kFootprintAovs) != 0)
     writeFootprintAovs(frame, *frame.kernels.wide, s, out);
+  if (frame.aov && (frame.aov->aovs & kShadingAovs) != 0)
+    writeShadingAovs(frame, *frame.kernels.wide, s, out);
   // The environment behind the surfaces: under each sample a wide pixel
   // filter weighs, else under the resolved pixels (the same average: the
   // composite is linear in the colour).
@@ -1174,7 +1256,8 @@ void renderTile(int tileIndex, std::uint32_t binned, const TileFrame& frame, Til
 }  // namespace
 
 std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
-                              int pixelFilterChannels, bool aovs, const std::vector<Draw>& draws) {
+                              int pixelFilterChannels, AovSet aovs,
+                              const std::vector<Draw>& draws) {
   const std::uint64_t slots = std::uint64_t(samples) * TileBuffers::kPixels;
   const bool blended = someDrawComposedInDepthOrder(draws);
   // The fragment layers, counts and the order pass (blended_fragments.h).
@@ -1184,9 +1267,10 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
   // at theirs. Per visible triangle: its entry and shading planes, its run,
   // renumbering, and its run's four list offsets and jobs offset; with
   // AOVs its source triangle and AovTriangle.
-  const std::uint64_t perTriangle = sizeof(TileTriangle) + kShadePlaneStride * sizeof(float) +
-                                    sizeof(std::uint32_t) + 2 * 6 * sizeof(std::uint32_t) +
-                                    (aovs ? 2 * (sizeof(std::uint32_t) + sizeof(AovTriangle)) : 0);
+  const std::uint64_t perTriangle =
+      sizeof(TileTriangle) + kShadePlaneStride * sizeof(float) + sizeof(std::uint32_t) +
+      2 * 6 * sizeof(std::uint32_t) +
+      (aovs != 0 ? 2 * (sizeof(std::uint32_t) + sizeof(AovTriangle)) : 0);
   // Shading jobs, at most one per sample slot (a pixel's triangles shaded
   // once each): the job, its sorted copy, its place there and its colour
   // (RGB, or lod and anisotropy); and each slot's job.
@@ -1195,8 +1279,11 @@ std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
   // Per pixel: plane 0's ids copied, the differing samples, the mixed pixels
   // and their first jobs, the run lists' groups and pixels, and each lane
   // group's run.
+  // With the shading AOVs, their terms per pixel's job (the colour list
+  // holds them).
   const std::uint64_t perPixel =
-      2 * (3 * sizeof(std::uint32_t) + 3 * sizeof(std::uint16_t) + sizeof(std::uint32_t));
+      2 * (3 * sizeof(std::uint32_t) + 3 * sizeof(std::uint16_t) + sizeof(std::uint32_t)) +
+      ((aovs & kShadingAovs) != 0 ? 2 * kShadingAovFloats * sizeof(float) : 0);
   const std::uint64_t perWorker =
       std::uint64_t(samples) * (sizeof(TileBuffers) + sizeof(ShadeState)) + fragments +
       std::uint64_t(maxVisibleTriangles(samples)) * perTriangle + slots * perJob +

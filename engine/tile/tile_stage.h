@@ -98,13 +98,13 @@ constexpr int maxVisibleTriangles(int samples) {
 // TileWorkspace keeps between frames of the same settings), on `threads`
 // threads: each worker's scratch (a TileBuffers per
 // sample plane; the lists and shading planes of at most maxVisibleTriangles
-// triangles, with aovs their AOV records too; the shading jobs, at
+// triangles, with AOVs their AOV records too (and the shading AOVs' terms); the shading jobs, at
 // most one a sample; when some draw is composited in depth order the blended
 // fragments at their per-sample bound; a wide pixel filter's tile planes)
 // and, for a wide pixel filter (channels: 4, or 5 with coverage; 0 for the
 // box filter), every tile's border ring. The renderer charges it to its
 // memory budget before the frame is allocated.
 std::uint64_t tileMemoryBytes(const TileGrid& grid, int samples, int threads,
-                              int pixelFilterChannels, bool aovs, const std::vector<Draw>& draws);
+                              int pixelFilterChannels, AovSet aovs, const std::vector<Draw>& draws);
 
 }  // namespace quadra
