@@ -17,7 +17,7 @@ inline std::vector<std::pair<std::string, std::string>> reportSubjects() {
       {"stability", "numerical stability on the hard-case scenes (exit 1 on a failed check)"},
       {"frames", "quadra's frames against Mesa llvmpipe's: times and image difference"},
       {"samples", "samples per pixel: their cost against a reference tracer's frame"},
-      {"lighting", "lit frames, quadra's and llvmpipe's split sum: time against the lit ideal"}};
+      {"lighting", "lit frames, quadra's and llvmpipe's: time and error against the lit ideal"}};
 }
 
 }  // namespace quadra
