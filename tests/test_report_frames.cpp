@@ -303,8 +303,9 @@ TEST(ReportFrames, TakesTheLitShadingToBothRenderers) {
   const Image reported = readImage((dir / "frames" / "builtin-showcase.quadra.exr").string());
   EXPECT_TRUE(std::isinf(imageDifference(reported, readImage(lit.string())).psnr));
   EXPECT_LT(imageDifference(reported, readImage(unlit.string())).psnr, 40.0);
-  if (kHavePeer && r.out.find("llvmpipe: not measured") != std::string::npos)
+  if (kHavePeer && r.out.find("llvmpipe: not measured") != std::string::npos) {
     EXPECT_NE(r.out.find("quadra-llvmpipe refuses --shading pbr: "), std::string::npos) << r.out;
+  }
 }
 
 TEST(ReportFrames, BadOptionsAreOneLineErrorsAndWriteNothing) {

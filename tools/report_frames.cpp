@@ -185,14 +185,14 @@ int runFramesReport(const std::vector<std::string>& args) {
   const std::optional<FramesOptions> parsed = parseFrames(args);
   if (!parsed) return 0;
   const FramesOptions& options = *parsed;
-  const std::vector<SceneEntry> scenes = chooseFramesScenes(options);
-  if (scenes.empty()) throw Error("report frames: no scenes to render");
-  const fs::path outDir(options.outDir), imageDir = outDir / "frames";
-  std::error_code ec;
   if (options.shading == "pbr") {
     MemoryBudget budget(options.load.maxMemory, "--env");
     loadEnvironmentArgument(options.environment, budget);  // checked before any run
   }
+  const std::vector<SceneEntry> scenes = chooseFramesScenes(options);
+  if (scenes.empty()) throw Error("report frames: no scenes to render");
+  const fs::path outDir(options.outDir), imageDir = outDir / "frames";
+  std::error_code ec;
   std::vector<Contender> contenders = {
       {"quadra", executablePath().parent_path() / "quadra", {"--shading", options.shading}}};
   const std::optional<fs::path> peer = findLlvmpipePeer();
