@@ -285,10 +285,12 @@ std::vector<CommandLineCase> everyCommand() {
   std::ofstream(in) << "u,v,dudx,dvdx,dudy,dvdy\n0.5,0.5,0,0,0,0\n";
   const fs::path png = tempPath("parse.png"), csv = tempPath("parse_values.csv"),
                  reportDir = testDir() / "parse_report", framesDir = testDir() / "parse_frames",
-                 samplesDir = testDir() / "parse_samples";
+                 samplesDir = testDir() / "parse_samples",
+                 lightingDir = testDir() / "parse_lighting";
   fs::remove_all(reportDir);
   fs::remove_all(framesDir);
   fs::remove_all(samplesDir);
+  fs::remove_all(lightingDir);
   return {
       {"render", "builtin:checker-plane --width 32", "--height 32 --out " + png.string(), png},
       {"sample", "--texture " + tex.string() + " --filter bilinear",
@@ -302,6 +304,10 @@ std::vector<CommandLineCase> everyCommand() {
        "--height 32 --samples 1 --reference-spp 1 --rounds 1 --frames 1 --out-dir " +
            samplesDir.string(),
        samplesDir},
+      {"report lighting", "--scenes builtin:checker-plane --envs builtin:studio",
+       "--accuracy-size 8x8 --speed-size 8x8 --rounds 1 --frames 1 --out-dir " +
+           lightingDir.string(),
+       lightingDir},
   };
 }
 
@@ -355,7 +361,9 @@ TEST(Cli, SharedOptionsSayTheSameWhicheverCommandHasThem) {
     SCOPED_TRACE(c.command);
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --threads 0"),
                      "--threads: '0' must be a whole number in 1..1024", c.written);
-    if (c.command == "report sat-precision" || c.command == "report frames") continue;  // no --isa
+    if (c.command == "report sat-precision" || c.command == "report frames" ||
+        c.command == "report lighting")
+      continue;  // no --isa
     expectUsageError(run(c.command + " " + c.head + " " + c.tail + " --isa mmx"),
                      "--isa: unknown ISA 'mmx' (auto, scalar, sse2, avx2, avx512)", c.written);
   }
@@ -409,9 +417,10 @@ TEST(Cli, HelpListsEveryCommandAndHelpCommandIsCommandHelp) {
   EXPECT_EQ(bare.out, overview.out);
 
   const std::vector<std::string> commands = commandsInOverview(overview.out);
-  EXPECT_EQ(commands, (std::vector<std::string>{"render", "sample", "env", "report textures",
-                                                "report sat-precision", "report stability",
-                                                "report frames", "report samples"}));
+  EXPECT_EQ(commands,
+            (std::vector<std::string>{"render", "sample", "env", "report textures",
+                                      "report sat-precision", "report stability", "report frames",
+                                      "report samples", "report lighting"}));
   for (const std::string& command : commands) {
     SCOPED_TRACE(command);
     const RunResult help = run("help " + command), own = run(command + " --help"),

@@ -303,6 +303,30 @@ TEST(ReportFrames, TakesTheSampleCountToBothRenderers) {
   }
 }
 
+// --shading pbr reaches both renderers: the report's quadra frame is quadra's
+// lit frame under the default environment, and llvmpipe draws pbr or is
+// said not to.
+TEST(ReportFrames, TakesTheLitShadingToBothRenderers) {
+  const fs::path dir = testDir() / "report_frames_pbr";
+  fs::remove_all(dir);
+  const RunResult r =
+      run("report frames --scenes builtin:showcase --width 64 --height 36 --rounds 1 "
+          "--frames 1 --threads 2 --shading pbr --out-dir " +
+          dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("lit (--shading pbr --env builtin:studio)"), std::string::npos) << r.out;
+  const fs::path lit = tempPath("report_lit.exr"), unlit = tempPath("report_unlit.exr");
+  const std::string size = "--width 64 --height 36 --threads 2 --out ";
+  ASSERT_EQ(run("render builtin:showcase --shading pbr " + size + lit.string()).exitCode, 0);
+  ASSERT_EQ(run("render builtin:showcase --shading unlit " + size + unlit.string()).exitCode, 0);
+  const Image reported = readImage((dir / "frames" / "builtin-showcase.quadra.exr").string());
+  EXPECT_TRUE(std::isinf(imageDifference(reported, readImage(lit.string())).psnr));
+  EXPECT_LT(imageDifference(reported, readImage(unlit.string())).psnr, 40.0);
+  if (kHavePeer && r.out.find("llvmpipe: not measured") != std::string::npos) {
+    EXPECT_NE(r.out.find("quadra-llvmpipe refuses --shading pbr: "), std::string::npos) << r.out;
+  }
+}
+
 TEST(ReportFrames, BadOptionsAreOneLineErrorsAndWriteNothing) {
   const fs::path dir = testDir() / "report_frames_never";
   fs::remove_all(dir);
@@ -319,6 +343,10 @@ TEST(ReportFrames, BadOptionsAreOneLineErrorsAndWriteNothing) {
   expectOneLineError(run("report frames --llvmpipe-framebuffer rgba8" + outDir),
                      "--llvmpipe-framebuffer: unknown framebuffer 'rgba8' (rgba32f, srgba8)");
   expectOneLineError(run("report frames --samples 5" + outDir), "--samples");
+  expectOneLineError(run("report frames --shading lit" + outDir),
+                     "--shading: unknown shading 'lit' (unlit, pbr)");
+  expectOneLineError(run("report frames --shading pbr --env /nonexistent.hdr" + outDir),
+                     "/nonexistent.hdr");
   if (kHavePeer)
     expectOneLineError(run("report frames --scenes builtin:showcase --samples 16" + outDir),
                        "--samples 16: llvmpipe has at most");

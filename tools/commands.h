@@ -23,5 +23,7 @@ int runFramesReport(const std::vector<std::string>& args);
 int runStabilityReport(const std::vector<std::string>& args);
 // `quadra report samples` (report_samples.cpp).
 int runSamplesReport(const std::vector<std::string>& args);
+// `quadra report lighting` (report_lighting.cpp).
+int runLightingReport(const std::vector<std::string>& args);
 
 }  // namespace quadra

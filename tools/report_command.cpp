@@ -397,6 +397,7 @@ int runReport(const std::vector<std::string>& args) {
   if (subject == "stability") return runStabilityReport(rest);
   if (subject == "frames") return runFramesReport(rest);
   if (subject == "samples") return runSamplesReport(rest);
+  if (subject == "lighting") return runLightingReport(rest);
   if (subject == "--help" || subject == "-h") {
     std::cout << "usage: quadra report SUBJECT [options]\nsubjects:\n" +
                      summaryLines(reportSubjects()) +
@@ -404,8 +405,8 @@ int runReport(const std::vector<std::string>& args) {
     return 0;
   }
   const std::string expected =
-      "report: expected a subject, 'textures', 'sat-precision', 'stability', 'frames' or "
-      "'samples'";
+      "report: expected a subject, 'textures', 'sat-precision', 'stability', 'frames', "
+      "'samples' or 'lighting'";
   if (subject.empty() || subject.rfind("--", 0) == 0)
     throw UsageError(expected + " (see quadra report --help)");
   std::vector<std::string> names;

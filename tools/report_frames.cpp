@@ -7,9 +7,8 @@
 // as EXR) and an end-to-end run (--frames 1 writing a PNG,
 // timed from spawn to exit). It prints a markdown table of the medians over
 // the rounds and of the two images' difference, then the geometric means of
-// the ratios, and writes DIR/frames.csv.
-#include <unistd.h>
-
+// the ratios, and writes DIR/frames.csv. Both draw unlit (--shading unlit,
+// the default) or lit (--shading pbr under --env).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -30,6 +29,7 @@
 #include "lab/scene/sample_models.h"
 #include "render_options.h"
 #include "report_output.h"
+#include "report_runs.h"
 #include "subprocess.h"
 
 namespace quadra {
@@ -41,7 +41,8 @@ constexpr const char* kFramesUsage =
     R"(usage: quadra report frames [--width W] [--height H] [--threads N] [--frames K]
                             [--rounds R] [--scenes LIST] [--assets DIR] [--out-dir DIR]
                             [--llvmpipe-framebuffer rgba32f|srgba8] [--allow-path DIR]
-                            [--max-memory SIZE] [--samples N]
+                            [--max-memory SIZE] [--samples N] [--shading unlit|pbr]
+                            [--env FILE|builtin:NAME]
   --width W --height H  frame size (default 1920x1080)
   --threads N           threads of both renderers (default: all cores)
   --frames K            timed frames per timing run, after one warm-up (default 5)
@@ -62,8 +63,14 @@ constexpr const char* kFramesUsage =
   --samples N           samples per pixel, 1 (default), 2, 4, 8 or 16, passed to both
                         renderers: quadra shades once per pixel and visible triangle,
                         llvmpipe draws N-sample MSAA (it has 4 at most)
+  --shading unlit|pbr   both renderers' shading (default unlit); pbr: glTF's
+                        metallic-roughness material lit by --env, the split-sum method
+                        on llvmpipe's side (see quadra report lighting)
+  --env FILE|builtin:NAME
+                        pbr's environment, passed to both renderers (default
+                        builtin:studio)
 Each scene is rendered by `quadra render` and, where it was built beside this
-quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and unlit
+quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and
 shading), as separate processes with the same options, taking turns at going first.
 Frame time: the median of K timed frames per run. End to end: the wall time of
 `render SCENE --frames 1 --out FILE.png`, from process start to exit. Ratios are
@@ -80,9 +87,11 @@ struct FramesOptions {
   std::string scenes;
   std::string assets = QUADRA_ASSETS_DIR;
   std::string outDir = "out";
-  std::string peerFramebuffer = "rgba32f";  // quadra-llvmpipe --framebuffer
-  LoadOptions load;                         // --allow-path and --max-memory, passed on
-  int samples = 1;                          // --samples, passed on
+  std::string peerFramebuffer = "rgba32f";        // quadra-llvmpipe --framebuffer
+  LoadOptions load;                               // --allow-path and --max-memory, passed on
+  int samples = 1;                                // --samples, passed on
+  std::string shading = "unlit";                  // --shading, passed on
+  std::string environment = kDefaultEnvironment;  // --env, passed on with pbr
 };
 
 std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
@@ -101,20 +110,13 @@ std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
   addAllowPathOption(parser, options.load);
   addMaxMemoryOption(parser, options.load);
   addSamplesOption(parser, options.samples);
+  parser.choice("--shading", "shading",
+                {{"unlit", std::string("unlit")}, {"pbr", std::string("pbr")}}, options.shading);
+  parser.text("--env", options.environment);
   if (parser.parse(args) == Parsed::HelpShown) return std::nullopt;
   if (options.threads == 0)
     options.threads = int(std::max(1u, std::thread::hardware_concurrency()));
   return options;
-}
-
-// One row of the report: what the table calls it and what `render` is given.
-struct SceneEntry {
-  std::string label;     // builtin:NAME, a model's name, or a file's stem
-  std::string argument;  // builtin:NAME or a file path
-};
-
-fs::path modelFile(const fs::path& assets, const std::string& model) {
-  return assets / model / "glTF" / (model + ".gltf");
 }
 
 // Every <Model>/glTF/<Model>.gltf under `assets` that quadra loads, by name;
@@ -152,35 +154,10 @@ std::vector<SceneEntry> chooseFramesScenes(const FramesOptions& options) {
     for (const SceneEntry& model : sampleModels(options.assets)) scenes.push_back(model);
     return scenes;
   }
-  for (const std::string& entry : splitList("--scenes", options.scenes)) {
-    const std::string prefix = kBuiltinScenePrefix;
-    std::error_code ec;
-    if (entry.rfind(prefix, 0) == 0) {
-      if (std::find(builtins.begin(), builtins.end(), entry.substr(prefix.size())) ==
-          builtins.end())
-        throw UsageError("--scenes: unknown built-in scene '" + entry +
-                         "' (see quadra render --help)" +
-                         didYouMean(entry.substr(prefix.size()), builtins));
-      scenes.push_back({entry, entry});
-    } else if ((endsWithIgnoringCase(entry, ".gltf") || endsWithIgnoringCase(entry, ".glb")) &&
-               fs::is_regular_file(entry, ec)) {
-      scenes.push_back({fs::path(entry).stem().string(), entry});
-    } else if (fs::is_regular_file(modelFile(options.assets, entry), ec)) {
-      scenes.push_back({entry, modelFile(options.assets, entry).string()});
-    } else {
-      throw Error("--scenes: '" + entry + "' is neither builtin:NAME, a model in " +
-                  options.assets + " nor a .gltf/.glb file");
-    }
-  }
+  for (const std::string& entry : splitList("--scenes", options.scenes))
+    scenes.push_back(sceneEntryOf(entry, options.assets));
   return scenes;
 }
-
-// A renderer under test: its name is the frame_ms line's first word.
-struct Contender {
-  std::string name;
-  fs::path program;
-  std::vector<std::string> options;  // its own, after the shared ones
-};
 
 struct Measurements {
   std::vector<double> frameMs, endToEndSeconds;  // one per round
@@ -194,42 +171,6 @@ struct FramesSceneResult {
   std::optional<ImageDifference> difference;
 };
 
-std::string firstLine(const std::string& text) {
-  return text.substr(0, text.find('\n'));
-}
-
-// Runs `program render SCENE … --out output` and returns its frame_ms line; an Error names the
-// scene, the renderer and its own message when the run fails.
-std::map<std::string, std::string> runRender(const Contender& contender, const SceneEntry& scene,
-                                             const FramesOptions& options, int frames,
-                                             const fs::path& output, const fs::path& scratch,
-                                             double& seconds) {
-  std::vector<std::string> arguments = {"render",    scene.argument,
-                                        "--width",   std::to_string(options.width),
-                                        "--height",  std::to_string(options.height),
-                                        "--threads", std::to_string(options.threads),
-                                        "--frames",  std::to_string(frames)};
-  arguments.insert(arguments.end(), {"--out", output.string()});
-  for (const std::string& folder : options.load.allowedPaths)
-    arguments.insert(arguments.end(), {"--allow-path", folder});
-  if (options.load.maxMemory != kDefaultMaxMemory)
-    arguments.insert(arguments.end(), {"--max-memory", std::to_string(options.load.maxMemory)});
-  if (options.samples > 1)
-    arguments.insert(arguments.end(), {"--samples", std::to_string(options.samples)});
-  arguments.insert(arguments.end(), contender.options.begin(), contender.options.end());
-  const ProcessResult run = runProcess(contender.program, arguments, scratch);
-  if (run.exitCode != 0)
-    throw Error(scene.label + ": " + contender.program.filename().string() +
-                " render failed: " + firstLine(run.err));
-  const std::map<std::string, std::string> line =
-      lineKeyValues(run.out, contender.name + " frame_ms ");
-  if (!line.count("median") || !line.count("triangles"))
-    throw Error(scene.label + ": " + contender.program.filename().string() +
-                " printed no frame_ms line");
-  seconds = run.seconds;
-  return line;
-}
-
 ImageDifference compareImages(const SceneEntry& scene, const fs::path& a, const fs::path& b) {
   try {
     return imageDifference(readImage(a.string()), readImage(b.string()));
@@ -238,59 +179,57 @@ ImageDifference compareImages(const SceneEntry& scene, const fs::path& a, const 
   }
 }
 
-double medianOf(const std::vector<double>& values) {
-  return summarizeFrameTimes(values).median;
-}
-
-std::string withThousands(std::size_t value) {
-  std::string digits = std::to_string(value), grouped;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) grouped += ',';
-    grouped += digits[i];
-  }
-  return grouped;
-}
-
-double geometricMean(const std::vector<double>& values) {
-  double sumLog = 0.0;
-  for (const double v : values) sumLog += std::log(v);
-  return std::exp(sumLog / double(values.size()));
-}
-
-std::string fileStem(const std::string& label) {
-  std::string stem = label;
-  for (char& c : stem)
-    if (c == ':' || c == '/' || c == ' ') c = '-';
-  return stem;
-}
-
 }  // namespace
 
 int runFramesReport(const std::vector<std::string>& args) {
   const std::optional<FramesOptions> parsed = parseFrames(args);
   if (!parsed) return 0;
   const FramesOptions& options = *parsed;
+  if (options.shading == "pbr") {
+    MemoryBudget budget(options.load.maxMemory, "--env");
+    loadEnvironmentArgument(options.environment, budget);  // checked before any run
+  }
   const std::vector<SceneEntry> scenes = chooseFramesScenes(options);
   if (scenes.empty()) throw Error("report frames: no scenes to render");
   const fs::path outDir(options.outDir), imageDir = outDir / "frames";
   std::error_code ec;
-  const fs::path bin = executablePath().parent_path();
-  // The peer draws quadra's unlit frame: quadra's default is pbr.
-  std::vector<Contender> contenders = {{"quadra", bin / "quadra", {"--shading", "unlit"}}};
-  const fs::path peer = bin / "quadra-llvmpipe";
-  const bool havePeer = fs::is_regular_file(peer, ec) && ::access(peer.c_str(), X_OK) == 0;
-  if (havePeer)
-    contenders.push_back({"llvmpipe", peer, {"--framebuffer", options.peerFramebuffer}});
+  std::vector<Contender> contenders = {
+      {"quadra", executablePath().parent_path() / "quadra", {"--shading", options.shading}}};
+  const std::optional<fs::path> peer = findLlvmpipePeer();
+  std::string peerNote;  // why llvmpipe is not measured
+  if (!peer)
+    peerNote =
+        "quadra-llvmpipe is not beside this quadra (it is built where libosmesa6-dev is "
+        "installed, by scripts/test.sh or `cmake --build build --target quadra-llvmpipe`)";
+  std::vector<std::string> peerOptions = {"--framebuffer", options.peerFramebuffer};
+  if (peer && options.shading == "pbr") {
+    peerNote = peerRefusal(*peer, {"--shading", "pbr"});
+    if (!peerNote.empty()) peerNote = "quadra-llvmpipe refuses --shading pbr: " + peerNote;
+    peerOptions.insert(peerOptions.end(), {"--shading", "pbr"});
+  } else if (peer && renderAccepts(*peer, "--shading")) {
+    peerOptions.insert(peerOptions.end(), {"--shading", "unlit"});
+  }
+  const bool havePeer = peerNote.empty();
+  if (havePeer) contenders.push_back({"llvmpipe", *peer, peerOptions});
   if (havePeer && options.samples > 1) {
     // Whether llvmpipe draws that many samples, asked of it before anything
     // is written (Mesa 22.3 has 4 at most).
-    const ProcessResult probe =
-        runProcess(peer,
-                   {"render", "builtin:checker-plane", "--width", "8", "--height", "8", "--samples",
-                    std::to_string(options.samples)},
-                   fs::temp_directory_path());
-    if (probe.exitCode != 0) throw Error(firstLine(probe.err));
+    const std::string refusal = peerRefusal(*peer, {"--samples", std::to_string(options.samples)});
+    if (!refusal.empty()) throw Error(refusal);
   }
+  RenderRun run{.width = options.width,
+                .height = options.height,
+                .threads = options.threads,
+                .frames = 1,
+                .options = {}};
+  for (const std::string& folder : options.load.allowedPaths)
+    run.options.insert(run.options.end(), {"--allow-path", folder});
+  if (options.load.maxMemory != kDefaultMaxMemory)
+    run.options.insert(run.options.end(), {"--max-memory", std::to_string(options.load.maxMemory)});
+  if (options.samples > 1)
+    run.options.insert(run.options.end(), {"--samples", std::to_string(options.samples)});
+  if (options.shading == "pbr")
+    run.options.insert(run.options.end(), {"--env", options.environment});
 
   fs::create_directories(imageDir, ec);
   if (ec || !fs::is_directory(imageDir))
@@ -320,8 +259,8 @@ int runFramesReport(const std::vector<std::string>& args) {
           const fs::path image =
               imageDir / (stem + "." + contender.name + (endToEnd ? ".png" : ".exr"));
           double seconds = 0.0;
-          const auto line = runRender(contender, result.scene, options,
-                                      endToEnd ? 1 : options.frames, image, outDir, seconds);
+          run.frames = endToEnd ? 1 : options.frames;
+          const auto line = runRender(contender, result.scene, run, image, outDir, seconds);
           if (endToEnd) {
             measured.endToEndSeconds.push_back(seconds);
           } else {
@@ -339,6 +278,8 @@ int runFramesReport(const std::vector<std::string>& args) {
   std::ostringstream out, csv;
   out << "Frames at " << options.width << "x" << options.height << ", " << options.threads
       << " threads, "
+      << (options.shading == "pbr" ? "lit (--shading pbr --env " + options.environment + "), "
+                                   : std::string("unlit, "))
       << (options.samples > 1
               ? std::to_string(options.samples) + " samples per pixel (quadra: --samples " +
                     std::to_string(options.samples) +
@@ -363,9 +304,7 @@ int runFramesReport(const std::vector<std::string>& args) {
            "| e2e ratio | PSNR dB | max diff |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
            "\n";
   } else {
-    out << "llvmpipe: not measured: quadra-llvmpipe is not beside this quadra (it is built "
-           "where libosmesa6-dev is installed, by scripts/test.sh or `cmake --build build "
-           "--target quadra-llvmpipe`).\n\n";
+    out << "llvmpipe: not measured: " << peerNote << ".\n\n";
     out << "| scene | triangles | quadra ms | quadra e2e s |\n|---|---:|---:|---:|\n";
   }
   csv << "scene,triangles,quadra_ms,llvmpipe_ms,ratio,quadra_e2e_s,llvmpipe_e2e_s,e2e_ratio,"
