@@ -52,7 +52,7 @@ constexpr const char* kLightingUsage =
     R"(usage: quadra report lighting [--scenes LIST] [--envs LIST] [--accuracy-size WxH]
                               [--speed-size WxH] [--threads N] [--frames K] [--rounds R]
                               [--ideal-spp N] [--ideal-check] [--assets DIR] [--out-dir DIR]
-                              [--allow-path DIR]
+                              [--allow-path DIR] [--peer-ibl-size N] [--peer-lut-size N]
   --scenes LIST         comma-separated sample model names (folders of --assets),
                         .gltf/.glb files or builtin:NAME (default: WaterBottle,
                         BoomBoxWithAxes, Avocado, Suzanne, NormalTangentMirrorTest,
@@ -79,6 +79,10 @@ constexpr const char* kLightingUsage =
                         later run of the same scene, environment, size and settings
   --allow-path DIR      a folder the glTF files' URIs may read besides their own
                         (repeatable; passed to both renderers)
+  --peer-ibl-size N     llvmpipe's prefiltered cubes' face size (its --ibl-size; default
+                        256, the Sample Viewer's)
+  --peer-lut-size N     llvmpipe's GGX table's side (its --lut-size; default 1024, the
+                        Sample Viewer's)
 Each scene and environment is rendered by `quadra render --shading pbr --env ENV`
 and, where it was built beside this quadra and draws pbr, by `quadra-llvmpipe
 render --shading pbr --env ENV` (the split-sum method on Mesa's llvmpipe), as
@@ -114,6 +118,8 @@ struct LightingReportOptions {
   std::string assets = QUADRA_ASSETS_DIR;
   std::string outDir = "out";
   LoadOptions load;  // --allow-path, passed on
+  // The peer's preparation sizes; smaller ones prepare in seconds (for tests).
+  int peerIblSize = 256, peerLutSize = 1024;
 };
 
 // "WxH", each side 1..kMaxViewportSize.
@@ -129,6 +135,8 @@ std::optional<LightingReportOptions> parseLighting(const std::vector<std::string
   LightingReportOptions options;
   CommandOptions parser("report lighting", kLightingUsage);
   parser.text("--scenes", options.scenes);
+  parser.integer("--peer-ibl-size", options.peerIblSize, 16, 1024);
+  parser.integer("--peer-lut-size", options.peerLutSize, 16, 4096);
   parser.text("--envs", options.environments);
   parser.value("--accuracy-size", [&options](const std::string& option, const std::string& text) {
     parseSize(option, text, options.accuracyWidth, options.accuracyHeight);
@@ -431,8 +439,15 @@ int runLightingReport(const std::vector<std::string>& args) {
   const Contender quadra1{"quadra", quadraProgram, {}};
   const Contender quadra16{
       "quadra", quadraProgram, {"--samples", "16", "--shading-rate", "sample"}};
-  const Contender peerFloat{"llvmpipe", peer.value_or(fs::path()), {"--framebuffer", "rgba32f"}};
-  const Contender peer8{"llvmpipe", peer.value_or(fs::path()), {"--framebuffer", "srgba8"}};
+  const std::string iblSize = std::to_string(options.peerIblSize),
+                    lutSize = std::to_string(options.peerLutSize);
+  const Contender peerFloat{
+      "llvmpipe",
+      peer.value_or(fs::path()),
+      {"--framebuffer", "rgba32f", "--ibl-size", iblSize, "--lut-size", lutSize}};
+  const Contender peer8{"llvmpipe",
+                        peer.value_or(fs::path()),
+                        {"--framebuffer", "srgba8", "--ibl-size", iblSize, "--lut-size", lutSize}};
 
   std::vector<LightingRow> rows;
   for (std::size_t s = 0; s < scenes.size(); ++s)
