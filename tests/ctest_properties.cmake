@@ -58,3 +58,14 @@ set_tests_properties([=[ReferenceArea.CheckerPlaneConvergesAndMatchesDenseRaysWh
                      PROPERTIES COST 12 LABELS heavy_arithmetic)
 set_tests_properties([=[ReferenceArea.HugeCoordinatesTakeTheRaysWhereTheyCannotBeClipped]=]
                      PROPERTIES COST 9 LABELS heavy_arithmetic)
+
+# The lit reports' end-to-end tests (tests/test_report_lighting.cpp,
+# tests/test_report_frames.cpp): about twenty quadra and quadra-llvmpipe
+# processes each (24 s and 15 s a run in Release on 2 threads), so they start
+# first. Their renders' threaded code is what the lit frame tests run under
+# TSan in-process, so the TSan suite leaves them out (tsan_repeat); the Release
+# and ASan suites run them.
+set_tests_properties([=[ReportLighting.ScoresQuadrasLitFramesAgainstTheIdealAndTimesThem]=]
+                     PROPERTIES COST 60 LABELS tsan_repeat)
+set_tests_properties([=[ReportFrames.TakesTheLitShadingToBothRenderers]=]
+                     PROPERTIES COST 30 LABELS tsan_repeat)

@@ -305,8 +305,8 @@ std::vector<CommandLineCase> everyCommand() {
            samplesDir.string(),
        samplesDir},
       {"report lighting", "--scenes builtin:checker-plane --envs builtin:studio",
-       "--accuracy-size 8x8 --speed-size 8x8 --rounds 1 --frames 1 --peer-ibl-size 32 "
-       "--peer-lut-size 64 --out-dir " +
+       "--accuracy-size 8x8 --speed-size 8x8 --rounds 1 --frames 1 --llvmpipe-ibl-size 32 "
+       "--llvmpipe-lut-size 64 --out-dir " +
            lightingDir.string(),
        lightingDir},
   };

@@ -311,7 +311,8 @@ TEST(ReportFrames, TakesTheLitShadingToBothRenderers) {
   fs::remove_all(dir);
   const RunResult r =
       run("report frames --scenes builtin:showcase --width 64 --height 36 --rounds 1 "
-          "--frames 1 --threads 2 --shading pbr --out-dir " +
+          "--frames 1 --threads 2 --shading pbr --llvmpipe-ibl-size 32 --llvmpipe-lut-size 64 "
+          "--out-dir " +
           dir.string());
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("lit (--shading pbr --env builtin:studio)"), std::string::npos) << r.out;

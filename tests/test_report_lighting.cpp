@@ -40,7 +40,7 @@ TEST(ReportLighting, ScoresQuadrasLitFramesAgainstTheIdealAndTimesThem) {
   const std::string command =
       "report lighting --scenes Suzanne --envs builtin:studio --accuracy-size 48x27 "
       "--speed-size 64x36 --ideal-spp 4 --rounds 1 --frames 1 --threads 2 "
-      "--peer-ibl-size 32 --peer-lut-size 64 --out-dir " +
+      "--llvmpipe-ibl-size 32 --llvmpipe-lut-size 64 --out-dir " +
       dir.string();
   const RunResult r = run(command);
   ASSERT_EQ(r.exitCode, 0) << r.err;

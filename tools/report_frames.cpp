@@ -42,7 +42,8 @@ constexpr const char* kFramesUsage =
                             [--rounds R] [--scenes LIST] [--assets DIR] [--out-dir DIR]
                             [--llvmpipe-framebuffer rgba32f|srgba8] [--allow-path DIR]
                             [--max-memory SIZE] [--samples N] [--shading unlit|pbr]
-                            [--env FILE|builtin:NAME]
+                            [--env FILE|builtin:NAME] [--llvmpipe-ibl-size N]
+                            [--llvmpipe-lut-size N]
   --width W --height H  frame size (default 1920x1080)
   --threads N           threads of both renderers (default: all cores)
   --frames K            timed frames per timing run, after one warm-up (default 5)
@@ -69,6 +70,10 @@ constexpr const char* kFramesUsage =
   --env FILE|builtin:NAME
                         pbr's environment, passed to both renderers (default
                         builtin:studio)
+  --llvmpipe-ibl-size N pbr: llvmpipe's prefiltered cubes' face size (its --ibl-size;
+                        default 256, the Sample Viewer's)
+  --llvmpipe-lut-size N pbr: llvmpipe's GGX table's side (its --lut-size; default 1024,
+                        the Sample Viewer's)
 Each scene is rendered by `quadra render` and, where it was built beside this
 quadra, by `quadra-llvmpipe render` (Mesa's llvmpipe, the same camera and
 shading), as separate processes with the same options, taking turns at going first.
@@ -88,6 +93,7 @@ struct FramesOptions {
   std::string assets = QUADRA_ASSETS_DIR;
   std::string outDir = "out";
   std::string peerFramebuffer = "rgba32f";        // quadra-llvmpipe --framebuffer
+  int peerIblSize = 256, peerLutSize = 1024;      // quadra-llvmpipe --ibl-size, --lut-size (pbr)
   LoadOptions load;                               // --allow-path and --max-memory, passed on
   int samples = 1;                                // --samples, passed on
   std::string shading = "unlit";                  // --shading, passed on
@@ -104,6 +110,8 @@ std::optional<FramesOptions> parseFrames(const std::vector<std::string>& args) {
   parser.text("--scenes", options.scenes);
   parser.text("--assets", options.assets);
   parser.text("--out-dir", options.outDir);
+  parser.integer("--llvmpipe-ibl-size", options.peerIblSize, 16, 1024);
+  parser.integer("--llvmpipe-lut-size", options.peerLutSize, 16, 4096);
   parser.choice("--llvmpipe-framebuffer", "framebuffer",
                 {{"rgba32f", std::string("rgba32f")}, {"srgba8", std::string("srgba8")}},
                 options.peerFramebuffer);
@@ -205,7 +213,9 @@ int runFramesReport(const std::vector<std::string>& args) {
   if (peer && options.shading == "pbr") {
     peerNote = peerRefusal(*peer, {"--shading", "pbr"});
     if (!peerNote.empty()) peerNote = "quadra-llvmpipe refuses --shading pbr: " + peerNote;
-    peerOptions.insert(peerOptions.end(), {"--shading", "pbr"});
+    peerOptions.insert(peerOptions.end(),
+                       {"--shading", "pbr", "--ibl-size", std::to_string(options.peerIblSize),
+                        "--lut-size", std::to_string(options.peerLutSize)});
   } else if (peer && renderAccepts(*peer, "--shading")) {
     peerOptions.insert(peerOptions.end(), {"--shading", "unlit"});
   }

@@ -52,7 +52,8 @@ constexpr const char* kLightingUsage =
     R"(usage: quadra report lighting [--scenes LIST] [--envs LIST] [--accuracy-size WxH]
                               [--speed-size WxH] [--threads N] [--frames K] [--rounds R]
                               [--ideal-spp N] [--ideal-check] [--assets DIR] [--out-dir DIR]
-                              [--allow-path DIR] [--peer-ibl-size N] [--peer-lut-size N]
+                              [--allow-path DIR] [--llvmpipe-ibl-size N]
+                              [--llvmpipe-lut-size N]
   --scenes LIST         comma-separated sample model names (folders of --assets),
                         .gltf/.glb files or builtin:NAME (default: WaterBottle,
                         BoomBoxWithAxes, Avocado, Suzanne, NormalTangentMirrorTest,
@@ -79,9 +80,9 @@ constexpr const char* kLightingUsage =
                         later run of the same scene, environment, size and settings
   --allow-path DIR      a folder the glTF files' URIs may read besides their own
                         (repeatable; passed to both renderers)
-  --peer-ibl-size N     llvmpipe's prefiltered cubes' face size (its --ibl-size; default
-                        256, the Sample Viewer's)
-  --peer-lut-size N     llvmpipe's GGX table's side (its --lut-size; default 1024, the
+  --llvmpipe-ibl-size N llvmpipe's prefiltered cubes' face size (its --ibl-size;
+                        default 256, the Sample Viewer's)
+  --llvmpipe-lut-size N llvmpipe's GGX table's side (its --lut-size; default 1024, the
                         Sample Viewer's)
 Each scene and environment is rendered by `quadra render --shading pbr --env ENV`
 and, where it was built beside this quadra and draws pbr, by `quadra-llvmpipe
@@ -135,8 +136,8 @@ std::optional<LightingReportOptions> parseLighting(const std::vector<std::string
   LightingReportOptions options;
   CommandOptions parser("report lighting", kLightingUsage);
   parser.text("--scenes", options.scenes);
-  parser.integer("--peer-ibl-size", options.peerIblSize, 16, 1024);
-  parser.integer("--peer-lut-size", options.peerLutSize, 16, 4096);
+  parser.integer("--llvmpipe-ibl-size", options.peerIblSize, 16, 1024);
+  parser.integer("--llvmpipe-lut-size", options.peerLutSize, 16, 4096);
   parser.text("--envs", options.environments);
   parser.value("--accuracy-size", [&options](const std::string& option, const std::string& text) {
     parseSize(option, text, options.accuracyWidth, options.accuracyHeight);
