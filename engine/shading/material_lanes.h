@@ -2,7 +2,7 @@
 // "The material"): a draw's material read at each lane's interpolated
 // attributes (every texture through the sampler and its LOD, each with its
 // own coordinate set and transform), the normal map applied, and the light
-// that leaves the surface toward the eye (shading/lighting_lanes.h).
+// that leaves the surface toward the eye (shading/shade_lanes.h).
 // Written once over lanes; the tile kernels of each ISA include it.
 #pragma once
 
