@@ -154,4 +154,21 @@ inline void expectCheckerPlaneFrame(const RunResult& r, const std::string& prefi
   EXPECT_EQ(fromPng.height, 54);
 }
 
+// The llvmpipe peer (quadra-llvmpipe), where the build made it (it needs
+// libosmesa6-dev): its tests skip elsewhere.
+#if defined(QUADRA_LLVMPIPE_PATH)
+inline constexpr bool kHavePeer = true;
+inline RunResult runPeer(const std::string& arguments) {
+  return runProgram(QUADRA_LLVMPIPE_PATH, arguments);
+}
+#else
+inline constexpr bool kHavePeer = false;
+inline RunResult runPeer(const std::string&) {
+  return {};
+}
+#endif
+
+#define SKIP_WITHOUT_PEER() \
+  if (!kHavePeer) GTEST_SKIP() << "quadra-llvmpipe was not built (needs libosmesa6-dev)"
+
 }  // namespace quadra

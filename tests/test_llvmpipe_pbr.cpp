@@ -22,21 +22,6 @@
 namespace quadra {
 namespace {
 
-#if defined(QUADRA_LLVMPIPE_PATH)
-constexpr bool kHavePeer = true;
-RunResult runPeer(const std::string& arguments) {
-  return runProgram(QUADRA_LLVMPIPE_PATH, arguments);
-}
-#else
-constexpr bool kHavePeer = false;
-RunResult runPeer(const std::string&) {
-  return {};
-}
-#endif
-
-#define SKIP_WITHOUT_PEER() \
-  if (!kHavePeer) GTEST_SKIP() << "quadra-llvmpipe was not built (needs libosmesa6-dev)"
-
 // The peer's environment at a quarter of the Sample Viewer's cube size and
 // table side: the same method and roughness levels, a second to prepare
 // instead of ~15 (the irradiance's 2048 samples per texel dominate).

@@ -24,21 +24,6 @@
 namespace quadra {
 namespace {
 
-#if defined(QUADRA_LLVMPIPE_PATH)
-constexpr bool kHavePeer = true;
-RunResult runPeer(const std::string& arguments) {
-  return runProgram(QUADRA_LLVMPIPE_PATH, arguments);
-}
-#else
-constexpr bool kHavePeer = false;
-RunResult runPeer(const std::string&) {
-  return {};
-}
-#endif
-
-#define SKIP_WITHOUT_PEER() \
-  if (!kHavePeer) GTEST_SKIP() << "quadra-llvmpipe was not built (needs libosmesa6-dev)"
-
 // The same scene and options through both renderers (`peerOptions` for the
 // peer alone); their images' difference. quadra takes its texture footprints
 // from 2x2 quads and its trilinear level as GL defines it, as llvmpipe does:

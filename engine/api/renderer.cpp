@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 
 #include "api/camera.h"
 #include "bin/bins.h"
@@ -621,18 +622,19 @@ FrameStats Renderer::render(const Scene& scene, const Camera& camera,
   const auto aovPixels = [&](Aov a) {
     return hasAov(settings.aovs, a) ? pixels * std::size_t(aovChannels(a)) : 0;
   };
-  resizeLarge(out.normal, aovPixels(Aov::Normal), 0.0f, &executor);
-  resizeLarge(out.position, aovPixels(Aov::Position), 0.0f, &executor);
-  resizeLarge(out.uv, aovPixels(Aov::Uv), 0.0f, &executor);
-  resizeLarge(out.motion, aovPixels(Aov::Motion), 0.0f, &executor);
-  resizeLarge(out.lod, aovPixels(Aov::Lod), 0.0f, &executor);
-  resizeLarge(out.anisotropy, aovPixels(Aov::Anisotropy), 0.0f, &executor);
-  resizeLarge(out.albedo, aovPixels(Aov::Albedo), 0.0f, &executor);
-  resizeLarge(out.roughness, aovPixels(Aov::Roughness), 0.0f, &executor);
-  resizeLarge(out.metallic, aovPixels(Aov::Metallic), 0.0f, &executor);
-  resizeLarge(out.emission, aovPixels(Aov::Emission), 0.0f, &executor);
-  resizeLarge(out.diffuse, aovPixels(Aov::Diffuse), 0.0f, &executor);
-  resizeLarge(out.specular, aovPixels(Aov::Specular), 0.0f, &executor);
+  const std::pair<std::vector<float>*, Aov> floatPlanes[] = {{&out.normal, Aov::Normal},
+                                                             {&out.position, Aov::Position},
+                                                             {&out.uv, Aov::Uv},
+                                                             {&out.motion, Aov::Motion},
+                                                             {&out.lod, Aov::Lod},
+                                                             {&out.anisotropy, Aov::Anisotropy},
+                                                             {&out.albedo, Aov::Albedo},
+                                                             {&out.roughness, Aov::Roughness},
+                                                             {&out.metallic, Aov::Metallic},
+                                                             {&out.emission, Aov::Emission},
+                                                             {&out.diffuse, Aov::Diffuse},
+                                                             {&out.specular, Aov::Specular}};
+  for (const auto& [plane, aov] : floatPlanes) resizeLarge(*plane, aovPixels(aov), 0.0f, &executor);
   for (std::vector<std::uint32_t>* ids : {&out.primitiveId, &out.nodeId, &out.materialId})
     resizeLarge(*ids, hasAov(settings.aovs, Aov::Ids) ? pixels : 0, kNoId, &executor);
   const double aspect = double(settings.width) / settings.height;

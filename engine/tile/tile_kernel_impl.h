@@ -1543,6 +1543,16 @@ bool visibilityAtSamples(const TriangleRecord& t, const Plane* p, const ShadeSta
   return won;
 }
 
+// One lane group's jobs from jobs[first ..]: their positions and triangles,
+// the last job repeated past count.
+void gatherJobs(const ShadeJob* jobs, int first, int count, float* xs, float* ys,
+                std::uint32_t* ids) {
+  for (int k = 0; k < L::kWidth; ++k) {
+    const ShadeJob& job = jobs[first + std::min(k, count - first - 1)];
+    xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
+  }
+}
+
 // The lod and anisotropy AOVs of a textured draw's pixels: the footprint
 // shadeColor takes at each job's position and the level its filter reads there.
 void footprintLevels(const ShadeState& s, const float* planes, const ShadeJob* jobs, int count,
@@ -1552,10 +1562,7 @@ void footprintLevels(const ShadeState& s, const float* planes, const ShadeJob* j
   for (int first = 0; first < count; first += L::kWidth) {
     alignas(64) float xs[L::kWidth], ys[L::kWidth];
     alignas(64) std::uint32_t ids[L::kWidth];
-    for (int k = 0; k < L::kWidth; ++k) {
-      const ShadeJob& job = jobs[first + std::min(k, count - first - 1)];
-      xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
-    }
+    gatherJobs(jobs, first, count, xs, ys, ids);
     LanePlane p[1 + kMaxShadedAttributes];
     lanePlanes(planes, ids, planeCount, p);
     const F x = F::load_aligned(xs), y = F::load_aligned(ys);
@@ -1593,10 +1600,7 @@ void shadingAovs(const ShadeState& s, const float* planes, const ShadeJob* jobs,
   for (int first = 0; first < count; first += L::kWidth) {
     alignas(64) float xs[L::kWidth], ys[L::kWidth];
     alignas(64) std::uint32_t ids[L::kWidth];
-    for (int k = 0; k < L::kWidth; ++k) {
-      const ShadeJob& job = jobs[first + std::min(k, count - first - 1)];
-      xs[k] = job.x, ys[k] = job.y, ids[k] = job.triangle;
-    }
+    gatherJobs(jobs, first, count, xs, ys, ids);
     LanePlane p[1 + kMaxShadedAttributes];
     if (readsPlanes) lanePlanes(planes, ids, planeCount, p);
     const F x = F::load_aligned(xs), y = F::load_aligned(ys);
